@@ -1,0 +1,42 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "base/math.h"
+
+namespace dp {
+
+/// Indexed triangle mesh. `normals` and `uvs` are either empty or one per position.
+struct TriangleMesh {
+    std::vector<vec3> positions;
+    std::vector<vec3> normals;
+    std::vector<vec2> uvs;
+    std::vector<glm::uvec3> triangles;
+
+    size_t triangle_count() const { return triangles.size(); }
+    /// Applies an affine transform (normals with the inverse transpose, renormalised).
+    void transform(const glm::mat4& m);
+    /// Axis-aligned bounds; returns false for an empty mesh.
+    bool bounds(vec3& lo, vec3& hi) const;
+};
+
+/// Plane of size x by z in local XZ centred at the origin, normal +Y, UVs over [0,1]^2.
+TriangleMesh make_plane(float size_x, float size_z);
+/// Axis-aligned box centred at the origin, outward normals, per-face UVs, 24 vertices.
+TriangleMesh make_box(const vec3& size);
+/// UV sphere with smooth normals (used when a sphere is scaled non-uniformly).
+TriangleMesh make_uv_sphere(float radius, int segments = 96, int rings = 48);
+
+/// Result of loading a mesh file: the mesh plus how many degenerate (zero-area) triangles were
+/// dropped.
+struct LoadedMesh {
+    TriangleMesh mesh;
+    size_t dropped_degenerate = 0;
+};
+
+/// Loads every mesh in an OBJ, PLY or glTF 2.0 file through Assimp (node transforms applied),
+/// merged into one mesh. Throws InputError naming the file (and `field`) when the file is missing,
+/// unreadable, or has no non-degenerate triangle.
+LoadedMesh load_mesh(const std::string& path, const std::string& field = "");
+
+}  // namespace dp

@@ -1,0 +1,40 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "base/math.h"
+
+namespace dp {
+
+/// Linear-float RGB image, row-major, row 0 at the top (the photograph's convention).
+class Image {
+public:
+    Image() = default;
+    Image(int width, int height, vec3 fill = vec3(0)) : width_(width), height_(height), pixels_(size_t(width) * height, fill) {}
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    bool empty() const { return pixels_.empty(); }
+    size_t size() const { return pixels_.size(); }
+
+    vec3& at(int x, int y) { return pixels_[size_t(y) * width_ + x]; }
+    const vec3& at(int x, int y) const { return pixels_[size_t(y) * width_ + x]; }
+    vec3& operator[](size_t i) { return pixels_[i]; }
+    const vec3& operator[](size_t i) const { return pixels_[i]; }
+    vec3* data() { return pixels_.data(); }
+    const vec3* data() const { return pixels_.data(); }
+
+    /// Bilinear lookup in continuous pixel coordinates where pixel (i, j) has its centre at
+    /// (i, j) (OpenCV's convention); clamps at the border.
+    vec3 bilinear(float x, float y) const;
+
+    bool operator==(const Image& o) const {
+        return width_ == o.width_ && height_ == o.height_ && pixels_ == o.pixels_;
+    }
+
+private:
+    int width_ = 0, height_ = 0;
+    std::vector<vec3> pixels_;
+};
+
+}  // namespace dp

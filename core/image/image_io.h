@@ -1,0 +1,42 @@
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "image/image.h"
+
+namespace dp {
+
+/// What loading found in the file besides the pixels.
+struct ImageLoadReport {
+    size_t non_finite_replaced = 0;  ///< NaN/Inf pixels (per channel) replaced by 0
+    size_t clipped = 0;              ///< LDR pixels with a channel at the maximum code value
+    bool linear_source = false;      ///< EXR/HDR (true) or sRGB-encoded LDR (false)
+};
+
+/// Loads EXR or Radiance HDR as linear float, PNG/JPEG/TIFF/BMP as sRGB decoded to linear.
+/// Throws InputError naming `path` and `field` when the file is missing, unreadable, corrupt or
+/// has zero size. NaN/Inf channels become 0 and are counted in `report`.
+Image load_image(const std::string& path, const std::string& field = "",
+                 ImageLoadReport* report = nullptr);
+
+/// One named layer of a multi-layer EXR; "" is the main RGB layer (channels R, G, B),
+/// anything else writes channels "<name>.R", "<name>.G", "<name>.B".
+struct ExrLayer {
+    std::string name;
+    const Image* image;
+};
+
+/// Writes a 32-bit float EXR with the given layers (all the same size).
+void save_exr(const std::string& path, const std::vector<ExrLayer>& layers);
+/// Reads one layer of an EXR written by save_exr ("" for the main one).
+Image load_exr_layer(const std::string& path, const std::string& layer);
+
+/// Writes an 8-bit sRGB PNG/JPEG (by extension): linear * 2^exposure, clamped to [0, 1].
+void save_ldr(const std::string& path, const Image& image, float exposure = 0.0f);
+
+/// sRGB transfer functions (IEC 61966-2-1).
+float srgb_to_linear(float v);
+float linear_to_srgb(float v);
+
+}  // namespace dp

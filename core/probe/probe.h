@@ -1,0 +1,91 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "base/math.h"
+#include "image/image.h"
+
+namespace dp {
+
+/// Lat-long convention (documented in docs/project-format.md): pixel (i, j) of a W x H map
+/// covers u in [i, i+1)/W and v in [j, j+1)/H; theta = pi v is the polar angle from +Y and
+/// phi = 2 pi (u - 1/2); the probe-space direction is
+///   (sin theta sin phi, cos theta, -sin theta cos phi),
+/// so the image centre looks along -Z, u = 3/4 along +X, and the top row is straight up.
+vec3 latlong_direction(float u, float v);
+/// Inverse of latlong_direction: u, v in [0, 1).
+vec2 latlong_uv(const vec3& dir);
+
+/// Alias table (Walker/Vose) over non-negative weights: O(1) sampling with the exact pmf.
+class AliasTable {
+public:
+    AliasTable() = default;
+    explicit AliasTable(const std::vector<double>& weights);
+    /// Picks an index with probability weight/sum from one uniform number in [0,1).
+    size_t sample(double u) const;
+    double pmf(size_t i) const { return pmf_[i]; }
+    double total() const { return total_; }
+    size_t size() const { return pmf_.size(); }
+
+private:
+    std::vector<double> pmf_, prob_;
+    std::vector<uint32_t> alias_;
+    double total_ = 0;
+};
+
+/// A direction drawn from the probe with its radiance and solid-angle pdf.
+struct ProbeSample {
+    vec3 dir;        ///< world space, towards the probe
+    vec3 radiance;   ///< scaled radiance arriving from dir
+    float pdf = 0;   ///< per unit solid angle
+    size_t pixel = 0;
+};
+
+/// The distant light: a lat-long HDR map with a world rotation and an intensity scale.
+/// Sampling is proportional to the luminance of each pixel's flux L_j * Omega_j, uniform in
+/// solid angle within the pixel.
+class Probe {
+public:
+    Probe() = default;
+    /// `rotation` maps probe space to world space; `intensity` scales radiance.
+    Probe(Image latlong, const glm::mat3& rotation, float intensity);
+
+    const Image& image() const { return image_; }
+    int width() const { return image_.width(); }
+    int height() const { return image_.height(); }
+
+    /// Radiance arriving from world direction `dir` (nearest pixel; piecewise constant).
+    vec3 radiance(const vec3& dir) const;
+    /// Solid angle of a pixel in row j.
+    double pixel_solid_angle(int row) const;
+    /// Scaled radiance of pixel index (row-major).
+    vec3 pixel_radiance(size_t pixel) const;
+
+    /// u.x picks the pixel, u.y and u.z the point inside it.
+    ProbeSample sample(float u0, float u1, float u2) const;
+    /// Solid-angle pdf of sample() for a world direction.
+    float pdf(const vec3& dir) const;
+    /// Probability that sample() picks pixel `pixel`.
+    double pixel_pmf(size_t pixel) const { return table_.pmf(pixel); }
+    /// Sum over pixels of luminance(L_j) * Omega_j (zero for a black probe).
+    double total_luminance_power() const { return table_.total(); }
+
+    vec3 to_world(const vec3& probe_dir) const { return rotation_ * probe_dir; }
+    vec3 to_probe(const vec3& world_dir) const { return inverse_rotation_ * world_dir; }
+
+private:
+    Image image_;
+    glm::mat3 rotation_{1.0f}, inverse_rotation_{1.0f};
+    float intensity_ = 1.0f;
+    AliasTable table_;
+};
+
+/// Euler XYZ angles in degrees to a rotation matrix (X applied first).
+glm::mat3 euler_xyz_deg(const vec3& deg);
+
+/// Unwraps a mirror-ball photograph (the ball filling the square image) seen by a camera with
+/// the given vertical field of view (0 = orthographic) into a lat-long map of the given size.
+/// The ball's camera looks along -Z of probe space.
+Image unwrap_mirror_ball(const Image& ball, int out_width, int out_height, float camera_fov_deg = 0);
+
+}  // namespace dp

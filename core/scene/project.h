@@ -1,0 +1,133 @@
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "base/math.h"
+#include "camera/camera.h"
+
+namespace dp {
+
+inline constexpr int kProjectSchemaVersion = 1;
+
+/// Translation, Euler rotation (degrees, applied X then Y then Z) and non-uniform scale.
+struct Transform {
+    vec3 translation{0.0f};
+    vec3 rotation_deg{0.0f};
+    vec3 scale{1.0f};
+    glm::mat4 matrix() const;
+    bool operator==(const Transform&) const = default;
+};
+
+/// Geometry of a proxy or object in its local frame.
+/// plane: `size.x` by `size.z` in local XZ, normal +Y; box: `size` centred at the origin;
+/// sphere: `radius` at the origin; mesh: a file loaded through Assimp.
+struct Shape {
+    enum class Kind { Plane, Box, Sphere, Mesh };
+    Kind kind = Kind::Plane;
+    vec3 size{1.0f};
+    float radius = 1.0f;
+    std::string mesh_path;  ///< as written in the project (relative to the project file)
+    bool operator==(const Shape&) const = default;
+};
+
+/// Diffuse reflectance: constant RGB, an image texture (sRGB/linear via image loading) mapped by
+/// the shape's UVs, or estimated from the photograph (rho = pi L_photo / E).
+struct Albedo {
+    enum class Kind { Constant, Texture, Estimate };
+    Kind kind = Kind::Constant;
+    vec3 rgb{0.5f};
+    std::string texture_path;
+    bool operator==(const Albedo&) const = default;
+};
+
+struct Material {
+    enum class Kind { Diffuse, Mirror, Glass };
+    Kind kind = Kind::Diffuse;
+    Albedo albedo;              ///< diffuse (Constant or Texture)
+    vec3 reflectance{0.95f};    ///< mirror
+    float ior = 1.5f;           ///< glass
+    vec3 tint{1.0f};            ///< glass: transmittance per unit crossing
+    bool operator==(const Material&) const = default;
+};
+
+struct RealProxy {
+    std::string name;
+    Shape shape;
+    Transform transform;
+    Albedo albedo;
+    bool operator==(const RealProxy&) const = default;
+};
+
+struct VirtualObject {
+    std::string name;
+    Shape shape;
+    Transform transform;
+    Material material;
+    bool visible = true;
+    bool operator==(const VirtualObject&) const = default;
+};
+
+struct PhotoSpec {
+    std::string path;
+    float exposure = 0.0f;  ///< stops; linear pixel values are multiplied by 2^exposure
+    bool operator==(const PhotoSpec&) const = default;
+};
+
+struct ProbeSpec {
+    enum class Format { LatLong, MirrorBall };
+    std::string path;
+    Format format = Format::LatLong;
+    vec3 rotation_deg{0.0f};  ///< Euler XYZ applied to the probe in world space
+    float intensity = 1.0f;   ///< linear scale on the probe's radiance
+    bool operator==(const ProbeSpec&) const = default;
+};
+
+/// Either explicit OpenCV intrinsics + pose, or look-at + vertical field of view.
+struct CameraSpec {
+    enum class Model { Intrinsics, LookAt };
+    Model model = Model::LookAt;
+    // Intrinsics model
+    float fx = 0, fy = 0, cx = 0, cy = 0;
+    Distortion distortion;
+    glm::mat3 rotation{1.0f};  ///< world-to-camera R
+    vec3 translation{0.0f};    ///< world-to-camera t
+    // Look-at model
+    vec3 eye{0, 1, 5}, target{0, 0, 0}, up{0, 1, 0};
+    float vfov_deg = 45.0f;
+
+    /// Builds the camera for an image of the given size.
+    Camera build(int width, int height) const;
+    bool operator==(const CameraSpec& o) const;
+};
+
+struct RenderSettings {
+    int64_t photons_per_pass = 200000;
+    int passes = 16;
+    double time_budget_s = 0;             ///< > 0: render until this many seconds, ignoring passes
+    std::optional<float> initial_radius;  ///< world units; automatic from the scene's size if absent
+    float alpha = 2.0f / 3.0f;
+    int max_depth = 8;
+    uint64_t seed = 1;
+    int threads = 0;  ///< 0: all cores
+    bool operator==(const RenderSettings&) const = default;
+};
+
+/// Everything a render needs, as written in the project file. Paths are kept as written;
+/// `resolve()` turns one into a path relative to the project file's folder.
+struct Project {
+    int schema_version = kProjectSchemaVersion;
+    std::filesystem::path base_dir;  ///< folder of the project file (not serialised)
+    PhotoSpec photo;
+    ProbeSpec probe;
+    CameraSpec camera;
+    std::vector<RealProxy> real;
+    std::vector<VirtualObject> objects;
+    RenderSettings render;
+
+    std::filesystem::path resolve(const std::string& path) const;
+    bool operator==(const Project& o) const;
+};
+
+}  // namespace dp
