@@ -1,4 +1,6 @@
 #pragma once
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,14 +17,22 @@ namespace dp {
 vec3 latlong_direction(float u, float v);
 /// Inverse of latlong_direction: u, v in [0, 1).
 vec2 latlong_uv(const vec3& dir);
+/// Row-major index of the pixel of a width x height lat-long map that contains the probe-space
+/// direction `dir` (need not be unit length).
+size_t latlong_pixel(const vec3& dir, int width, int height);
 
 /// Alias table (Walker/Vose) over non-negative weights: O(1) sampling with the exact pmf.
+/// Negative and non-finite weights count as 0. When every weight is 0 (or there are none),
+/// total() is 0, pmf() is 0 for every index and sample() returns 0.
 class AliasTable {
 public:
     AliasTable() = default;
     explicit AliasTable(const std::vector<double>& weights);
     /// Picks an index with probability weight/sum from one uniform number in [0,1).
     size_t sample(double u) const;
+    /// As sample(u), and also returns in `u_remapped` the part of `u` that picking the index did
+    /// not use, rescaled to a fresh uniform number in [0, 1).
+    size_t sample(double u, double* u_remapped) const;
     double pmf(size_t i) const { return pmf_[i]; }
     double total() const { return total_; }
     size_t size() const { return pmf_.size(); }
@@ -47,7 +57,8 @@ struct ProbeSample {
 class Probe {
 public:
     Probe() = default;
-    /// `rotation` maps probe space to world space; `intensity` scales radiance.
+    /// `rotation` maps probe space to world space; `intensity` scales radiance. Pixels with a
+    /// non-finite channel are set to 0; pixels of negative luminance are never sampled.
     Probe(Image latlong, const glm::mat3& rotation, float intensity);
 
     const Image& image() const { return image_; }
@@ -56,12 +67,15 @@ public:
 
     /// Radiance arriving from world direction `dir` (nearest pixel; piecewise constant).
     vec3 radiance(const vec3& dir) const;
-    /// Solid angle of a pixel in row j.
+    /// Solid angle of a pixel in row j: the exact area of its band on the sphere,
+    /// (2 pi / W)(cos theta_top - cos theta_bottom), so that the pixels sum to 4 pi.
     double pixel_solid_angle(int row) const;
     /// Scaled radiance of pixel index (row-major).
     vec3 pixel_radiance(size_t pixel) const;
 
-    /// u.x picks the pixel, u.y and u.z the point inside it.
+    /// u.x picks the pixel, u.y and u.z the point inside it. u.y also refines u.x below float
+    /// precision so that large maps are sampled with their exact pmf. A black probe returns
+    /// pdf 0 and zero radiance.
     ProbeSample sample(float u0, float u1, float u2) const;
     /// Solid-angle pdf of sample() for a world direction.
     float pdf(const vec3& dir) const;
@@ -85,7 +99,11 @@ glm::mat3 euler_xyz_deg(const vec3& deg);
 
 /// Unwraps a mirror-ball photograph (the ball filling the square image) seen by a camera with
 /// the given vertical field of view (0 = orthographic) into a lat-long map of the given size.
-/// The ball's camera looks along -Z of probe space.
+/// The ball's camera looks along -Z of probe space, image right being +X and up +Y; a perspective
+/// camera sits 1 / sin(fov / 2) ball radii from the centre. A non-square photo is read as its
+/// centred square. Directions hidden behind the ball, and those within 1.5 pixels of its rim,
+/// take the value just inside the rim at the same azimuth. Throws std::invalid_argument for an
+/// empty photo, a non-positive output size or a field of view outside [0, 180).
 Image unwrap_mirror_ball(const Image& ball, int out_width, int out_height, float camera_fov_deg = 0);
 
 }  // namespace dp

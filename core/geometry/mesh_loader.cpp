@@ -1,0 +1,184 @@
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include "base/error.h"
+#include "geometry/mesh.h"
+
+namespace dp {
+
+namespace {
+
+glm::mat4 to_glm(const aiMatrix4x4& a) {
+    // Assimp stores row-major (a[row][col]); glm indexes m[col][row].
+    glm::mat4 m;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) m[c][r] = a[r][c];
+    return m;
+}
+
+/// True when the triangle has no usable area: a non-finite corner, or twice its area is below
+/// what float coordinates can resolve relative to its longest edge.
+bool is_degenerate(const vec3& a, const vec3& b, const vec3& c) {
+    if (!is_finite(a) || !is_finite(b) || !is_finite(c)) return true;
+    const dvec3 e0 = dvec3(b) - dvec3(a), e1 = dvec3(c) - dvec3(a), e2 = dvec3(c) - dvec3(b);
+    const double twice_area = glm::length(glm::cross(e0, e1));
+    const double longest_sq = std::max({glm::dot(e0, e0), glm::dot(e1, e1), glm::dot(e2, e2)});
+    return !(twice_area > 1e-7 * longest_sq);
+}
+
+struct Collector {
+    const aiScene* scene;
+    TriangleMesh out;
+    bool any_uvs = false;
+    size_t total_triangles = 0;
+    size_t dropped = 0;
+
+    /// Appends one Assimp mesh placed by `world`; points, lines and faces indexing past the vertex
+    /// array are skipped.
+    void add_mesh(const aiMesh& src, const glm::mat4& world) {
+        TriangleMesh part;
+        part.positions.reserve(src.mNumVertices);
+        for (unsigned i = 0; i < src.mNumVertices; ++i) {
+            const aiVector3D& p = src.mVertices[i];
+            part.positions.emplace_back(p.x, p.y, p.z);
+        }
+        if (src.HasNormals()) {
+            part.normals.reserve(src.mNumVertices);
+            for (unsigned i = 0; i < src.mNumVertices; ++i) {
+                const aiVector3D& n = src.mNormals[i];
+                part.normals.emplace_back(n.x, n.y, n.z);
+            }
+        }
+        for (unsigned f = 0; f < src.mNumFaces; ++f) {
+            const aiFace& face = src.mFaces[f];
+            if (face.mNumIndices != 3) continue;
+            const unsigned* idx = face.mIndices;
+            if (std::max({idx[0], idx[1], idx[2]}) >= src.mNumVertices) continue;
+            part.triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
+        }
+        if (part.triangles.empty()) return;
+        part.transform(world);
+
+        const auto base = static_cast<unsigned>(out.positions.size());
+        out.positions.insert(out.positions.end(), part.positions.begin(), part.positions.end());
+        // Keep one normal per vertex even when this part has none; fill_missing_normals sets them.
+        if (part.normals.empty()) part.normals.assign(part.positions.size(), vec3(0.0f));
+        out.normals.insert(out.normals.end(), part.normals.begin(), part.normals.end());
+        for (unsigned i = 0; i < src.mNumVertices; ++i) {
+            const aiVector3D uv = src.HasTextureCoords(0) ? src.mTextureCoords[0][i] : aiVector3D();
+            out.uvs.emplace_back(uv.x, uv.y);
+        }
+        any_uvs = any_uvs || src.HasTextureCoords(0);
+
+        for (const glm::uvec3& t : part.triangles) {
+            ++total_triangles;
+            if (is_degenerate(part.positions[t.x], part.positions[t.y], part.positions[t.z])) {
+                ++dropped;
+                continue;
+            }
+            out.triangles.push_back(t + glm::uvec3(base));
+        }
+    }
+
+    void visit(const aiNode& node, const glm::mat4& parent) {
+        const glm::mat4 world = parent * to_glm(node.mTransformation);
+        for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+            const unsigned idx = node.mMeshes[i];
+            if (idx < scene->mNumMeshes && scene->mMeshes[idx]) {
+                add_mesh(*scene->mMeshes[idx], world);
+            }
+        }
+        for (unsigned i = 0; i < node.mNumChildren; ++i) {
+            if (node.mChildren[i]) visit(*node.mChildren[i], world);
+        }
+    }
+};
+
+bool is_valid_normal(const vec3& n) {
+    const float len = glm::length(n);
+    return std::isfinite(len) && len > 1e-6f;
+}
+
+/// Fills missing (zero) or invalid vertex normals with smooth ones: the area-weighted sum of the
+/// geometric normals of the kept triangles around every vertex at the same position, so that UV
+/// seams do not show as creases. Unused vertices get +Y.
+void fill_missing_normals(TriangleMesh& mesh) {
+    if (std::all_of(mesh.normals.begin(), mesh.normals.end(), is_valid_normal)) return;
+    std::vector<vec3> accum(mesh.positions.size(), vec3(0.0f));
+    for (const glm::uvec3& t : mesh.triangles) {
+        const vec3& a = mesh.positions[t.x];
+        const vec3 g = glm::cross(mesh.positions[t.y] - a, mesh.positions[t.z] - a);
+        accum[t.x] += g;
+        accum[t.y] += g;
+        accum[t.z] += g;
+    }
+    // Group vertices with identical positions by sorting their indices lexicographically.
+    std::vector<unsigned> order(mesh.positions.size());
+    for (unsigned i = 0; i < order.size(); ++i) order[i] = i;
+    auto less = [&](unsigned i, unsigned j) {
+        const vec3 &a = mesh.positions[i], &b = mesh.positions[j];
+        return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+    };
+    std::sort(order.begin(), order.end(), less);
+    for (size_t begin = 0; begin < order.size();) {
+        size_t end = begin + 1;
+        while (end < order.size() && mesh.positions[order[end]] == mesh.positions[order[begin]]) {
+            ++end;
+        }
+        vec3 sum(0.0f);
+        for (size_t k = begin; k < end; ++k) sum += accum[order[k]];
+        const vec3 smooth = is_valid_normal(sum) ? glm::normalize(sum) : vec3(0, 1, 0);
+        for (size_t k = begin; k < end; ++k) {
+            vec3& n = mesh.normals[order[k]];
+            n = is_valid_normal(n) ? glm::normalize(n) : smooth;
+        }
+        begin = end;
+    }
+}
+
+}  // namespace
+
+LoadedMesh load_mesh(const std::string& path, const std::string& field) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        throw InputError(path, field, "file not found");
+    }
+
+    Assimp::Importer importer;
+    // Missing normals are generated by fill_missing_normals rather than aiProcess_GenSmoothNormals:
+    // Assimp's step assumes one vertex per face corner and gives wrong normals for indexed
+    // formats (a PLY cube gets +-X normals on every corner).
+    const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
+    const aiScene* scene = importer.ReadFile(path, flags);
+    if (!scene || !scene->mRootNode) {
+        throw InputError(path, field,
+                         std::string("cannot read mesh: ") + importer.GetErrorString());
+    }
+
+    Collector c{scene, {}};
+    c.visit(*scene->mRootNode, glm::mat4(1.0f));
+    if (c.total_triangles == 0) throw InputError(path, field, "mesh file contains no triangles");
+    if (c.out.triangles.empty()) {
+        throw InputError(path, field,
+                         "degenerate mesh: all " + std::to_string(c.total_triangles) +
+                             " triangles have zero area");
+    }
+    if (!c.any_uvs) c.out.uvs.clear();
+    fill_missing_normals(c.out);
+
+    LoadedMesh result;
+    result.mesh = std::move(c.out);
+    result.dropped_degenerate = c.dropped;
+    return result;
+}
+
+}  // namespace dp

@@ -1,0 +1,201 @@
+// OpenEXR reading and writing: the main colour of any EXR, and the named layers of ours.
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfRgbaFile.h>
+
+#include <array>
+#include <cstdint>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "image/image_io.h"
+#include "image/image_io_internal.h"
+
+namespace dp {
+
+namespace {
+
+using image_io_detail::throw_unreadable;
+
+// Slices address the x/y/z floats of vec3 pixels in place, which needs a tightly packed vec3.
+static_assert(sizeof(vec3) == 3 * sizeof(float));
+
+// A corrupt header can claim any data window; refuse ones no real image has (over 12 GiB).
+constexpr int64_t kMaxPixels = int64_t(1) << 30;
+
+struct WindowSize {
+    int width, height;
+};
+
+WindowSize window_size(const Imath::Box2i& dw, const std::string& path,
+                       const std::string& field) {
+    const int64_t w = int64_t(dw.max.x) - dw.min.x + 1;
+    const int64_t h = int64_t(dw.max.y) - dw.min.y + 1;
+    if (w <= 0 || h <= 0) throw InputError(path, field, "image has zero size");
+    if (w * h > kMaxPixels)
+        throw_unreadable(path, field,
+                         "data window of " + std::to_string(w) + " x " + std::to_string(h) +
+                             " pixels is implausibly large");
+    return {int(w), int(h)};
+}
+
+std::string channel_name(const std::string& layer, const char* component) {
+    return layer.empty() ? std::string(component) : layer + "." + component;
+}
+
+std::string list_channels(const Imf::ChannelList& channels) {
+    std::string out;
+    for (auto it = channels.begin(); it != channels.end(); ++it)
+        out += (out.empty() ? "" : ", ") + std::string(it.name());
+    return out.empty() ? "none" : out;
+}
+
+// Reads the named channels into the x, y, z components; an empty name leaves that component 0.
+Image read_channels(Imf::InputFile& file, const std::array<std::string, 3>& names,
+                    const std::string& path, const std::string& field) {
+    const Imath::Box2i dw = file.header().dataWindow();
+    const WindowSize size = window_size(dw, path, field);
+    if (!file.isComplete()) throw_unreadable(path, field, "the file is truncated");
+
+    Image image(size.width, size.height);
+    Imf::FrameBuffer frame;
+    for (size_t c = 0; c < 3; ++c) {
+        if (names[c].empty()) continue;
+        char* base = reinterpret_cast<char*>(image.data()) + c * sizeof(float);
+        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, base, dw, sizeof(vec3),
+                                                sizeof(vec3) * size_t(size.width)));
+    }
+    file.setFrameBuffer(frame);
+    file.readPixels(dw.min.y, dw.max.y);
+    return image;
+}
+
+// Luminance/chroma files store subsampled RY/BY channels that only the RGBA interface rebuilds.
+Image read_luminance_chroma(const std::string& path, const std::string& field) {
+    Imf::RgbaInputFile file(path.c_str());
+    const Imath::Box2i dw = file.dataWindow();
+    const WindowSize size = window_size(dw, path, field);
+    if (!file.isComplete()) throw_unreadable(path, field, "the file is truncated");
+
+    std::vector<Imf::Rgba> pixels(size_t(size.width) * size.height);
+    // The interface wants the address of pixel (0, 0), which lies outside the buffer when the
+    // data window does not start at the origin; integer arithmetic keeps that well defined.
+    const int64_t origin = int64_t(dw.min.y) * size.width + dw.min.x;
+    const uintptr_t base = reinterpret_cast<uintptr_t>(pixels.data()) -
+                           uintptr_t(origin) * sizeof(Imf::Rgba);
+    file.setFrameBuffer(reinterpret_cast<Imf::Rgba*>(base), 1, size_t(size.width));
+    file.readPixels(dw.min.y, dw.max.y);
+
+    Image image(size.width, size.height);
+    for (size_t i = 0; i < pixels.size(); ++i)
+        image[i] = vec3(float(pixels[i].r), float(pixels[i].g), float(pixels[i].b));
+    return image;
+}
+
+}  // namespace
+
+namespace image_io_detail {
+
+Image load_exr_main(const std::string& path, const std::string& field) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imf::ChannelList& channels = file.header().channels();
+        auto has = [&](const char* name) { return channels.findChannel(name) != nullptr; };
+
+        if (has("R") || has("G") || has("B")) {
+            auto pick = [&](const char* name) { return has(name) ? std::string(name) : ""; };
+            return read_channels(file, {pick("R"), pick("G"), pick("B")}, path, field);
+        }
+        if (has("Y") && (has("RY") || has("BY"))) return read_luminance_chroma(path, field);
+        if (has("Y")) {
+            Image image = read_channels(file, {"Y", "", ""}, path, field);
+            for (size_t i = 0; i < image.size(); ++i) image[i] = vec3(image[i].x);
+            return image;
+        }
+        throw_unreadable(path, field,
+                         "EXR has no R, G, B or Y channel (channels: " + list_channels(channels) +
+                             ")");
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        // OpenEXR reports truncation and corruption by throwing from the constructor or read.
+        throw_unreadable(path, field, e.what());
+    }
+}
+
+}  // namespace image_io_detail
+
+Image load_exr_layer(const std::string& path, const std::string& layer) {
+    image_io_detail::check_image_file(path, "");
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imf::ChannelList& channels = file.header().channels();
+        std::array<std::string, 3> names = {channel_name(layer, "R"), channel_name(layer, "G"),
+                                            channel_name(layer, "B")};
+        bool complete = true;
+        for (const std::string& name : names) complete &= channels.findChannel(name) != nullptr;
+        if (!complete) {
+            std::set<std::string> layers;
+            channels.layers(layers);
+            std::string present = channels.findChannel("R") ? "\"\" (main)" : "";
+            for (const std::string& l : layers) present += (present.empty() ? "" : ", ") + l;
+            throw InputError(path, "",
+                             "EXR has no layer \"" + layer + "\" with R, G, B channels (layers: " +
+                                 (present.empty() ? "none" : present) + ")");
+        }
+        return read_channels(file, names, path, "");
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw_unreadable(path, "", e.what());
+    }
+}
+
+void save_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
+    if (layers.empty()) throw std::invalid_argument("save_exr '" + path + "': no layers given");
+    std::set<std::string> names;
+    for (const ExrLayer& layer : layers) {
+        if (!layer.image || layer.image->empty())
+            throw std::invalid_argument("save_exr '" + path + "': layer \"" + layer.name +
+                                        "\" has no image");
+        if (layer.image->width() != layers[0].image->width() ||
+            layer.image->height() != layers[0].image->height())
+            throw std::invalid_argument("save_exr '" + path + "': layer \"" + layer.name +
+                                        "\" differs in size from layer \"" + layers[0].name +
+                                        "\"");
+        if (!names.insert(layer.name).second)
+            throw std::invalid_argument("save_exr '" + path + "': layer \"" + layer.name +
+                                        "\" given twice");
+    }
+    image_io_detail::check_output_folder(path);
+
+    const int width = layers[0].image->width(), height = layers[0].image->height();
+    Imf::Header header(width, height);
+    header.compression() = Imf::ZIP_COMPRESSION;  // lossless, so reads are bit-exact
+    Imf::FrameBuffer frame;
+    for (const ExrLayer& layer : layers) {
+        // OpenEXR only reads from the slices while writing; its interface is not const-correct.
+        char* base = const_cast<char*>(reinterpret_cast<const char*>(layer.image->data()));
+        const char* components[3] = {"R", "G", "B"};
+        for (size_t c = 0; c < 3; ++c) {
+            const std::string name = channel_name(layer.name, components[c]);
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            frame.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(vec3),
+                                          sizeof(vec3) * size_t(width)));
+        }
+    }
+    try {
+        Imf::OutputFile file(path.c_str(), header);
+        file.setFrameBuffer(frame);
+        file.writePixels(height);
+    } catch (const std::exception& e) {
+        throw std::runtime_error("cannot write EXR '" + path + "': " + e.what());
+    }
+}
+
+}  // namespace dp

@@ -1,0 +1,32 @@
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "base/error.h"
+#include "image/image.h"
+
+// Helpers shared by the image_io*.cpp files; not part of the public image API.
+namespace dp::image_io_detail {
+
+/// Throws InputError unless `path` names an existing, non-empty regular file that can be
+/// opened. Returns whether the file starts with the OpenEXR magic number.
+bool check_image_file(const std::string& path, const std::string& field);
+
+/// Throws the InputError used for every undecodable file, with `detail` saying why.
+[[noreturn]] inline void throw_unreadable(const std::string& path, const std::string& field,
+                                          const std::string& detail) {
+    throw InputError(path, field, "cannot read image (corrupt or unsupported format): " + detail);
+}
+
+/// Loads the main colour of an EXR: R, G, B (missing ones read as 0), else Y as grey, else
+/// luminance/chroma. Values are returned as stored, non-finite ones included.
+Image load_exr_main(const std::string& path, const std::string& field);
+
+/// Throws std::runtime_error naming `path` when the folder it would be written to is missing;
+/// output folders are never created implicitly, so a mistyped path fails loudly.
+void check_output_folder(const std::string& path);
+
+/// Replaces NaN/Inf channels by 0 and returns how many channels were replaced.
+size_t replace_non_finite(Image& image);
+
+}  // namespace dp::image_io_detail

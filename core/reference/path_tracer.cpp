@@ -1,0 +1,117 @@
+#include "reference/path_tracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/rng.h"
+#include "render/scattering.h"
+
+namespace dp {
+
+namespace {
+
+float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
+
+struct PathTracer {
+    const RenderScene& scene;
+    const ReferenceOptions& opt;
+
+    Hit intersect(const Ray& r) const {
+        return opt.include_virtual ? scene.intersect(r) : scene.intersect_real(r);
+    }
+    bool occluded(const Ray& r) const {
+        return opt.include_virtual ? scene.occluded(r) : scene.occluded_real(r);
+    }
+
+    vec3 radiance(Ray ray, Rng& rng) const {
+        vec3 L(0), beta(1);
+        bool specular_bounce = true;  // the camera ray counts as specular for MIS
+        float last_bsdf_pdf = 0;
+        const Probe& probe = scene.probe();
+        for (int depth = 0; depth < opt.max_depth; ++depth) {
+            Hit hit = intersect(ray);
+            if (!hit) {
+                if (depth == 0) return opt.show_probe ? probe.radiance(ray.dir) : vec3(0);
+                vec3 Le = probe.radiance(ray.dir);
+                float w = specular_bounce ? 1.0f : power_heuristic(last_bsdf_pdf, probe.pdf(ray.dir));
+                L += beta * Le * w;
+                break;
+            }
+            const Surface& s = *hit.surface;
+            bool diffuse = !s.is_virtual || s.material.kind == Material::Kind::Diffuse;
+            if (!diffuse) {
+                SpecularEvent e = scatter_specular(s.material, hit, ray.dir, rng.uniform());
+                beta *= e.weight;
+                ray = Ray{scene.offset_origin(hit, e.dir), e.dir};
+                specular_bounce = true;
+            } else {
+                vec3 rho = s.reflectance_at(hit.uv);
+                vec3 n = facing_normal(hit.ns, ray.dir);
+                vec3 ng = facing_normal(hit.ng, ray.dir);
+                ProbeSample ls = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
+                float cos_l = glm::dot(n, ls.dir);
+                if (ls.pdf > 0 && cos_l > 0 && glm::dot(ng, ls.dir) > 0) {
+                    Hit h = hit;
+                    h.ng = ng;
+                    if (!occluded(Ray{scene.offset_origin(h, ls.dir), ls.dir}))
+                        L += beta * rho * kInvPi * ls.radiance * (cos_l / ls.pdf) *
+                             power_heuristic(ls.pdf, cos_l * kInvPi);
+                }
+                Hit h = hit;
+                h.ng = ng;
+                h.ns = n;
+                vec3 d = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
+                last_bsdf_pdf = std::max(0.0f, glm::dot(n, d)) * kInvPi;
+                beta *= rho;  // rho/pi * cos / pdf
+                ray = Ray{scene.offset_origin(h, d), d};
+                specular_bounce = false;
+            }
+            if (depth >= 3) {  // Russian roulette on the path's throughput
+                float q = std::min(0.95f, std::max({beta.x, beta.y, beta.z}));
+                if (q <= 0 || rng.uniform() >= q) break;
+                beta /= q;
+            }
+        }
+        return L;
+    }
+};
+
+}  // namespace
+
+vec3 reference_radiance(const RenderScene& scene, const ReferenceOptions& options, const Ray& ray,
+                        uint64_t pixel, int sample) {
+    Rng rng = Rng::keyed(options.seed ^ 0x7265665f7074ull, pixel, uint64_t(sample) * 2 + 1);
+    return PathTracer{scene, options}.radiance(ray, rng);
+}
+
+Image render_reference(const RenderScene& scene, const ReferenceOptions& options,
+                       const std::atomic<bool>* cancel, const std::function<void(int, int)>& progress) {
+    const int W = scene.camera().width(), H = scene.camera().height();
+    Image out(W, H);
+    std::atomic<int> rows_done{0};
+    PathTracer pt{scene, options};
+    tbb::parallel_for(tbb::blocked_range<int>(0, H, 1), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return;
+            for (int x = 0; x < W; ++x) {
+                uint64_t pixel = uint64_t(y) * W + x;
+                dvec3 sum(0);
+                for (int s = 0; s < options.samples_per_pixel; ++s) {
+                    Rng rng = Rng::keyed(options.seed ^ 0x7265665f7074ull, pixel, uint64_t(s) * 2);
+                    Ray ray = scene.camera().generate_ray(x + rng.uniform() - 0.5f, y + rng.uniform() - 0.5f);
+                    vec3 L = pt.radiance(ray, rng);
+                    if (is_finite(L)) sum += dvec3(L);
+                }
+                out.at(x, y) = vec3(sum / double(std::max(1, options.samples_per_pixel)));
+            }
+            int done = ++rows_done;
+            if (progress) progress(done, H);
+        }
+    });
+    return out;
+}
+
+}  // namespace dp

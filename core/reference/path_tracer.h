@@ -1,0 +1,35 @@
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <functional>
+
+#include "image/image.h"
+#include "render/render_scene.h"
+
+namespace dp {
+
+/// Options of the reference path tracer.
+struct ReferenceOptions {
+    int samples_per_pixel = 64;
+    int max_depth = 8;
+    uint64_t seed = 1;
+    /// false: real proxies only (a synthetic photograph); true: with the virtual objects.
+    bool include_virtual = true;
+    /// Camera rays that miss everything see the probe (true) or black (false).
+    bool show_probe = true;
+};
+
+/// Unbiased path tracing of the whole scene: real proxies with their albedo lit by the probe,
+/// and the virtual objects with their materials. Next-event estimation of the probe with
+/// multiple importance sampling on diffuse surfaces. Makes synthetic photographs and ground
+/// truth. The image depends only on the options, not on the thread count.
+/// `progress(done_rows, total_rows)` is called from worker threads.
+Image render_reference(const RenderScene& scene, const ReferenceOptions& options,
+                       const std::atomic<bool>* cancel = nullptr,
+                       const std::function<void(int, int)>& progress = {});
+
+/// Radiance along one camera ray (exposed for tests and the per-pixel debugger).
+vec3 reference_radiance(const RenderScene& scene, const ReferenceOptions& options, const Ray& ray,
+                        uint64_t pixel, int sample);
+
+}  // namespace dp

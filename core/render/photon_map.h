@@ -1,0 +1,46 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "base/math.h"
+
+namespace dp {
+
+/// A stored photon: signed RGB flux (negative for shadow photons) and the normal of the side
+/// of the surface it landed on.
+struct Photon {
+    vec3 position;
+    vec3 flux;
+    vec3 normal;
+};
+
+/// Signed photons in a spatial hash grid whose cells are one gather diameter wide, so a gather
+/// of radius r touches at most 2x2x2 cells.
+class PhotonMap {
+public:
+    PhotonMap() = default;
+    /// Builds the grid for gathers of radius `radius`.
+    void build(std::vector<Photon> photons, float radius);
+
+    size_t size() const { return photons_.size(); }
+    bool empty() const { return photons_.empty(); }
+    float radius() const { return radius_; }
+    const std::vector<Photon>& photons() const { return photons_; }
+
+    /// Sum of the flux of photons within `radius` of x on surfaces facing like `normal`.
+    dvec3 gather(const vec3& x, const vec3& normal) const;
+    /// True if some cell within one cell of x's holds a photon: pixels for which this is false
+    /// everywhere can skip the gather.
+    bool reaches(const vec3& x) const;
+
+private:
+    uint32_t bucket_of(int64_t cx, int64_t cy, int64_t cz) const;
+    void cell_of(const vec3& p, int64_t& cx, int64_t& cy, int64_t& cz) const;
+
+    std::vector<Photon> photons_;          ///< sorted by bucket
+    std::vector<uint32_t> bucket_start_;   ///< size buckets+1
+    uint32_t bucket_mask_ = 0;
+    float radius_ = 0, inv_cell_ = 0;
+};
+
+}  // namespace dp

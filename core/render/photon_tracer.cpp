@@ -1,0 +1,174 @@
+#include "render/photon_tracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/rng.h"
+#include "base/sampling.h"
+#include "render/scattering.h"
+
+namespace dp {
+
+namespace {
+
+constexpr int64_t kBlock = 1024;
+
+/// Per-block output, merged in block order so the photon order is deterministic.
+struct Block {
+    std::vector<Photon> real, caustic;
+    PhotonStats stats;
+};
+
+struct Tracer {
+    const RenderScene& scene;
+    AliasTable cluster_table;
+    double cluster_area_total = 0;  // sum of pi R^2
+    vec3 global_center{0};
+    float global_radius = 0;
+    int max_depth = 8;
+
+    explicit Tracer(const RenderScene& s) : scene(s) {
+        std::vector<double> w;
+        for (const EmissionCluster& c : s.clusters()) w.push_back(double(c.radius) * c.radius);
+        cluster_table = AliasTable(w);
+        cluster_area_total = kPi * cluster_table.total();
+        const auto& cl = s.clusters();
+        global_center = cl[0].center;
+        global_radius = cl[0].radius;
+        for (size_t i = 1; i < cl.size(); ++i)
+            enclose(global_center, global_radius, cl[i].center, cl[i].radius, global_center, global_radius);
+        max_depth = std::max(1, s.project().render.max_depth);
+    }
+
+    static bool line_hits_sphere(const vec3& o, const vec3& d, const vec3& c, float r) {
+        vec3 oc = c - o;
+        vec3 perp = oc - glm::dot(oc, d) * d;
+        return glm::dot(perp, perp) < r * r;
+    }
+
+    /// Follows a photon from a known first hit: stores on real surfaces (and caustics on
+    /// virtual diffuse ones), bounces until absorbed. Negative photons die on virtual objects.
+    void follow(Hit hit, vec3 dir, vec3 flux, bool negative, Rng& rng, Block& out) const {
+        bool specular_only = !negative;
+        const vec3 flux0 = glm::abs(flux);
+        const float flux0_max = std::max({flux0.x, flux0.y, flux0.z});
+        for (int depth = 0; depth < max_depth; ++depth) {
+            if (depth > 0) {
+                hit = scene.intersect(Ray{hit.p, dir});  // hit.p already offset below
+                ++out.stats.rays;
+                if (!hit) return;
+            }
+            const Surface& s = *hit.surface;
+            bool diffuse = !s.is_virtual || s.material.kind == Material::Kind::Diffuse;
+            if (!s.is_virtual) {
+                out.real.push_back({hit.p, flux, facing_normal(hit.ng, dir)});
+                ++out.stats.stored_real;
+            } else if (negative) {
+                return;
+            } else if (diffuse && specular_only && depth > 0) {
+                out.caustic.push_back({hit.p, flux, facing_normal(hit.ng, dir)});
+                ++out.stats.stored_caustic;
+            }
+            vec3 next;
+            if (diffuse) {
+                vec3 rho = s.reflectance_at(hit.uv);
+                float q = std::min(0.98f, std::max({rho.x, rho.y, rho.z}));
+                if (q <= 0 || rng.uniform() >= q) return;
+                flux *= rho / q;
+                next = sample_diffuse(hit, dir, vec2(rng.uniform(), rng.uniform()));
+                specular_only = false;
+            } else {
+                SpecularEvent e = scatter_specular(s.material, hit, dir, rng.uniform());
+                flux *= e.weight;
+                next = e.dir;
+                // Roulette on |flux| relative to the start, never on its signed value.
+                vec3 a = glm::abs(flux);
+                float q = std::min(1.0f, std::max({a.x, a.y, a.z}) / std::max(flux0_max, 1e-30f));
+                if (q <= 0 || rng.uniform() >= q) return;
+                flux /= q;
+            }
+            hit.p = scene.offset_origin(hit, next);
+            dir = next;
+        }
+    }
+
+    void trace_one(Rng& rng, Block& out, double inv_count) const {
+        ++out.stats.emitted;
+        size_t k = cluster_table.sample(rng.uniform_double());
+        const EmissionCluster& c = scene.clusters()[k];
+        ProbeSample ps = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
+        if (ps.pdf <= 0) return;
+        const Probe& probe = scene.probe();
+        int row = int(ps.pixel / size_t(probe.width()));
+        double pmf = probe.pixel_pmf(ps.pixel) * cluster_table.pmf(k);
+        if (pmf <= 0) return;
+        // Flux through the cluster's cross-section from this probe pixel, per photon.
+        double scale = probe.pixel_solid_angle(row) * kPi * double(c.radius) * c.radius * inv_count / pmf;
+        vec3 flux = vec3(dvec3(ps.radiance) * scale);
+        const vec3 w = ps.dir;
+        Frame frame(w);
+        vec2 d = sample_concentric_disk(vec2(rng.uniform(), rng.uniform())) * c.radius;
+        vec3 disk = c.center + c.radius * w + frame.t * d.x + frame.b * d.y;
+        // Start outside every cluster so the ray meets all virtual objects on its line.
+        vec3 oc = disk - global_center;
+        float b = glm::dot(oc, w), cc = glm::dot(oc, oc) - global_radius * global_radius;
+        float s_exit = -b + std::sqrt(std::max(0.0f, b * b - cc));
+        vec3 origin = disk + w * (std::max(0.0f, s_exit) + scene.ray_epsilon());
+        // A line through several clusters is owned by the first one it crosses.
+        for (size_t j = 0; j < k; ++j)
+            if (line_hits_sphere(origin, w, scene.clusters()[j].center, scene.clusters()[j].radius)) return;
+        Ray down{origin, -w};
+        Hit hv = scene.intersect_virtual(down);
+        ++out.stats.rays;
+        if (!hv) return;
+        Hit hr = scene.intersect_real(down);
+        ++out.stats.rays;
+        if (hr && hr.t < hv.t) return;  // real geometry shades this path already in the photo
+        ++out.stats.rays;
+        if (scene.occluded_real(Ray{origin, w})) return;  // the probe never lit this line
+        ++out.stats.hit_virtual;
+        if (hr) follow(hr, -w, -flux, true, rng, out);
+        follow(hv, -w, flux, false, rng, out);
+    }
+};
+
+}  // namespace
+
+PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
+                         const std::atomic<bool>* cancel) {
+    PhotonPass result;
+    if (!scene.has_virtual() || count <= 0 || scene.probe().total_luminance_power() <= 0) return result;
+    Tracer tracer(scene);
+    const int64_t blocks = (count + kBlock - 1) / kBlock;
+    std::vector<Block> out(blocks);
+    const double inv_count = 1.0 / double(count);
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, blocks, 1), [&](const tbb::blocked_range<int64_t>& r) {
+        for (int64_t b = r.begin(); b < r.end(); ++b) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return;
+            int64_t end = std::min(count, (b + 1) * kBlock);
+            for (int64_t i = b * kBlock; i < end; ++i) {
+                Rng rng = Rng::keyed(seed, pass * 2 + 0, uint64_t(i));
+                tracer.trace_one(rng, out[b], inv_count);
+            }
+        }
+    });
+    size_t nr = 0, nc = 0;
+    for (const Block& b : out) nr += b.real.size(), nc += b.caustic.size();
+    result.real.reserve(nr);
+    result.caustic.reserve(nc);
+    for (Block& b : out) {
+        result.real.insert(result.real.end(), b.real.begin(), b.real.end());
+        result.caustic.insert(result.caustic.end(), b.caustic.begin(), b.caustic.end());
+        result.stats.emitted += b.stats.emitted;
+        result.stats.hit_virtual += b.stats.hit_virtual;
+        result.stats.stored_real += b.stats.stored_real;
+        result.stats.stored_caustic += b.stats.stored_caustic;
+        result.stats.rays += b.stats.rays;
+    }
+    return result;
+}
+
+}  // namespace dp

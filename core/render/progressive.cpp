@@ -1,0 +1,209 @@
+#include "render/progressive.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "base/rng.h"
+#include "render/shading.h"
+
+namespace dp {
+
+ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, int64_t photons_per_pass,
+                                         uint64_t seed)
+    : scene_(std::move(scene)), photons_per_pass_(std::max<int64_t>(1, photons_per_pass)), seed_(seed) {
+    const RenderSettings& rs = scene_->project().render;
+    alpha_ = rs.alpha;
+    if (rs.initial_radius && *rs.initial_radius > 0) {
+        r1_ = *rs.initial_radius;
+    } else {
+        // About a hundred photons of a sunlit shadow inside the first gather disk.
+        float rmax = 0;
+        for (const EmissionCluster& c : scene_->clusters()) rmax = std::max(rmax, c.radius);
+        if (rmax <= 0) rmax = scene_->scale();
+        r1_ = rmax * std::clamp(std::sqrt(100.0f / float(photons_per_pass_)), 0.004f, 0.2f);
+    }
+    const size_t n = size_t(scene_->photo().width()) * scene_->photo().height();
+    sum_delta_.assign(n, dvec3(0));
+    sum_dL_.assign(n, dvec3(0));
+    sum_alpha_.assign(n, 0.0);
+    stats_.pixels_total = n;
+    build_pixel_cache();
+}
+
+float ProgressiveRenderer::radius_for_pass(int pass) const {
+    double r2 = double(r1_) * r1_;
+    for (int k = 1; k < pass; ++k) r2 *= (k + double(alpha_)) / (k + 1.0);
+    return float(std::sqrt(r2));
+}
+
+void ProgressiveRenderer::build_pixel_cache() {
+    const RenderScene& s = *scene_;
+    const int W = s.photo().width(), H = s.photo().height();
+    const size_t n = size_t(W) * H;
+    near_virtual_.assign(n, 0);
+    has_real_.assign(n, 0);
+    real_point_.assign(n, vec3(0));
+    if (!s.has_virtual()) return;
+    std::vector<uint8_t> sees_virtual(n, 0);
+    tbb::parallel_for(0, H, [&](int y) {
+        for (int x = 0; x < W; ++x) {
+            size_t i = size_t(y) * W + x;
+            Hit hit = s.intersect(s.camera().generate_ray(float(x), float(y)));
+            if (!hit) continue;
+            if (hit.surface->is_virtual) {
+                sees_virtual[i] = 1;
+            } else {
+                has_real_[i] = 1;
+                real_point_[i] = hit.p;
+            }
+        }
+    });
+    // Jittered samples may cross an object's edge within one pixel of a centre that sees it.
+    tbb::parallel_for(0, H, [&](int y) {
+        for (int x = 0; x < W; ++x) {
+            uint8_t v = 0;
+            for (int dy = -1; dy <= 1 && !v; ++dy)
+                for (int dx = -1; dx <= 1 && !v; ++dx) {
+                    int xx = x + dx, yy = y + dy;
+                    if (xx >= 0 && yy >= 0 && xx < W && yy < H) v = sees_virtual[size_t(yy) * W + xx];
+                }
+            near_virtual_[size_t(y) * W + x] = v;
+        }
+    });
+}
+
+void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector<SampleResult>& out,
+                                     const std::atomic<bool>* cancel, size_t& gathered) {
+    const RenderScene& s = *scene_;
+    const int W = s.photo().width(), H = s.photo().height();
+    out.assign(size_t(W) * H, SampleResult{});
+    std::atomic<size_t> count{0};
+    if (!s.has_virtual()) {
+        gathered = 0;
+        return;
+    }
+    Shader shader(s, maps);
+    tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const tbb::blocked_range<int>& rows) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return;
+        size_t local = 0;
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            for (int x = 0; x < W; ++x) {
+                size_t i = size_t(y) * W + x;
+                // Pixels no photon cell can reach keep the photo: no ray, no gather.
+                if (!near_virtual_[i] && !(has_real_[i] && maps.real.reaches(real_point_[i]))) continue;
+                Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
+                float jx = rng.uniform() - 0.5f, jy = rng.uniform() - 0.5f;
+                out[i] = shader.shade_camera(x, y, float(x) + jx, float(y) + jy, rng);
+                ++local;
+            }
+        count += local;
+    });
+    gathered = count.load();
+}
+
+bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
+    auto t0 = std::chrono::steady_clock::now();
+    const int pass = stats_.passes + 1;
+    PhotonPass photons = trace_photons(*scene_, seed_, uint64_t(pass), photons_per_pass_, cancel);
+    if (cancel && cancel->load()) return false;
+    PassMaps maps;
+    maps.radius = radius_for_pass(pass);
+    maps.real.build(std::move(photons.real), maps.radius);
+    maps.caustic.build(std::move(photons.caustic), maps.radius);
+    std::vector<SampleResult> samples;
+    size_t gathered = 0;
+    shade_pass(pass, maps, samples, cancel, gathered);
+    if (cancel && cancel->load()) return false;
+    size_t bad = 0;
+    for (size_t i = 0; i < samples.size(); ++i) {
+        const SampleResult& r = samples[i];
+        if (!is_finite(r.delta) || !is_finite(r.dL) || !std::isfinite(r.alpha)) {
+            ++bad;  // never let a NaN/Inf sample reach the image
+            continue;
+        }
+        sum_delta_[i] += dvec3(r.delta);
+        sum_dL_[i] += dvec3(r.dL);
+        sum_alpha_[i] += r.alpha;
+    }
+    double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    stats_.passes = pass;
+    stats_.seconds += dt;
+    stats_.photons_emitted += photons.stats.emitted;
+    stats_.photons_stored += photons.stats.stored_real + photons.stats.stored_caustic;
+    stats_.rays += photons.stats.rays;
+    stats_.photons_per_second = stats_.seconds > 0 ? double(stats_.photons_emitted) / stats_.seconds : 0;
+    stats_.pixels_gathered = gathered;
+    stats_.radius = maps.radius;
+    stats_.non_finite_samples += bad;
+    return true;
+}
+
+void ProgressiveRenderer::render_single_pass(int pass, Image& delta, Image& dL, Image& alpha) {
+    PhotonPass photons = trace_photons(*scene_, seed_, uint64_t(pass), photons_per_pass_, nullptr);
+    PassMaps maps;
+    maps.radius = radius_for_pass(pass);
+    maps.real.build(std::move(photons.real), maps.radius);
+    maps.caustic.build(std::move(photons.caustic), maps.radius);
+    std::vector<SampleResult> samples;
+    size_t gathered = 0;
+    shade_pass(pass, maps, samples, nullptr, gathered);
+    const int W = scene_->photo().width(), H = scene_->photo().height();
+    delta = Image(W, H);
+    dL = Image(W, H);
+    alpha = Image(W, H);
+    for (size_t i = 0; i < samples.size(); ++i) {
+        delta[i] = samples[i].delta;
+        dL[i] = samples[i].dL;
+        alpha[i] = vec3(samples[i].alpha);
+    }
+}
+
+Image ProgressiveRenderer::image() const {
+    Image out = scene_->photo();
+    if (stats_.passes == 0) return out;
+    const double inv = 1.0 / stats_.passes;
+    for (size_t i = 0; i < out.size(); ++i) {
+        if (sum_delta_[i] == dvec3(0)) continue;  // untouched pixels stay bit-exact
+        vec3 v = out[i] + vec3(sum_delta_[i] * inv);
+        out[i] = is_finite(v) ? v : out[i];
+    }
+    return out;
+}
+
+Image ProgressiveRenderer::delta_layer() const {
+    Image out(scene_->photo().width(), scene_->photo().height());
+    if (stats_.passes == 0) return out;
+    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(sum_dL_[i] / double(stats_.passes));
+    return out;
+}
+
+Image ProgressiveRenderer::alpha_layer() const {
+    Image out(scene_->photo().width(), scene_->photo().height());
+    if (stats_.passes == 0) return out;
+    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(float(sum_alpha_[i] / stats_.passes));
+    return out;
+}
+
+Image ProgressiveRenderer::shadow_matte() const {
+    Image out(scene_->photo().width(), scene_->photo().height());
+    if (stats_.passes == 0) return out;
+    const Image& photo = scene_->photo();
+    for (size_t i = 0; i < out.size(); ++i) {
+        double dl = luminance(sum_dL_[i] / double(stats_.passes));
+        double lp = luminance(photo[i]);
+        float m = (dl < 0 && lp > 0) ? float(std::min(1.0, -dl / lp)) : 0.0f;
+        out[i] = vec3(m);
+    }
+    return out;
+}
+
+double ProgressiveRenderer::skipped_fraction() const {
+    if (stats_.pixels_total == 0) return 0;
+    return 1.0 - double(stats_.pixels_gathered) / double(stats_.pixels_total);
+}
+
+}  // namespace dp

@@ -1,0 +1,80 @@
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "image/image.h"
+#include "render/photon_tracer.h"
+#include "render/render_scene.h"
+#include "render/shading.h"
+
+namespace dp {
+
+/// Figures about the passes done so far.
+struct RenderStats {
+    int passes = 0;
+    double seconds = 0;            ///< wall time of completed passes
+    uint64_t photons_emitted = 0;
+    uint64_t photons_stored = 0;
+    uint64_t rays = 0;             ///< photon rays (Embree queries)
+    double photons_per_second = 0;
+    size_t pixels_gathered = 0;    ///< in the last pass
+    size_t pixels_total = 0;
+    float radius = 0;              ///< gather radius of the last pass
+    size_t non_finite_samples = 0; ///< samples discarded because they were NaN/Inf
+};
+
+/// Progressive differential photon mapping (Knaus & Zwicker 2011): each pass shoots fresh
+/// photons with its own seed and gathers with a shrinking radius; the image is the mean of the
+/// pass images, accumulated in double. A pass depends only on (seed, pass index).
+class ProgressiveRenderer {
+public:
+    ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, int64_t photons_per_pass, uint64_t seed);
+
+    const RenderScene& scene() const { return *scene_; }
+    /// Gather radius of pass i (1-based): r_i^2 = r_1^2 prod_{k<i} (k + alpha) / (k + 1).
+    float radius_for_pass(int pass) const;
+    float initial_radius() const { return r1_; }
+
+    /// Renders and accumulates the next pass; returns false (accumulating nothing) if
+    /// `cancel` became true meanwhile.
+    bool render_pass(const std::atomic<bool>* cancel = nullptr);
+    /// Renders exactly pass `pass` into its own images without accumulating (debugging).
+    void render_single_pass(int pass, Image& delta, Image& dL, Image& alpha);
+
+    int passes() const { return stats_.passes; }
+    const RenderStats& stats() const { return stats_; }
+
+    /// Photo plus the mean change: the augmented photograph (linear, may be negative only
+    /// where the estimate is; clamp for display).
+    Image image() const;
+    /// Mean signed change of radiance on real surfaces seen directly.
+    Image delta_layer() const;
+    /// Fraction of samples that saw a virtual object first (grey RGB).
+    Image alpha_layer() const;
+    /// Shadow-only matte: fraction of the photo's light removed, in [0, 1] (grey RGB).
+    Image shadow_matte() const;
+    /// True if pixel i needs no gather in the current pass state (for benchmarks).
+    double skipped_fraction() const;
+
+private:
+    void build_pixel_cache();
+    void shade_pass(int pass, const PassMaps& maps, std::vector<SampleResult>& out,
+                    const std::atomic<bool>* cancel, size_t& gathered);
+
+    std::shared_ptr<const RenderScene> scene_;
+    int64_t photons_per_pass_;
+    uint64_t seed_;
+    float r1_ = 0, alpha_ = 2.0f / 3.0f;
+    // Pixel cache: what the centre ray sees, computed once per camera/geometry.
+    std::vector<uint8_t> near_virtual_;  ///< the pixel or a neighbour sees a virtual object
+    std::vector<vec3> real_point_;       ///< centre hit on real geometry (valid if has_real_)
+    std::vector<uint8_t> has_real_;
+    // Accumulators (double: shadow and caustic photons cancel).
+    std::vector<dvec3> sum_delta_, sum_dL_;
+    std::vector<double> sum_alpha_;
+    RenderStats stats_;
+};
+
+}  // namespace dp

@@ -1,0 +1,136 @@
+#pragma once
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "camera/camera.h"
+#include "geometry/mesh.h"
+#include "image/image.h"
+#include "probe/probe.h"
+#include "scene/project.h"
+
+namespace dp {
+
+/// Everything loaded from disk for a project: the linear photo, the lat-long probe, meshes.
+/// Kept apart from RenderScene so tests can build scenes from images made in memory.
+struct SceneAssets {
+    Image photo;
+    Image probe_latlong;
+    std::vector<TriangleMesh> real_meshes;    ///< one per project.real entry (empty for spheres)
+    std::vector<TriangleMesh> object_meshes;  ///< one per project.objects entry (empty for spheres)
+    std::vector<Image> real_textures;         ///< one per real entry (empty unless Texture)
+    std::vector<Image> object_textures;       ///< one per object (empty unless Texture)
+    size_t non_finite_replaced = 0;           ///< NaN/Inf pixels replaced while loading images
+    size_t degenerate_triangles_dropped = 0;
+    std::vector<std::string> warnings;
+};
+
+/// Loads every file a project names. Throws InputError naming the file and field.
+SceneAssets load_assets(const Project& project);
+
+/// One surface the rays can hit: a real proxy or a virtual object.
+struct Surface {
+    bool is_virtual = false;
+    int index = 0;  ///< position in project.real or project.objects
+    Material material;      ///< virtual objects (real proxies are diffuse)
+    vec3 albedo{0.5f};      ///< constant albedo (real: given or estimated; virtual diffuse)
+    const Image* texture = nullptr;
+    bool analytic_sphere = false;
+    vec3 sphere_center{0};
+    float sphere_radius = 0;
+    const TriangleMesh* mesh = nullptr;  ///< world-space mesh (null for analytic spheres)
+
+    /// Diffuse reflectance at a hit (texture lookup when there is one), clamped to [0, 0.98].
+    vec3 reflectance_at(const vec2& uv) const;
+};
+
+/// A ray-surface intersection. `ng` is the unit geometric normal as stored (not flipped);
+/// `ns` the shading normal, flipped to the same side as `ng`.
+struct Hit {
+    float t = 0;
+    vec3 p{0}, ng{0}, ns{0};
+    vec2 uv{0};
+    const Surface* surface = nullptr;
+    explicit operator bool() const { return surface != nullptr; }
+};
+
+/// Bounding sphere of a group of nearby virtual objects; photons are aimed at these.
+struct EmissionCluster {
+    vec3 center{0};
+    float radius = 0;
+    std::vector<int> objects;
+};
+
+/// The scene compiled for rendering: real and virtual geometry in separate Embree BVHs, the
+/// photo, the probe, the camera, and the emission clusters.
+class RenderScene {
+public:
+    RenderScene(const Project& project, SceneAssets assets);
+    ~RenderScene();
+    RenderScene(const RenderScene&) = delete;
+    RenderScene& operator=(const RenderScene&) = delete;
+
+    const Project& project() const { return project_; }
+    const Image& photo() const { return assets_.photo; }
+    const Probe& probe() const { return probe_; }
+    const Camera& camera() const { return camera_; }
+    const SceneAssets& assets() const { return assets_; }
+    const std::vector<EmissionCluster>& clusters() const { return clusters_; }
+    bool has_virtual() const { return !clusters_.empty(); }
+    bool has_specular() const { return has_specular_; }
+
+    /// Characteristic length (metres) from the virtual objects and the camera; ray offsets
+    /// scale with it so millimetre and kilometre scenes behave alike.
+    float scale() const { return scale_; }
+    float ray_epsilon() const { return epsilon_; }
+
+    Hit intersect_real(const Ray& ray, float tmax = INFINITY) const;
+    Hit intersect_virtual(const Ray& ray, float tmax = INFINITY) const;
+    /// Nearest of both.
+    Hit intersect(const Ray& ray, float tmax = INFINITY) const;
+    bool occluded_real(const Ray& ray, float tmax = INFINITY) const;
+    bool occluded(const Ray& ray, float tmax = INFINITY) const;
+
+    /// Origin for a new ray leaving `hit` towards `dir`, offset off the surface.
+    vec3 offset_origin(const Hit& hit, const vec3& dir) const;
+
+    /// Replaces virtual materials in place (no BVH rebuild). Shapes and transforms must match.
+    void update_materials(const Project& project);
+
+    const std::vector<Surface>& real_surfaces() const { return real_surfaces_; }
+    const std::vector<Surface>& virtual_surfaces() const { return virtual_surfaces_; }
+
+private:
+    void build_real();
+    void build_virtual();
+    void compute_clusters();
+    void estimate_albedos();
+    Hit intersect_in(RTCScene scene, const std::vector<Surface>& surfaces, const Ray& ray,
+                     float tmax) const;
+    bool occluded_in(RTCScene scene, const Ray& ray, float tmax) const;
+    unsigned attach(RTCScene scene, const Surface& s, const TriangleMesh* mesh);
+
+    Project project_;
+    SceneAssets assets_;
+    Probe probe_;
+    Camera camera_;
+    RTCDevice device_ = nullptr;
+    RTCScene real_ = nullptr, virtual_ = nullptr;
+    std::vector<Surface> real_surfaces_, virtual_surfaces_;
+    std::vector<TriangleMesh> real_world_meshes_, virtual_world_meshes_;
+    std::vector<EmissionCluster> clusters_;
+    bool has_specular_ = false;
+    float scale_ = 1, epsilon_ = 1e-4f;
+};
+
+/// Groups virtual objects into bounding spheres, merging two when one sphere around both has a
+/// smaller cross-section than the two apart (never one sphere around objects far apart).
+std::vector<EmissionCluster> cluster_objects(const std::vector<vec3>& centers,
+                                             const std::vector<float>& radii);
+
+/// Smallest sphere enclosing two spheres.
+void enclose(vec3 c1, float r1, vec3 c2, float r2, vec3& c, float& r);
+
+}  // namespace dp

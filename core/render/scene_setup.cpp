@@ -1,0 +1,190 @@
+// Scene set-up work beside the BVHs: loading assets, emission clusters, albedo estimation.
+#include <algorithm>
+#include <cmath>
+
+#include "base/error.h"
+#include "base/rng.h"
+#include "image/image_io.h"
+#include "render/render_scene.h"
+
+namespace dp {
+
+namespace {
+
+std::string indexed(const char* list, size_t i, const char* field) {
+    return std::string(list) + "[" + std::to_string(i) + "]." + field;
+}
+
+Image load_scaled(const Project& p, const std::string& path, const std::string& field, SceneAssets& a,
+                  ImageLoadReport* out = nullptr) {
+    ImageLoadReport report;
+    Image img = load_image(p.resolve(path).string(), field, &report);
+    if (report.non_finite_replaced > 0) {
+        a.non_finite_replaced += report.non_finite_replaced;
+        a.warnings.push_back(p.resolve(path).string() + ": " + std::to_string(report.non_finite_replaced) +
+                             " NaN/Inf values replaced by 0 (field '" + field + "')");
+    }
+    if (out) *out = report;
+    return img;
+}
+
+}  // namespace
+
+SceneAssets load_assets(const Project& project) {
+    SceneAssets a;
+    a.photo = load_scaled(project, project.photo.path, "photo.path", a);
+    float gain = std::exp2(project.photo.exposure);
+    if (gain != 1.0f)
+        for (size_t i = 0; i < a.photo.size(); ++i) a.photo[i] *= gain;
+
+    ImageLoadReport probe_report;
+    Image probe = load_scaled(project, project.probe.path, "probe.path", a, &probe_report);
+    if (!probe_report.linear_source)
+        a.warnings.push_back("probe.path: the light probe is not an HDR image (EXR/HDR); "
+                             "bright lights are clipped and shadows will be too weak");
+    if (project.probe.format == ProbeSpec::Format::MirrorBall) {
+        int h = std::max(16, probe.height() / 2);
+        probe = unwrap_mirror_ball(probe, 2 * h, h, 0.0f);
+    }
+    a.probe_latlong = std::move(probe);
+
+    auto load_meshes = [&](auto const& list, const char* name, std::vector<TriangleMesh>& meshes,
+                           std::vector<Image>& textures, auto albedo_of) {
+        meshes.resize(list.size());
+        textures.resize(list.size());
+        for (size_t i = 0; i < list.size(); ++i) {
+            if (list[i].shape.kind == Shape::Kind::Mesh) {
+                LoadedMesh m = load_mesh(project.resolve(list[i].shape.mesh_path).string(),
+                                         indexed(name, i, "shape.path"));
+                a.degenerate_triangles_dropped += m.dropped_degenerate;
+                meshes[i] = std::move(m.mesh);
+            }
+            const Albedo& alb = albedo_of(list[i]);
+            if (alb.kind == Albedo::Kind::Texture)
+                textures[i] = load_scaled(project, alb.texture_path, indexed(name, i, "albedo.texture"), a);
+        }
+    };
+    load_meshes(project.real, "real", a.real_meshes, a.real_textures,
+                [](const RealProxy& r) -> const Albedo& { return r.albedo; });
+    load_meshes(project.objects, "objects", a.object_meshes, a.object_textures,
+                [](const VirtualObject& o) -> const Albedo& { return o.material.albedo; });
+    if (a.degenerate_triangles_dropped > 0)
+        a.warnings.push_back(std::to_string(a.degenerate_triangles_dropped) + " zero-area triangles dropped");
+    return a;
+}
+
+void enclose(vec3 c1, float r1, vec3 c2, float r2, vec3& c, float& r) {
+    float d = glm::length(c2 - c1);
+    if (d + r2 <= r1) { c = c1; r = r1; return; }
+    if (d + r1 <= r2) { c = c2; r = r2; return; }
+    r = 0.5f * (d + r1 + r2);
+    c = c1 + (c2 - c1) * ((r - r1) / d);
+}
+
+std::vector<EmissionCluster> cluster_objects(const std::vector<vec3>& centers, const std::vector<float>& radii) {
+    std::vector<EmissionCluster> clusters;
+    for (size_t i = 0; i < centers.size(); ++i) clusters.push_back({centers[i], radii[i], {int(i)}});
+    // Greedy: merge the pair whose merged cross-section saves the most, while any saves.
+    for (;;) {
+        double best_gain = 0;
+        size_t bi = 0, bj = 0;
+        for (size_t i = 0; i < clusters.size(); ++i)
+            for (size_t j = i + 1; j < clusters.size(); ++j) {
+                vec3 c;
+                float r;
+                enclose(clusters[i].center, clusters[i].radius, clusters[j].center, clusters[j].radius, c, r);
+                double gain = double(clusters[i].radius) * clusters[i].radius +
+                              double(clusters[j].radius) * clusters[j].radius - double(r) * r;
+                if (gain > best_gain) { best_gain = gain; bi = i; bj = j; }
+            }
+        if (best_gain <= 0) break;
+        EmissionCluster merged;
+        enclose(clusters[bi].center, clusters[bi].radius, clusters[bj].center, clusters[bj].radius, merged.center,
+                merged.radius);
+        merged.objects = clusters[bi].objects;
+        merged.objects.insert(merged.objects.end(), clusters[bj].objects.begin(), clusters[bj].objects.end());
+        clusters.erase(clusters.begin() + bj);
+        clusters[bi] = std::move(merged);
+    }
+    return clusters;
+}
+
+void RenderScene::compute_clusters() {
+    std::vector<vec3> centers;
+    std::vector<float> radii;
+    std::vector<int> ids;
+    for (size_t i = 0; i < virtual_surfaces_.size(); ++i) {
+        const Surface& s = virtual_surfaces_[i];
+        if (!project_.objects[i].visible) continue;
+        if (s.analytic_sphere) {
+            centers.push_back(s.sphere_center);
+            radii.push_back(s.sphere_radius);
+        } else {
+            vec3 lo, hi;
+            if (!s.mesh->bounds(lo, hi)) continue;
+            vec3 c = 0.5f * (lo + hi);
+            float r2 = 0;
+            for (const vec3& p : s.mesh->positions) r2 = std::max(r2, glm::dot(p - c, p - c));
+            centers.push_back(c);
+            radii.push_back(std::sqrt(r2));
+        }
+        ids.push_back(int(i));
+    }
+    clusters_ = cluster_objects(centers, radii);
+    for (EmissionCluster& c : clusters_) {
+        for (int& o : c.objects) o = ids[o];
+        c.radius *= 1.0f + 1e-4f;  // the disk must cover the silhouette despite rounding
+        c.radius += epsilon_;
+    }
+}
+
+void RenderScene::estimate_albedos() {
+    bool any = std::any_of(project_.real.begin(), project_.real.end(),
+                           [](const RealProxy& r) { return r.albedo.kind == Albedo::Kind::Estimate; });
+    if (!any || probe_.total_luminance_power() <= 0) return;
+    const int W = camera_.width(), H = camera_.height();
+    std::vector<std::vector<vec3>> estimates(real_surfaces_.size());
+    Rng rng(0x5eed, 17);
+    const int stride = std::max(1, int(std::sqrt(double(W) * H / 4096.0)));
+    const int kProbeSamples = 64;
+    for (int y = stride / 2; y < H; y += stride)
+        for (int x = stride / 2; x < W; x += stride) {
+            Hit hit = intersect_real(camera_.generate_ray(float(x), float(y)));
+            if (!hit || project_.real[hit.surface->index].albedo.kind != Albedo::Kind::Estimate) continue;
+            vec3 n = glm::dot(hit.ng, camera_.position() - hit.p) >= 0 ? hit.ng : -hit.ng;
+            dvec3 E(0);
+            for (int k = 0; k < kProbeSamples; ++k) {
+                ProbeSample s = probe_.sample(rng.uniform(), rng.uniform(), rng.uniform());
+                float cos_t = glm::dot(n, s.dir);
+                if (cos_t <= 0 || s.pdf <= 0) continue;
+                Hit h2{hit};
+                h2.ng = n;
+                if (occluded_real(Ray{offset_origin(h2, s.dir), s.dir})) continue;
+                E += dvec3(s.radiance * (cos_t / s.pdf));
+            }
+            E /= double(kProbeSamples);
+            if (luminance(E) <= 0) continue;
+            dvec3 rho = double(kPi) * dvec3(assets_.photo.at(x, y)) / glm::max(E, dvec3(1e-30));
+            estimates[hit.surface->index].push_back(vec3(rho));
+        }
+    for (size_t i = 0; i < real_surfaces_.size(); ++i) {
+        if (project_.real[i].albedo.kind != Albedo::Kind::Estimate) continue;
+        auto& e = estimates[i];
+        if (e.empty()) {
+            assets_.warnings.push_back("real[" + std::to_string(i) +
+                                       "].albedo: 'estimate' but the photo never sees this proxy lit; using " +
+                                       "the constant albedo instead");
+            continue;
+        }
+        vec3 median;
+        for (int c = 0; c < 3; ++c) {
+            std::vector<float> ch;
+            for (const vec3& v : e) ch.push_back(v[c]);
+            std::nth_element(ch.begin(), ch.begin() + ch.size() / 2, ch.end());
+            median[c] = ch[ch.size() / 2];
+        }
+        real_surfaces_[i].albedo = glm::clamp(median, vec3(0.0f), vec3(0.98f));
+    }
+}
+
+}  // namespace dp

@@ -1,0 +1,63 @@
+#include "render/session.h"
+
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+namespace dp {
+
+RenderSession::RenderSession(RenderSink* sink) : sink_(sink) {}
+
+RenderSession::~RenderSession() { wait(); }
+
+void RenderSession::cancel() { cancel_.store(true); }
+
+void RenderSession::wait() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cancel_.store(true);
+    if (thread_.joinable()) thread_.join();
+}
+
+void RenderSession::start(std::shared_ptr<const RenderScene> scene) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cancel_.store(true);
+    if (thread_.joinable()) thread_.join();
+    cancel_.store(false);
+    running_.store(true);
+    thread_ = std::thread([this, scene = std::move(scene)]() mutable { run(std::move(scene)); });
+}
+
+void RenderSession::run(std::shared_ptr<const RenderScene> scene) {
+    const RenderSettings& rs = scene->project().render;
+    bool cancelled = false;
+    std::string error;
+    try {
+        int threads = rs.threads > 0 ? rs.threads : tbb::task_arena::automatic;
+        tbb::task_arena arena(threads);
+        arena.execute([&] {
+            ProgressiveRenderer renderer(scene, rs.photons_per_pass, rs.seed);
+            auto t0 = std::chrono::steady_clock::now();
+            for (;;) {
+                if (cancel_.load()) { cancelled = true; break; }
+                if (!renderer.render_pass(&cancel_)) { cancelled = true; break; }
+                double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                RenderUpdate u;
+                u.stats = renderer.stats();
+                u.target_passes = rs.time_budget_s > 0 ? 0 : rs.passes;
+                u.time_budget_s = rs.time_budget_s;
+                u.finished = rs.time_budget_s > 0 ? elapsed >= rs.time_budget_s : renderer.passes() >= rs.passes;
+                u.image = renderer.image();
+                u.delta = renderer.delta_layer();
+                u.alpha = renderer.alpha_layer();
+                if (sink_) sink_->on_update(u);
+                if (u.finished) break;
+            }
+        });
+    } catch (const std::exception& e) {
+        error = e.what();
+    }
+    running_.store(false);
+    if (sink_) sink_->on_stopped(cancelled, error);
+}
+
+}  // namespace dp

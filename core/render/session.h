@@ -1,0 +1,63 @@
+#pragma once
+#include <atomic>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "image/image.h"
+#include "render/progressive.h"
+
+namespace dp {
+
+/// A progressive image handed to a sink after each pass.
+struct RenderUpdate {
+    Image image;        ///< augmented photo (linear)
+    Image delta;        ///< signed dL on real surfaces
+    Image alpha;        ///< virtual-object coverage
+    RenderStats stats;
+    int target_passes = 0;    ///< 0 when rendering to a time budget
+    double time_budget_s = 0; ///< 0 when rendering a number of passes
+    bool finished = false;    ///< last update of this run (budget reached)
+};
+
+/// Receives progressive images from the render thread. Implementations must return quickly
+/// and never call back into the session from on_update (copy the data and hand it on).
+class RenderSink {
+public:
+    virtual ~RenderSink() = default;
+    virtual void on_update(const RenderUpdate& update) = 0;
+    /// Called once when a run stops for good (finished, cancelled or failed).
+    virtual void on_stopped(bool cancelled, const std::string& error) {}
+};
+
+/// Owns the render thread: start, cancel, reset and wait, as a viewer needs.
+class RenderSession {
+public:
+    explicit RenderSession(RenderSink* sink);
+    ~RenderSession();
+    RenderSession(const RenderSession&) = delete;
+    RenderSession& operator=(const RenderSession&) = delete;
+
+    /// Starts rendering `scene` with its project's render settings (cancelling any run).
+    /// `threads` <= 0 uses all cores.
+    void start(std::shared_ptr<const RenderScene> scene);
+    /// Asks the render thread to stop at the next check; returns at once.
+    void cancel();
+    /// Cancels and blocks until the render thread has stopped.
+    void wait();
+    /// Restarts refinement from pass zero on a (possibly edited) scene.
+    void reset(std::shared_ptr<const RenderScene> scene) { start(std::move(scene)); }
+    bool running() const { return running_.load(); }
+
+private:
+    void run(std::shared_ptr<const RenderScene> scene);
+
+    RenderSink* sink_;
+    std::thread thread_;
+    std::atomic<bool> cancel_{false};
+    std::atomic<bool> running_{false};
+    std::mutex mutex_;
+};
+
+}  // namespace dp

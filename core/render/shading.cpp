@@ -1,0 +1,139 @@
+#include "render/shading.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/scattering.h"
+
+namespace dp {
+
+namespace {
+// Glass is split into both branches for the first few interfaces (less noise on the glass
+// itself), then chosen by Russian roulette.
+constexpr int kGlassSplits = 2;
+constexpr int kDiffuseGatherDepth = 3;
+
+float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
+}  // namespace
+
+Shader::Shader(const RenderScene& scene, const PassMaps& maps)
+    : scene_(scene), maps_(maps), max_depth_(std::max(1, scene.project().render.max_depth)) {
+    inv_area_ = maps.radius > 0 ? 1.0 / (double(kPi) * maps.radius * maps.radius) : 0.0;
+}
+
+vec3 Shader::real_delta(const Hit& hit, const vec3& dir) const {
+    if (maps_.real.empty()) return vec3(0);
+    dvec3 phi = maps_.real.gather(hit.p, facing_normal(hit.ng, dir));
+    if (phi == dvec3(0)) return vec3(0);
+    vec3 rho = hit.surface->reflectance_at(hit.uv);
+    return vec3(dvec3(rho) * (double(kInvPi) * inv_area_) * phi);
+}
+
+vec3 Shader::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
+    const Camera& cam = scene_.camera();
+    vec3 to_cam = cam.position() - hit.p;
+    vec2 px;
+    // The photo shows this point if it is in frame, on the side the camera sees, unoccluded.
+    bool same_side = glm::dot(hit.ng, to_cam) * glm::dot(hit.ng, -dir) > 0;
+    if (same_side && cam.project(hit.p, px) && cam.in_image(px)) {
+        float dist = glm::length(to_cam);
+        vec3 d = to_cam / dist;
+        vec3 org = scene_.offset_origin(hit, d);
+        if (!scene_.occluded_real(Ray{org, d}, dist * (1 - 1e-4f)))
+            return scene_.photo().bilinear(px.x, px.y) + real_delta(hit, dir);
+    }
+    // Not in the photo: the proxy's albedo lit by the probe (one sample, averaged over passes).
+    vec3 n = facing_normal(hit.ng, dir);
+    ProbeSample s = scene_.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
+    vec3 L(0);
+    float cos_t = glm::dot(n, s.dir);
+    if (cos_t > 0 && s.pdf > 0) {
+        Hit h = hit;
+        h.ng = n;
+        if (!scene_.occluded_real(Ray{scene_.offset_origin(h, s.dir), s.dir}))
+            L = hit.surface->reflectance_at(hit.uv) * kInvPi * s.radiance * (cos_t / s.pdf);
+    }
+    return L + real_delta(hit, dir);
+}
+
+vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth) const {
+    const Surface& s = *hit.surface;
+    vec3 rho = s.reflectance_at(hit.uv);
+    vec3 n = facing_normal(hit.ns, dir);
+    vec3 ng = facing_normal(hit.ng, dir);
+    const Probe& probe = scene_.probe();
+    vec3 L(0);
+    // Probe light by next-event estimation, MIS-weighted against the cosine bounce below.
+    ProbeSample ls = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
+    float cos_l = glm::dot(n, ls.dir);
+    if (ls.pdf > 0 && cos_l > 0 && glm::dot(ng, ls.dir) > 0) {
+        Hit h = hit;
+        h.ng = ng;
+        if (!scene_.occluded(Ray{scene_.offset_origin(h, ls.dir), ls.dir})) {
+            float bsdf_pdf = cos_l * kInvPi;
+            L += rho * kInvPi * ls.radiance * (cos_l / ls.pdf) * power_heuristic(ls.pdf, bsdf_pdf);
+        }
+    }
+    // Caustics arriving through virtual glass and mirrors.
+    if (!maps_.caustic.empty()) L += vec3(dvec3(rho) * (double(kInvPi) * inv_area_) * maps_.caustic.gather(hit.p, ng));
+    if (depth >= kDiffuseGatherDepth) return L;
+    // One cosine-weighted bounce: real surroundings (the photo), other virtual objects, probe.
+    Hit h = hit;
+    h.ng = ng;
+    h.ns = n;
+    vec3 d = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
+    Ray ray{scene_.offset_origin(h, d), d};
+    Hit next = scene_.intersect(ray);
+    if (!next) {
+        float bsdf_pdf = std::max(0.0f, glm::dot(n, d)) * kInvPi;
+        return L + rho * probe.radiance(d) * power_heuristic(bsdf_pdf, probe.pdf(d));
+    }
+    return L + rho * incoming(ray, rng, depth + 1, true, kGlassSplits);
+}
+
+vec3 Shader::incoming(const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const {
+    Hit hit = scene_.intersect(ray);
+    if (!hit) return from_diffuse ? vec3(0) : scene_.probe().radiance(ray.dir);
+    if (!hit.surface->is_virtual) return real_radiance(hit, ray.dir, rng);
+    if (hit.surface->material.kind == Material::Kind::Diffuse)
+        return virtual_diffuse_radiance(hit, ray.dir, rng, depth);
+    return specular_radiance(hit, ray.dir, rng, depth, from_diffuse, splits);
+}
+
+vec3 Shader::specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,
+                               int splits) const {
+    if (depth >= max_depth_) return vec3(0);
+    const Material& m = hit.surface->material;
+    auto follow = [&](const SpecularEvent& e, int splits_left) {
+        if (e.weight == vec3(0)) return vec3(0);
+        Ray r{scene_.offset_origin(hit, e.dir), e.dir};
+        return e.weight * incoming(r, rng, depth + 1, from_diffuse, splits_left);
+    };
+    if (m.kind == Material::Kind::Glass && splits > 0) {
+        SpecularEvent refl, refr;
+        split_glass(m, hit, dir, refl, refr);
+        return follow(refl, splits - 1) + follow(refr, splits - 1);
+    }
+    return follow(scatter_specular(m, hit, dir, rng.uniform()), 0);
+}
+
+SampleResult Shader::shade_camera(int x, int y, float px, float py, Rng& rng) const {
+    SampleResult r;
+    const vec3 photo = scene_.photo().at(x, y);
+    Ray ray = scene_.camera().generate_ray(px, py);
+    Hit hit = scene_.intersect(ray);
+    if (!hit) return r;  // nothing modelled here: the photo stands
+    if (!hit.surface->is_virtual) {
+        r.dL = real_delta(hit, ray.dir);
+        r.delta = r.dL;
+        return r;
+    }
+    r.alpha = 1;
+    vec3 L = hit.surface->material.kind == Material::Kind::Diffuse
+                 ? virtual_diffuse_radiance(hit, ray.dir, rng, 0)
+                 : specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
+    r.delta = L - photo;
+    return r;
+}
+
+}  // namespace dp

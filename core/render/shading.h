@@ -1,0 +1,51 @@
+#pragma once
+#include "base/rng.h"
+#include "render/photon_map.h"
+#include "render/render_scene.h"
+
+namespace dp {
+
+/// The photon maps of one pass, gathered with the pass's radius.
+struct PassMaps {
+    PhotonMap real;     ///< signed photons on real surfaces
+    PhotonMap caustic;  ///< caustic photons on virtual diffuse surfaces
+    float radius = 0;
+};
+
+/// What one camera sample sees, as a change against the photo pixel.
+struct SampleResult {
+    vec3 delta{0};   ///< L' - L_photo(pixel)
+    vec3 dL{0};      ///< change of radiance on a real surface seen directly (signed)
+    float alpha = 0; ///< 1 if the sample sees a virtual object first
+};
+
+/// Shades camera rays against the photo and one pass's photon maps (method.md, "Display").
+class Shader {
+public:
+    Shader(const RenderScene& scene, const PassMaps& maps);
+
+    /// One jittered sample at continuous pixel coordinates (px, py) of pixel (x, y).
+    SampleResult shade_camera(int x, int y, float px, float py, Rng& rng) const;
+
+    /// dL at a real hit seen from direction `dir`: rho/pi * sum(phi) / (pi r^2).
+    vec3 real_delta(const Hit& hit, const vec3& dir) const;
+    /// Radiance leaving a real point towards -dir in the augmented scene: the photo where the
+    /// camera sees the point, rho E / pi elsewhere, plus dL.
+    vec3 real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const;
+    /// Radiance leaving a virtual diffuse point towards -dir.
+    vec3 virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth) const;
+    /// Radiance arriving along a ray after a specular interaction or a gather bounce.
+    /// `from_diffuse`: light from the probe through specular chains is in the caustic map.
+    vec3 incoming(const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const;
+
+private:
+    vec3 specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,
+                           int splits) const;
+
+    const RenderScene& scene_;
+    const PassMaps& maps_;
+    double inv_area_;  // 1 / (pi r^2)
+    int max_depth_;
+};
+
+}  // namespace dp

@@ -1,0 +1,98 @@
+#pragma once
+// Small scenes built in memory for the render tests: no files, known radiance.
+#include <memory>
+
+#include "probe/probe.h"
+#include "probe/synthetic_probe.h"
+#include "render/render_scene.h"
+#include "scene/project.h"
+
+namespace dp::test {
+
+/// A 1024x512 probe that is black but one pixel: a directional light ("the sun").
+struct SunProbe {
+    int width = 1024, height = 512, px = 768, py = 128;
+    vec3 radiance{20000.0f};
+    Image image() const { return make_single_pixel_probe(width, height, px, py, radiance); }
+    /// World direction towards the sun (probe not rotated).
+    vec3 direction() const { return latlong_direction((px + 0.5f) / width, (py + 0.5f) / height); }
+    /// Irradiance on a surface facing the sun.
+    double normal_irradiance() const {
+        Probe p(image(), glm::mat3(1.0f), 1.0f);
+        return double(radiance.x) * p.pixel_solid_angle(py);
+    }
+};
+
+inline RealProxy ground_plane(vec3 albedo, float size = 40.0f) {
+    RealProxy g;
+    g.name = "ground";
+    g.shape.kind = Shape::Kind::Plane;
+    g.shape.size = vec3(size, 1, size);
+    g.albedo.rgb = albedo;
+    return g;
+}
+
+inline VirtualObject sphere(vec3 center, float radius, Material m) {
+    VirtualObject o;
+    o.name = "sphere";
+    o.shape.kind = Shape::Kind::Sphere;
+    o.shape.radius = radius;
+    o.transform.translation = center;
+    o.material = m;
+    return o;
+}
+
+inline Material diffuse(vec3 albedo) {
+    Material m;
+    m.kind = Material::Kind::Diffuse;
+    m.albedo.rgb = albedo;
+    return m;
+}
+inline Material mirror(vec3 reflectance = vec3(1.0f)) {
+    Material m;
+    m.kind = Material::Kind::Mirror;
+    m.reflectance = reflectance;
+    return m;
+}
+inline Material glass(float ior, vec3 tint = vec3(1.0f)) {
+    Material m;
+    m.kind = Material::Kind::Glass;
+    m.ior = ior;
+    m.tint = tint;
+    return m;
+}
+
+inline Project look_at_project(vec3 eye, vec3 target, float vfov) {
+    Project p;
+    p.camera.model = CameraSpec::Model::LookAt;
+    p.camera.eye = eye;
+    p.camera.target = target;
+    p.camera.up = vec3(0, 1, 0);
+    p.camera.vfov_deg = vfov;
+    return p;
+}
+
+/// Photo of a lone ground plane under a directional light: rho/pi * E * cos(theta) where the
+/// camera sees the plane, black elsewhere (the probe is black but the sun).
+inline Image analytic_ground_photo(const Project& p, int w, int h, const SunProbe& sun, vec3 albedo) {
+    Camera cam = p.camera.build(w, h);
+    Image photo(w, h);
+    vec3 l = sun.direction();
+    const float E = float(sun.normal_irradiance() * std::max(0.0f, l.y));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            Ray r = cam.generate_ray(float(x), float(y));
+            if (r.dir.y >= 0 || cam.position().y <= 0) continue;
+            photo.at(x, y) = albedo * kInvPi * E;
+        }
+    return photo;
+}
+
+inline std::shared_ptr<RenderScene> build(const Project& p, Image photo, Image probe) {
+    SceneAssets a;
+    a.photo = std::move(photo);
+    a.probe_latlong = std::move(probe);
+    return std::make_shared<RenderScene>(p, std::move(a));
+}
+
+}  // namespace dp::test

@@ -1,0 +1,257 @@
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "base/error.h"
+#include "geometry/mesh.h"
+#include "mesh_checks.h"
+
+using namespace dp;
+using namespace dp::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string base64(const std::vector<uint8_t>& bytes) {
+    static const char* kAlphabet =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (size_t i = 0; i < bytes.size(); i += 3) {
+        uint32_t chunk = uint32_t(bytes[i]) << 16;
+        if (i + 1 < bytes.size()) chunk |= uint32_t(bytes[i + 1]) << 8;
+        if (i + 2 < bytes.size()) chunk |= uint32_t(bytes[i + 2]);
+        out += kAlphabet[(chunk >> 18) & 63];
+        out += kAlphabet[(chunk >> 12) & 63];
+        out += i + 1 < bytes.size() ? kAlphabet[(chunk >> 6) & 63] : '=';
+        out += i + 2 < bytes.size() ? kAlphabet[chunk & 63] : '=';
+    }
+    return out;
+}
+
+template <typename T>
+void append_bytes(std::vector<uint8_t>& buf, const std::vector<T>& values) {
+    const size_t at = buf.size();
+    buf.resize(at + values.size() * sizeof(T));
+    std::memcpy(buf.data() + at, values.data(), values.size() * sizeof(T));
+}
+
+bool contains_position(const TriangleMesh& m, const vec3& p) {
+    for (const vec3& q : m.positions) {
+        if (glm::distance(p, q) < 1e-5f) return true;
+    }
+    return false;
+}
+
+/// Each test writes its files into a fresh directory of its own.
+class MeshLoader : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("dp_geometry_" + std::to_string(::getpid()) + "_" + info->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    std::string write(const std::string& name, const std::string& contents) {
+        const fs::path p = dir_ / name;
+        std::ofstream(p, std::ios::binary) << contents;
+        return p.string();
+    }
+
+    fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(MeshLoader, LoadsAnObjQuadAsTwoTrianglesWithUvsAndGeneratedNormals) {
+    // Counter-clockwise seen from +Y, no normals in the file.
+    const std::string path = write("quad.obj",
+                                   "v -1 0 1\nv 1 0 1\nv 1 0 -1\nv -1 0 -1\n"
+                                   "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                                   "f 1/1 2/2 3/3 4/4\n");
+    LoadedMesh loaded = load_mesh(path);
+    const TriangleMesh& m = loaded.mesh;
+    EXPECT_EQ(loaded.dropped_degenerate, 0u);
+    ASSERT_EQ(m.triangle_count(), 2u);
+    EXPECT_EQ(m.positions.size(), 4u);
+    ASSERT_EQ(m.normals.size(), m.positions.size());
+    ASSERT_EQ(m.uvs.size(), m.positions.size());
+    for (const vec3& n : m.normals) EXPECT_NEAR(glm::dot(n, vec3(0, 1, 0)), 1.0f, 1e-5f);
+    EXPECT_GT(min_winding_agreement(m), 0.999f);
+    EXPECT_NEAR(surface_area(m), 4.0, 1e-5);
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        // The file maps u to +X and v to -Z.
+        EXPECT_NEAR(m.uvs[i].x, 0.5f * (m.positions[i].x + 1.0f), 1e-6f);
+        EXPECT_NEAR(m.uvs[i].y, 0.5f * (1.0f - m.positions[i].z), 1e-6f);
+    }
+}
+
+TEST_F(MeshLoader, MergesEveryObjectOfAnObjIntoOneMesh) {
+    const std::string path = write("two.obj",
+                                   "o first\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"
+                                   "o second\nv 0 0 5\nv 1 0 5\nv 0 1 5\nf 4 5 6\n");
+    LoadedMesh loaded = load_mesh(path);
+    EXPECT_EQ(loaded.mesh.triangle_count(), 2u);
+    EXPECT_TRUE(loaded.mesh.uvs.empty());
+    vec3 lo, hi;
+    ASSERT_TRUE(loaded.mesh.bounds(lo, hi));
+    EXPECT_EQ(lo, vec3(0, 0, 0));
+    EXPECT_EQ(hi, vec3(1, 1, 5));
+}
+
+TEST_F(MeshLoader, LoadsAnAsciiPlyCubeWithItsQuadsTriangulatedAndWindingKept) {
+    const std::string path = write("cube.ply",
+                                   "ply\nformat ascii 1.0\nelement vertex 8\n"
+                                   "property float x\nproperty float y\nproperty float z\n"
+                                   "element face 6\nproperty list uchar int vertex_indices\n"
+                                   "end_header\n"
+                                   "0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                                   "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n"
+                                   "4 3 7 6 2\n4 0 4 7 3\n4 1 2 6 5\n");
+    LoadedMesh loaded = load_mesh(path);
+    const TriangleMesh& m = loaded.mesh;
+    EXPECT_EQ(m.triangle_count(), 12u);
+    EXPECT_NEAR(surface_area(m), 6.0, 1e-5);
+    EXPECT_NEAR(signed_volume(m), 1.0, 1e-5);  // positive: faces still wound outward
+    ASSERT_EQ(m.normals.size(), m.positions.size());
+    EXPECT_GT(min_winding_agreement(m), 0.0f);
+    // Generated smooth normals point roughly away from the cube's centre (area weighting over
+    // the triangulated quads tilts them a little off the diagonals).
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        EXPECT_NEAR(glm::length(m.normals[i]), 1.0f, 1e-5f);
+        EXPECT_GT(glm::dot(m.normals[i], glm::normalize(m.positions[i] - vec3(0.5f))), 0.9f);
+    }
+}
+
+TEST_F(MeshLoader, KeepsNormalsGivenInTheFile) {
+    // The file's normals deliberately lean away from the face normal; they must survive as given.
+    const std::string path = write("normals.obj",
+                                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0.6 0 0.8\n"
+                                   "f 1//1 2//1 3//1\n");
+    LoadedMesh loaded = load_mesh(path);
+    ASSERT_EQ(loaded.mesh.normals.size(), 3u);
+    for (const vec3& n : loaded.mesh.normals) {
+        EXPECT_NEAR(glm::distance(n, vec3(0.6f, 0.0f, 0.8f)), 0.0f, 1e-6f);
+    }
+}
+
+TEST_F(MeshLoader, AppliesTheNodeTransformsOfAGltfWithAnEmbeddedBuffer) {
+    // One triangle in the XZ plane facing +Y. The child node scales x by 2 and rotates 90 degrees
+    // about +X (so +Y becomes +Z); its parent translates by (1, 2, 3).
+    std::vector<uint8_t> buf;
+    append_bytes(buf, std::vector<float>{0, 0, 0, 0, 0, 1, 1, 0, 0});
+    append_bytes(buf, std::vector<float>{0, 1, 0, 0, 1, 0, 0, 1, 0});
+    append_bytes(buf, std::vector<uint16_t>{0, 1, 2});
+    ASSERT_EQ(buf.size(), 78u);
+    const std::string gltf = R"({
+  "asset": {"version": "2.0"},
+  "scene": 0,
+  "scenes": [{"nodes": [0]}],
+  "nodes": [
+    {"translation": [1, 2, 3], "children": [1]},
+    {"rotation": [0.70710678, 0, 0, 0.70710678], "scale": [2, 1, 1], "mesh": 0}
+  ],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2}]}],
+  "buffers": [{"byteLength": 78,
+               "uri": "data:application/octet-stream;base64,)" +
+                             base64(buf) + R"("}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 72, "target": 34962},
+    {"buffer": 0, "byteOffset": 72, "byteLength": 6, "target": 34963}
+  ],
+  "accessors": [
+    {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 0, 1]},
+    {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"},
+    {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}
+  ]
+})";
+    LoadedMesh loaded = load_mesh(write("tri.gltf", gltf));
+    const TriangleMesh& m = loaded.mesh;
+    ASSERT_EQ(m.triangle_count(), 1u);
+    EXPECT_EQ(m.positions.size(), 3u);
+    EXPECT_TRUE(contains_position(m, vec3(1, 2, 3)));
+    EXPECT_TRUE(contains_position(m, vec3(1, 1, 3)));
+    EXPECT_TRUE(contains_position(m, vec3(3, 2, 3)));
+    ASSERT_EQ(m.normals.size(), 3u);
+    for (const vec3& n : m.normals) EXPECT_NEAR(glm::dot(n, vec3(0, 0, 1)), 1.0f, 1e-5f);
+    EXPECT_GT(min_winding_agreement(m), 0.999f);
+}
+
+TEST_F(MeshLoader, DropsADegenerateTriangleAmongGoodOnesAndCountsIt) {
+    const std::string path = write("mixed.obj",
+                                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 2 0 0\n"
+                                   "f 1 2 3\nf 2 4 3\nf 1 2 5\n");  // the last one is a line
+    LoadedMesh loaded = load_mesh(path);
+    EXPECT_EQ(loaded.dropped_degenerate, 1u);
+    EXPECT_EQ(loaded.mesh.triangle_count(), 2u);
+    EXPECT_NEAR(surface_area(loaded.mesh), 1.0, 1e-6);
+    for (const vec3& n : loaded.mesh.normals) {
+        EXPECT_TRUE(is_finite(n));
+        EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+    }
+}
+
+TEST_F(MeshLoader, RejectsAMeshWhoseTrianglesAreAllDegenerate) {
+    const std::string path = write("flat.obj",
+                                   "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\n"
+                                   "f 1 2 3\nf 2 3 4\n");
+    try {
+        load_mesh(path, "shapes[0].file");
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(path), std::string::npos) << what;
+        EXPECT_NE(what.find("degenerate"), std::string::npos) << what;
+        EXPECT_NE(what.find("all 2 triangles"), std::string::npos) << what;
+        EXPECT_EQ(e.file(), path);
+        EXPECT_EQ(e.field(), "shapes[0].file");
+    }
+}
+
+TEST_F(MeshLoader, RejectsAFileWithoutTriangles) {
+    const std::string path = write("lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\n");
+    try {
+        load_mesh(path);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("no triangles"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(MeshLoader, ReportsAMissingFileWithItsPath) {
+    const std::string path = (dir_ / "does_not_exist.obj").string();
+    try {
+        load_mesh(path, "mesh");
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.file(), path);
+        EXPECT_NE(std::string(e.what()).find(path), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos);
+    }
+}
+
+TEST_F(MeshLoader, ReportsGarbageContentAsAnInputError) {
+    std::string junk;
+    for (int i = 0; i < 512; ++i) junk += char((i * 73 + 11) % 256);
+    for (const char* name : {"garbage.ply", "garbage.glb", "garbage.gltf", "garbage.xyz"}) {
+        const std::string path = write(name, junk);
+        try {
+            load_mesh(path);
+            ADD_FAILURE() << name << " loaded";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.file(), path);
+            EXPECT_NE(std::string(e.what()).find("cannot read mesh"), std::string::npos)
+                << e.what();
+        }
+    }
+}

@@ -1,0 +1,277 @@
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "base/error.h"
+#include "scene/project_io.h"
+#include "scene_test_util.h"
+
+using namespace dp;
+using json = nlohmann::json;
+
+namespace {
+
+/// One broken input: how to break the rich project, and what the error must name.
+struct BadCase {
+    std::string name;
+    std::function<void(json&)> mutate;
+    std::string field;    ///< JSON path the error must name
+    std::string message;  ///< text the message must contain
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
+const json kLookAt = {{"model", "lookat"}, {"eye", {0, 1.6, 3}}, {"target", {0, 0.5, 0}}};
+
+std::vector<BadCase> bad_cases() {
+    return {
+        {"VersionTooNew", [](json& j) { j["schema_version"] = 2; }, "schema_version",
+         "unsupported schema version 2; this build reads version 1"},
+        {"VersionMissing", [](json& j) { j.erase("schema_version"); }, "schema_version",
+         "required field is missing"},
+        {"VersionNotANumber", [](json& j) { j["schema_version"] = "1"; }, "schema_version",
+         "expected an integer, got string"},
+        {"PhotoMissing", [](json& j) { j.erase("photo"); }, "photo", "required field is missing"},
+        {"PhotoPathMissing", [](json& j) { j["photo"].erase("path"); }, "photo.path",
+         "required field is missing"},
+        {"PhotoPathEmpty", [](json& j) { j["photo"]["path"] = ""; }, "photo.path",
+         "must not be empty"},
+        {"ExposureWrongType", [](json& j) { j["photo"]["exposure"] = "+1"; }, "photo.exposure",
+         "expected a number, got string"},
+        {"CameraMissing", [](json& j) { j.erase("camera"); }, "camera",
+         "required field is missing"},
+        {"UnknownTopLevelKey", [](json& j) { j["objcts"] = json::array(); }, "objcts",
+         "unknown key 'objcts'; did you mean 'objects'?"},
+        {"UnknownNestedKey",
+         [](json& j) { j["objects"][0]["materail"] = j["objects"][0]["material"]; },
+         "objects[0].materail", "unknown key 'materail'; did you mean 'material'?"},
+        {"KeyOfAnotherShapeType", [](json& j) { j["objects"][0]["shape"]["size"] = {1, 1, 1}; },
+         "objects[0].shape.size", "unknown key 'size' for shape type 'sphere'"},
+        {"KeyOfAnotherMaterialType", [](json& j) { j["objects"][1]["material"]["ior"] = 1.5; },
+         "objects[1].material.ior", "unknown key 'ior' for material type 'mirror'"},
+        {"UnknownMaterial", [](json& j) { j["objects"][2]["material"]["type"] = "velvet"; },
+         "objects[2].material.type",
+         "unknown material type 'velvet' (valid: diffuse, mirror, glass)"},
+        {"MaterialTypeMissing", [](json& j) { j["objects"][2]["material"].erase("type"); },
+         "objects[2].material.type", "required field is missing"},
+        {"UnknownShape", [](json& j) { j["real"][1]["shape"]["type"] = "cone"; },
+         "real[1].shape.type", "unknown shape type 'cone' (valid: plane, box, sphere, mesh)"},
+        {"UnknownProbeFormat", [](json& j) { j["probe"]["format"] = "cubemap"; }, "probe.format",
+         "unknown probe format 'cubemap' (valid: latlong, mirrorball)"},
+        {"UnknownCameraModel", [](json& j) { j["camera"]["model"] = "fisheye"; }, "camera.model",
+         "unknown camera model 'fisheye' (valid: lookat, opencv)"},
+        {"NegativeRadius", [](json& j) { j["objects"][0]["shape"]["radius"] = -0.3; },
+         "objects[0].shape.radius", "must be > 0 (got -0.3)"},
+        {"ZeroPlaneSize", [](json& j) { j["real"][0]["shape"]["size"] = {10, 0}; },
+         "real[0].shape.size[1]", "must be > 0 (got 0)"},
+        {"PlaneSizeWithThreeNumbers", [](json& j) { j["real"][0]["shape"]["size"] = {1, 2, 3}; },
+         "real[0].shape.size", "expected 2 numbers, got 3"},
+        {"ZeroBoxSize", [](json& j) { j["objects"][1]["shape"]["size"] = {1, 0, 1}; },
+         "objects[1].shape.size[1]", "must be > 0"},
+        {"ZeroScale", [](json& j) { j["real"][1]["transform"]["scale"] = {1, 1, 0}; },
+         "real[1].transform.scale[2]", "must be > 0"},
+        {"MeshPathWrongType", [](json& j) { j["objects"][2]["shape"]["path"] = 3; },
+         "objects[2].shape.path", "expected a string, got number"},
+        {"ZeroIor", [](json& j) { j["objects"][0]["material"]["ior"] = 0; },
+         "objects[0].material.ior", "must be > 0 (got 0)"},
+        {"NegativeIor", [](json& j) { j["objects"][0]["material"]["ior"] = -1.5; },
+         "objects[0].material.ior", "must be > 0"},
+        {"TintAboveOne", [](json& j) { j["objects"][0]["material"]["tint"] = {1, 1.5, 1}; },
+         "objects[0].material.tint[1]", "must be in [0, 1] (got 1.5)"},
+        {"AlbedoNegative", [](json& j) { j["real"][1]["albedo"] = {0.5, -0.1, 0.5}; },
+         "real[1].albedo[1]", "must be in [0, 1]"},
+        {"AlbedoUnknownWord", [](json& j) { j["real"][0]["albedo"] = "estimated"; },
+         "real[0].albedo", "unknown albedo 'estimated'"},
+        {"AlbedoEstimateOnVirtualObject",
+         [](json& j) { j["objects"][3]["material"]["albedo"] = "estimate"; },
+         "objects[3].material.albedo", "\"estimate\" is only valid for real proxies"},
+        {"AlbedoWrongType", [](json& j) { j["real"][1]["albedo"] = 0.5; }, "real[1].albedo",
+         "expected [r, g, b], {\"texture\": path} or \"estimate\", got number"},
+        {"VisibleNotBoolean", [](json& j) { j["objects"][1]["visible"] = "no"; },
+         "objects[1].visible", "expected true or false, got string"},
+        {"ObjectsNotArray", [](json& j) { j["objects"] = json::object(); }, "objects",
+         "expected an array, got object"},
+        {"ObjectNotObject", [](json& j) { j["objects"][1] = 5; }, "objects[1]",
+         "expected an object, got number"},
+        {"ShapeMissing", [](json& j) { j["real"][2].erase("shape"); }, "real[2].shape",
+         "required field is missing"},
+        {"PhotonsPerPassZero", [](json& j) { j["render"]["photons_per_pass"] = 0; },
+         "render.photons_per_pass", "must be an integer in [1, inf) (got 0)"},
+        {"PhotonsPerPassNegative", [](json& j) { j["render"]["photons_per_pass"] = -5; },
+         "render.photons_per_pass", "(got -5)"},
+        {"PassesFractional", [](json& j) { j["render"]["passes"] = 2.5; }, "render.passes",
+         "must be an integer (got 2.5)"},
+        {"MaxDepthZero", [](json& j) { j["render"]["max_depth"] = 0; }, "render.max_depth",
+         "must be an integer in [1, "},
+        {"ThreadsNegative", [](json& j) { j["render"]["threads"] = -1; }, "render.threads",
+         "must be an integer in [0, "},
+        {"SeedNegative", [](json& j) { j["render"]["seed"] = -1; }, "render.seed",
+         "must be an integer in [0, "},
+        {"AlphaZero", [](json& j) { j["render"]["alpha"] = 0; }, "render.alpha",
+         "must be in (0, 1) exclusive (got 0)"},
+        {"AlphaOne", [](json& j) { j["render"]["alpha"] = 1; }, "render.alpha",
+         "must be in (0, 1) exclusive (got 1)"},
+        {"AlphaAboveOne", [](json& j) { j["render"]["alpha"] = 1.5; }, "render.alpha",
+         "must be in (0, 1)"},
+        {"NegativeInitialRadius", [](json& j) { j["render"]["initial_radius"] = -0.01; },
+         "render.initial_radius", "must be > 0"},
+        {"NegativeTimeBudget", [](json& j) { j["render"]["time_budget_s"] = -1; },
+         "render.time_budget_s", "must be >= 0 seconds"},
+        {"UnknownRenderKey", [](json& j) { j["render"]["photons"] = 5; }, "render.photons",
+         "unknown key 'photons'"},
+        {"NegativeIntensity", [](json& j) { j["probe"]["intensity"] = -1; }, "probe.intensity",
+         "must be >= 0"},
+        {"FxZero", [](json& j) { j["camera"]["fx"] = 0; }, "camera.fx",
+         "must be > 0 pixels (got 0)"},
+        {"FyNegative", [](json& j) { j["camera"]["fy"] = -1000; }, "camera.fy", "must be > 0"},
+        {"CxMissing", [](json& j) { j["camera"].erase("cx"); }, "camera.cx",
+         "required field is missing"},
+        {"DistortionWrongLength", [](json& j) { j["camera"]["distortion"] = {0.1, 0.2, 0.3}; },
+         "camera.distortion", "expected 4 or 5 coefficients"},
+        {"RotationNotOrthonormal",
+         [](json& j) { j["camera"]["rotation"] = {{1, 0, 0}, {0, 2, 0}, {0, 0, 1}}; },
+         "camera.rotation", "must be a rotation matrix"},
+        {"RotationReflection",
+         [](json& j) { j["camera"]["rotation"] = {{-1, 0, 0}, {0, 1, 0}, {0, 0, 1}}; },
+         "camera.rotation", "determinant is -1"},
+        {"RotationRowTooShort", [](json& j) { j["camera"]["rotation"][1] = {0, 1}; },
+         "camera.rotation[1]", "expected 3 numbers, got 2"},
+        {"LookAtKeyOnOpenCvCamera", [](json& j) { j["camera"]["vfov_deg"] = 40; },
+         "camera.vfov_deg", "unknown key 'vfov_deg' for camera model 'opencv'"},
+        {"VfovZero",
+         [](json& j) {
+             j["camera"] = kLookAt;
+             j["camera"]["vfov_deg"] = 0;
+         },
+         "camera.vfov_deg", "must be in (0, 180) degrees (got 0)"},
+        {"VfovStraight",
+         [](json& j) {
+             j["camera"] = kLookAt;
+             j["camera"]["vfov_deg"] = 180;
+         },
+         "camera.vfov_deg", "must be in (0, 180) degrees (got 180)"},
+        {"EyeMissing",
+         [](json& j) {
+             j["camera"] = kLookAt;
+             j["camera"].erase("eye");
+         },
+         "camera.eye", "required field is missing"},
+        {"EyeEqualsTarget",
+         [](json& j) {
+             j["camera"] = kLookAt;
+             j["camera"]["target"] = j["camera"]["eye"];
+         },
+         "camera.target", "must differ from camera.eye"},
+        {"UpAlongViewDirection",
+         [](json& j) {
+             j["camera"] = kLookAt;
+             j["camera"]["eye"] = {0, 5, 0};
+             j["camera"]["target"] = {0, 0, 0};
+         },
+         "camera.up", "parallel to the viewing direction"},
+        {"FloatOverflow", [](json& j) { j["objects"][0]["transform"]["translation"][0] = 1e39; },
+         "objects[0].transform.translation[0]", "must be a finite number"},
+    };
+}
+
+class BadProject : public dp::test::TempDirTest,
+                   public ::testing::WithParamInterface<BadCase> {};
+
+TEST_P(BadProject, ThrowsInputErrorNamingFileAndField) {
+    json doc = json::parse(dp::test::kRichProject);
+    GetParam().mutate(doc);
+    std::string path = write("bad.json", doc.dump(2));
+    try {
+        load_project(path);
+        FAIL() << "expected InputError for " << GetParam().name;
+    } catch (const InputError& e) {
+        std::string what = e.what();
+        EXPECT_EQ(e.file(), path);
+        EXPECT_EQ(e.field(), GetParam().field) << what;
+        EXPECT_EQ(what.rfind(path + ": field '" + GetParam().field + "': ", 0), 0u) << what;
+        EXPECT_NE(what.find(GetParam().message), std::string::npos) << what;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scene, BadProject, ::testing::ValuesIn(bad_cases()),
+                         [](const auto& info) { return info.param.name; });
+
+class BadProjectText : public dp::test::TempDirTest {
+protected:
+    /// Loads `text` and returns the InputError's what(), or "" if nothing was thrown.
+    std::string error_of(const std::string& text, std::string* field = nullptr) {
+        path_ = write("bad.json", text);
+        try {
+            load_project(path_);
+        } catch (const InputError& e) {
+            if (field) *field = e.field();
+            return e.what();
+        }
+        return "";
+    }
+    std::string path_;
+};
+
+}  // namespace
+
+TEST_F(BadProjectText, InvalidJsonNamesTheBytePosition) {
+    std::string what = error_of("{\n  \"schema_version\": 1,\n  \"photo\": {\"path\": \"a\",}\n}");
+    EXPECT_EQ(what.rfind(path_ + ": ", 0), 0u) << what;
+    EXPECT_NE(what.find("invalid JSON at byte "), std::string::npos) << what;
+    EXPECT_NE(what.find("line 3"), std::string::npos) << what;
+}
+
+TEST_F(BadProjectText, EmptyFileIsInvalidJson) {
+    EXPECT_NE(error_of("").find("invalid JSON"), std::string::npos);
+}
+
+TEST_F(BadProjectText, TopLevelMustBeAnObject) {
+    EXPECT_NE(error_of("[1, 2]").find("expected a JSON object at the top level, got array"),
+              std::string::npos);
+}
+
+TEST_F(BadProjectText, NumberBeyondDoubleRangeIsNotFinite) {
+    json doc = json::parse(dp::test::kRichProject);
+    std::string text = doc.dump();
+    std::string from = "\"intensity\":1.25";
+    ASSERT_NE(text.find(from), std::string::npos);
+    text.replace(text.find(from), from.size(), "\"intensity\":1e999");
+    std::string what = error_of(text);
+    EXPECT_EQ(what.rfind(path_ + ": invalid JSON at byte ", 0), 0u) << what;
+    EXPECT_NE(what.find("1e999"), std::string::npos) << what;
+    EXPECT_NE(what.find("numbers must be finite"), std::string::npos) << what;
+}
+
+TEST_F(BadProjectText, DuplicateKeysAreRejectedWithTheirPath) {
+    json doc = json::parse(dp::test::kRichProject);
+    std::string text = doc.dump();
+    std::string from = "\"radius\":0.3";
+    ASSERT_NE(text.find(from), std::string::npos);
+    text.replace(text.find(from), from.size(), "\"radius\":0.3,\"radius\":0.4");
+    std::string field;
+    std::string what = error_of(text, &field);
+    EXPECT_EQ(field, "objects[0].shape.radius") << what;
+    EXPECT_NE(what.find("duplicate key"), std::string::npos) << what;
+}
+
+TEST_F(BadProjectText, MissingFileNamesThePath) {
+    std::string missing = (dir_ / "nope.json").string();
+    try {
+        load_project(missing);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind(missing + ": ", 0), 0u) << e.what();
+    }
+}
+
+TEST(ParseProject, ErrorsUseTheGivenFileLabel) {
+    json doc = json::parse(dp::test::kRichProject);
+    doc["render"]["alpha"] = 2;
+    try {
+        parse_project(doc, "memory.json", "/base");
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("memory.json: field 'render.alpha': ", 0), 0u)
+            << e.what();
+    }
+}

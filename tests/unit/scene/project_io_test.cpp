@@ -1,0 +1,177 @@
+#include <gtest/gtest.h>
+
+#include "base/error.h"
+#include "scene/project_io.h"
+#include "scene_test_util.h"
+
+using namespace dp;
+using dp::test::kRichProject;
+
+namespace {
+
+class ProjectIo : public dp::test::TempDirTest {};
+
+}  // namespace
+
+TEST_F(ProjectIo, RichProjectLoadsWithEveryField) {
+    Project p = load_project(write("rich.json", kRichProject));
+    EXPECT_EQ(p.photo.path, "photos/kitchen.jpg");
+    EXPECT_FLOAT_EQ(p.photo.exposure, -0.5f);
+    EXPECT_EQ(p.probe.format, ProbeSpec::Format::MirrorBall);
+    EXPECT_FLOAT_EQ(p.probe.rotation_deg.y, 90.5f);
+    EXPECT_FLOAT_EQ(p.probe.intensity, 1.25f);
+
+    ASSERT_EQ(p.camera.model, CameraSpec::Model::Intrinsics);
+    EXPECT_FLOAT_EQ(p.camera.fx, 1210.5f);
+    EXPECT_FLOAT_EQ(p.camera.distortion.k3, 0.001f);
+    // The file is row-major: row 0 is (0, 0, 1), so R maps world +Z onto camera +X.
+    vec3 x_cam = p.camera.rotation * vec3(0, 0, 1);
+    EXPECT_FLOAT_EQ(x_cam.x, 1.0f);
+    EXPECT_FLOAT_EQ(p.camera.rotation[2][0], 1.0f);  // glm [column][row]
+    EXPECT_FLOAT_EQ(p.camera.rotation[0][2], -1.0f);
+
+    ASSERT_EQ(p.real.size(), 3u);
+    EXPECT_EQ(p.real[0].shape.kind, Shape::Kind::Plane);
+    EXPECT_FLOAT_EQ(p.real[0].shape.size.x, 10.0f);
+    EXPECT_FLOAT_EQ(p.real[0].shape.size.z, 8.0f);
+    EXPECT_EQ(p.real[0].albedo.kind, Albedo::Kind::Estimate);
+    EXPECT_EQ(p.real[1].albedo.kind, Albedo::Kind::Constant);
+    EXPECT_FLOAT_EQ(p.real[1].transform.scale.z, 2.0f);
+    EXPECT_EQ(p.real[2].albedo.kind, Albedo::Kind::Texture);
+    EXPECT_EQ(p.real[2].albedo.texture_path, "wood.png");
+    EXPECT_EQ(p.real[2].shape.mesh_path, "/abs/table.obj");
+
+    ASSERT_EQ(p.objects.size(), 5u);
+    EXPECT_EQ(p.objects[0].material.kind, Material::Kind::Glass);
+    EXPECT_FLOAT_EQ(p.objects[0].material.ior, 1.45f);
+    EXPECT_FALSE(p.objects[1].visible);
+    EXPECT_EQ(p.objects[1].material.kind, Material::Kind::Mirror);
+    EXPECT_EQ(p.objects[2].material.albedo.kind, Albedo::Kind::Texture);
+    EXPECT_TRUE(p.objects[3].visible);
+    // Defaults from project.h where fields are left out.
+    EXPECT_EQ(p.objects[4].name, "");
+    EXPECT_EQ(p.objects[4].material, Material{});
+    EXPECT_EQ(p.objects[4].transform, Transform{});
+
+    EXPECT_EQ(p.render.photons_per_pass, 500000);
+    EXPECT_EQ(p.render.passes, 32);
+    EXPECT_DOUBLE_EQ(p.render.time_budget_s, 12.5);
+    ASSERT_TRUE(p.render.initial_radius.has_value());
+    EXPECT_FLOAT_EQ(*p.render.initial_radius, 0.02f);
+    EXPECT_EQ(p.render.seed, 18446744073709551615ull);
+    EXPECT_EQ(p.render.threads, 4);
+}
+
+TEST_F(ProjectIo, LoadSaveLoadGivesAnEqualProject) {
+    Project a = load_project(write("rich.json", kRichProject));
+    std::string saved = (dir_ / "saved.json").string();
+    save_project(a, saved);
+    Project b = load_project(saved);
+    EXPECT_EQ(a, b);
+    // And again, so the written form is a fixed point.
+    save_project(b, (dir_ / "saved2.json").string());
+    EXPECT_EQ(read(saved), read((dir_ / "saved2.json").string()));
+}
+
+TEST_F(ProjectIo, LookAtProjectWithDefaultsRoundTrips) {
+    const char* text = R"({"schema_version": 1, "photo": {"path": "p.png"},
+        "probe": {"path": "probe.hdr"},
+        "camera": {"model": "lookat", "eye": [0.1, 1.7, 4], "target": [0, 0.5, 0]}})";
+    Project a = load_project(write("min.json", text));
+    EXPECT_EQ(a.probe.format, ProbeSpec::Format::LatLong);
+    EXPECT_EQ(a.camera.model, CameraSpec::Model::LookAt);
+    EXPECT_FLOAT_EQ(a.camera.vfov_deg, 45.0f);
+    EXPECT_EQ(a.render, RenderSettings{});
+    EXPECT_FALSE(a.render.initial_radius.has_value());
+    EXPECT_TRUE(a.real.empty());
+    EXPECT_TRUE(a.objects.empty());
+    std::string saved = (dir_ / "saved.json").string();
+    save_project(a, saved);
+    EXPECT_EQ(load_project(saved), a);
+}
+
+TEST_F(ProjectIo, ProgrammaticProjectRoundTripsBitExactly) {
+    Project a;
+    a.photo.path = "photo.exr";
+    a.photo.exposure = 0.1f;
+    a.probe.path = "probe.exr";
+    a.probe.rotation_deg = vec3(1.0f / 3.0f, 0.7f, -12.3456789f);
+    a.camera.model = CameraSpec::Model::Intrinsics;
+    a.camera.fx = 1000.1f;
+    a.camera.fy = 999.9f;
+    a.camera.cx = 640.3f;
+    a.camera.cy = 360.7f;
+    a.camera.distortion = Distortion{-0.123456f, 0.0789f, 1e-4f, -2e-4f, 0.0003f};
+    a.camera.rotation = glm::mat3(Transform{vec3(0), vec3(10.1f, -20.2f, 30.3f), vec3(1)}.matrix());
+    a.camera.translation = vec3(0.3f, -0.1f, 2.9f);
+    RealProxy floor;
+    floor.shape.size = vec3(5.5f, 1.0f, 3.3f);
+    floor.albedo.rgb = vec3(0.3f, 0.31f, 0.32f);
+    a.real.push_back(floor);
+    VirtualObject ball;
+    ball.name = "ball \"quoted\" ünïcode";
+    ball.shape.kind = Shape::Kind::Sphere;
+    ball.shape.radius = 0.123f;
+    ball.material.kind = Material::Kind::Glass;
+    ball.material.ior = 1.333f;
+    a.objects.push_back(ball);
+    a.render.initial_radius = 0.0314f;
+    a.render.alpha = 2.0f / 3.0f;
+    a.render.time_budget_s = 0.1;
+
+    std::string saved = (dir_ / "saved.json").string();
+    save_project(a, saved);
+    EXPECT_EQ(load_project(saved), a);
+    // to_json / parse_project round-trip without a file too.
+    EXPECT_EQ(parse_project(to_json(a), "memory", dir_), a);
+}
+
+TEST_F(ProjectIo, SavedFileIsPrettyWithPathsAsStored) {
+    Project a = load_project(write("rich.json", kRichProject));
+    std::string saved = (dir_ / "out" / "saved.json").string();
+    std::filesystem::create_directories(dir_ / "out");
+    save_project(a, saved);
+    std::string text = read(saved);
+    EXPECT_EQ(text.rfind("{\n  \"schema_version\": 1,\n  \"photo\": {\n    \"path\": ", 0), 0u)
+        << text.substr(0, 200);
+    EXPECT_NE(text.find("\"path\": \"../probes/kitchen_ball.exr\""), std::string::npos);
+    EXPECT_NE(text.find("\"path\": \"/abs/table.obj\""), std::string::npos);
+    EXPECT_NE(text.find("\"albedo\": \"estimate\""), std::string::npos);
+    EXPECT_NE(text.find("0.032,"), std::string::npos) << "floats are written in shortest form";
+    EXPECT_EQ(text.back(), '\n');
+}
+
+TEST_F(ProjectIo, PathsResolveRelativeToTheProjectFilesFolder) {
+    std::string path = write("scenes/kitchen/project.json", kRichProject);
+    Project p = load_project(path);
+    std::filesystem::path folder = (dir_ / "scenes" / "kitchen").lexically_normal();
+    EXPECT_TRUE(p.base_dir.is_absolute());
+    EXPECT_EQ(p.resolve(p.photo.path), folder / "photos" / "kitchen.jpg");
+    EXPECT_EQ(p.resolve(p.probe.path).lexically_normal(),
+              (dir_ / "scenes" / "probes" / "kitchen_ball.exr").lexically_normal());
+    EXPECT_EQ(p.resolve(p.real[2].shape.mesh_path), std::filesystem::path("/abs/table.obj"));
+    EXPECT_EQ(p.resolve(p.objects[2].shape.mesh_path), folder / "meshes" / "bunny.obj");
+}
+
+TEST_F(ProjectIo, RelativeProjectPathStillGivesTheFilesFolder) {
+    write("scenes/project.json", kRichProject);
+    std::filesystem::path old = std::filesystem::current_path();
+    std::filesystem::current_path(dir_);
+    std::filesystem::path cwd = std::filesystem::current_path();
+    Project p;
+    EXPECT_NO_THROW(p = load_project("scenes/project.json"));
+    std::filesystem::current_path(old);  // before any assertion can return early
+    EXPECT_TRUE(p.base_dir.is_absolute());
+    EXPECT_EQ(p.resolve("photo.exr"), cwd / "scenes" / "photo.exr");
+}
+
+TEST_F(ProjectIo, SaveToAnUnwritablePathThrowsInputError) {
+    Project p = load_project(write("rich.json", kRichProject));
+    std::string bad = (dir_ / "missing_folder" / "x.json").string();
+    try {
+        save_project(p, bad);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+    }
+}
