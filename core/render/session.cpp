@@ -8,13 +8,15 @@ namespace dp {
 
 RenderSession::RenderSession(RenderSink* sink) : sink_(sink) {}
 
-RenderSession::~RenderSession() { wait(); }
+RenderSession::~RenderSession() {
+    cancel();
+    wait();
+}
 
 void RenderSession::cancel() { cancel_.store(true); }
 
 void RenderSession::wait() {
     std::lock_guard<std::mutex> lock(mutex_);
-    cancel_.store(true);
     if (thread_.joinable()) thread_.join();
 }
 

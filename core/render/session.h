@@ -39,12 +39,12 @@ public:
     RenderSession(const RenderSession&) = delete;
     RenderSession& operator=(const RenderSession&) = delete;
 
-    /// Starts rendering `scene` with its project's render settings (cancelling any run).
-    /// `threads` <= 0 uses all cores.
+    /// Starts rendering `scene` with its project's render settings (cancelling any run);
+    /// project.render.threads <= 0 uses all cores.
     void start(std::shared_ptr<const RenderScene> scene);
     /// Asks the render thread to stop at the next check; returns at once.
     void cancel();
-    /// Cancels and blocks until the render thread has stopped.
+    /// Blocks until the current run has finished its budget or was cancelled.
     void wait();
     /// Restarts refinement from pass zero on a (possibly edited) scene.
     void reset(std::shared_ptr<const RenderScene> scene) { start(std::move(scene)); }

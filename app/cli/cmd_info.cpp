@@ -1,0 +1,153 @@
+// `diffphoton info`: loads and validates a project and prints what it holds.
+#include <cstdio>
+#include <string>
+
+#include "commands.h"
+#include "common.h"
+
+namespace dp::cli {
+
+namespace {
+
+std::string size_text(const Image& img) {
+    return std::to_string(img.width()) + "x" + std::to_string(img.height());
+}
+
+std::string shape_text(const Shape& s, const TriangleMesh* mesh) {
+    char buf[128];
+    switch (s.kind) {
+        case Shape::Kind::Plane:
+            std::snprintf(buf, sizeof(buf), "plane %g x %g", s.size.x, s.size.z);
+            return buf;
+        case Shape::Kind::Box:
+            std::snprintf(buf, sizeof(buf), "box %g x %g x %g", s.size.x, s.size.y, s.size.z);
+            return buf;
+        case Shape::Kind::Sphere:
+            std::snprintf(buf, sizeof(buf), "sphere radius %g", s.radius);
+            return buf;
+        case Shape::Kind::Mesh: {
+            std::string t = "mesh '" + s.mesh_path + "'";
+            if (mesh) t += " (" + std::to_string(mesh->triangle_count()) + " triangles)";
+            return t;
+        }
+    }
+    return "?";
+}
+
+std::string transform_text(const Transform& t) {
+    if (t == Transform{}) return "";
+    return "  at " + vec(t.translation) + " rotated " + vec(t.rotation_deg) + " scaled " +
+           vec(t.scale);
+}
+
+std::string albedo_text(const Albedo& a, const Image& texture, const vec3& estimated) {
+    switch (a.kind) {
+        case Albedo::Kind::Constant: return vec(a.rgb);
+        case Albedo::Kind::Texture:
+            return "texture '" + a.texture_path + "' (" + size_text(texture) + ")";
+        case Albedo::Kind::Estimate: return "estimated from the photo: " + vec(estimated);
+    }
+    return "?";
+}
+
+std::string material_text(const Material& m, const Image& texture) {
+    char buf[64];
+    switch (m.kind) {
+        case Material::Kind::Diffuse:
+            return "diffuse, albedo " + albedo_text(m.albedo, texture, m.albedo.rgb);
+        case Material::Kind::Mirror: return "mirror, reflectance " + vec(m.reflectance);
+        case Material::Kind::Glass:
+            std::snprintf(buf, sizeof(buf), "glass, ior %g, tint ", m.ior);
+            return buf + vec(m.tint);
+    }
+    return "?";
+}
+
+std::string object_label(const std::string& name, const char* list, size_t i) {
+    return name.empty() ? std::string(list) + "[" + std::to_string(i) + "]" : "'" + name + "'";
+}
+
+void print_camera(const Project& p, const Camera& cam) {
+    const CameraSpec& c = p.camera;
+    if (c.model == CameraSpec::Model::LookAt) {
+        std::printf("camera: lookat, eye %s, target %s, up %s, vfov %g deg\n", vec(c.eye).c_str(),
+                    vec(c.target).c_str(), vec(c.up).c_str(), c.vfov_deg);
+    } else {
+        const Distortion& d = c.distortion;
+        std::printf("camera: opencv, translation %s, distortion [%g, %g, %g, %g, %g]\n",
+                    vec(c.translation).c_str(), d.k1, d.k2, d.p1, d.p2, d.k3);
+    }
+    std::printf("  fx %g  fy %g  cx %g  cy %g  position %s  forward %s\n", cam.fx(), cam.fy(),
+                cam.cx(), cam.cy(), vec(cam.position()).c_str(), vec(cam.forward()).c_str());
+}
+
+void print_render_settings(const RenderSettings& r) {
+    std::printf("render: photons_per_pass %lld, passes %d, time_budget_s %g, initial_radius %s,\n"
+                "  alpha %g, max_depth %d, seed %llu, threads %d\n",
+                static_cast<long long>(r.photons_per_pass), r.passes, r.time_budget_s,
+                r.initial_radius ? std::to_string(*r.initial_radius).c_str() : "auto", r.alpha,
+                r.max_depth, static_cast<unsigned long long>(r.seed), r.threads);
+}
+
+int run_info(const std::string& project_path) {
+    auto scene = load_scene(project_path);
+    const Project& p = scene->project();
+    const SceneAssets& a = scene->assets();
+    std::printf("project: %s\n", project_path.c_str());
+    std::printf("photo: '%s' -> %s, %s, exposure %g stops\n", p.photo.path.c_str(),
+                p.resolve(p.photo.path).c_str(), size_text(scene->photo()).c_str(),
+                p.photo.exposure);
+    const bool ball = p.probe.format == ProbeSpec::Format::MirrorBall;
+    std::printf("probe: '%s' -> %s, %s%s, rotation %s deg, intensity %g\n",
+                p.probe.path.c_str(), p.resolve(p.probe.path).c_str(),
+                ball ? "mirrorball unwrapped to lat-long " : "latlong ",
+                size_text(a.probe_latlong).c_str(), vec(p.probe.rotation_deg).c_str(),
+                p.probe.intensity);
+    print_camera(p, scene->camera());
+
+    std::printf("real proxies: %zu\n", p.real.size());
+    for (size_t i = 0; i < p.real.size(); ++i) {
+        const RealProxy& r = p.real[i];
+        const Surface& s = scene->real_surfaces()[i];
+        std::printf("  %s: %s, albedo %s%s\n", object_label(r.name, "real", i).c_str(),
+                    shape_text(r.shape, i < a.real_meshes.size() ? &a.real_meshes[i] : nullptr)
+                        .c_str(),
+                    albedo_text(r.albedo, a.real_textures[i], s.albedo).c_str(),
+                    transform_text(r.transform).c_str());
+    }
+    std::printf("virtual objects: %zu\n", p.objects.size());
+    for (size_t i = 0; i < p.objects.size(); ++i) {
+        const VirtualObject& o = p.objects[i];
+        std::printf("  %s: %s, %s%s%s\n", object_label(o.name, "objects", i).c_str(),
+                    shape_text(o.shape, i < a.object_meshes.size() ? &a.object_meshes[i] : nullptr)
+                        .c_str(),
+                    material_text(o.material, a.object_textures[i]).c_str(),
+                    o.visible ? "" : " (hidden)", transform_text(o.transform).c_str());
+    }
+    print_render_settings(p.render);
+    std::printf("scene scale %g\n", scene->scale());
+    std::printf("emission clusters: %zu\n", scene->clusters().size());
+    for (const EmissionCluster& c : scene->clusters()) {
+        std::string names;
+        for (int i : c.objects)
+            names += (names.empty() ? "" : ", ") +
+                     object_label(p.objects[size_t(i)].name, "objects", size_t(i));
+        std::printf("  centre %s radius %g: %s\n", vec(c.center).c_str(), c.radius, names.c_str());
+    }
+    std::printf("warnings: %zu\n", a.warnings.size());
+    for (const std::string& w : a.warnings) std::printf("  %s\n", w.c_str());
+    if (a.non_finite_replaced > 0)
+        std::printf("  (%zu NaN/Inf pixel values replaced by 0 in total)\n", a.non_finite_replaced);
+    return 0;
+}
+
+}  // namespace
+
+Command add_info_command(CLI::App& app) {
+    auto project = std::make_shared<std::string>();
+    CLI::App* sub = app.add_subcommand("info", "Validate a project and print what it holds");
+    sub->add_option("project", *project, "Project file (JSON)")->required();
+    return {sub, [project] { return run_info(*project); }};
+}
+
+}  // namespace dp::cli

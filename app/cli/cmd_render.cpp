@@ -1,0 +1,150 @@
+// `diffphoton render`: progressive differential photon mapping through a RenderSession, the
+// same path the studio uses.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <stdexcept>
+
+#include "base/error.h"
+#include "commands.h"
+#include "common.h"
+#include "image/image_io.h"
+#include "render/session.h"
+#include "render_pixel.h"
+#include "render_sink.h"
+
+namespace dp::cli {
+
+namespace {
+
+struct RenderOptions {
+    std::string project, output, pixel;
+    int passes = 0, pass = 1, threads = 0;
+    double time_s = 0;
+    int64_t photons = 0;
+    uint64_t seed = 0;
+    float exposure = 0;
+    bool layers = false;
+    CLI::Option *passes_opt = nullptr, *time_opt = nullptr, *photons_opt = nullptr,
+                *seed_opt = nullptr, *threads_opt = nullptr, *pixel_opt = nullptr;
+};
+
+void apply_overrides(const RenderOptions& o, Project& p) {
+    if (o.passes_opt->count()) {
+        p.render.passes = o.passes;
+        p.render.time_budget_s = 0;  // a pass count on the command line beats the file's budget
+    }
+    if (o.time_opt->count()) p.render.time_budget_s = o.time_s;
+    if (o.photons_opt->count()) p.render.photons_per_pass = o.photons;
+    if (o.seed_opt->count()) p.render.seed = o.seed;
+    if (o.threads_opt->count()) p.render.threads = o.threads;
+}
+
+/// Shadow-only matte: the fraction of the photo's light the virtual objects remove.
+Image shadow_layer(const Image& photo, const Image& dL) {
+    Image out(photo.width(), photo.height());
+    for (size_t i = 0; i < out.size(); ++i) {
+        float lp = luminance(photo[i]), dl = luminance(dL[i]);
+        float m = (lp > 0 && dl < 0) ? std::min(1.0f, -dl / lp) : 0.0f;
+        out[i] = vec3(std::isfinite(m) ? m : 0.0f);
+    }
+    return out;
+}
+
+void write_result(const RenderOptions& o, ImageKind kind, const Image& photo, RenderUpdate& u) {
+    if (kind == ImageKind::Ldr) {
+        write_image(o.output, std::move(u.image), o.exposure);
+        return;
+    }
+    sanitize(u.image, o.output, "main");
+    std::vector<ExrLayer> layers = {{"", &u.image}};
+    Image shadow;
+    if (o.layers) {
+        sanitize(u.delta, o.output, "dL");
+        sanitize(u.alpha, o.output, "alpha");
+        shadow = shadow_layer(photo, u.delta);
+        layers.push_back({"dL", &u.delta});
+        layers.push_back({"alpha", &u.alpha});
+        layers.push_back({"shadow", &shadow});
+    }
+    save_exr(o.output, layers);
+}
+
+int run_render(const RenderOptions& o) {
+    const bool debug = o.pixel_opt->count() > 0;
+    if (!debug && o.output.empty()) throw CLI::RequiredError("--output");
+    ImageKind kind = ImageKind::Exr;
+    if (!o.output.empty()) kind = check_output_path(o.output, "--output");
+    if (o.layers && kind != ImageKind::Exr)
+        throw InputError(o.output, "--layers", "layers can only be written to an EXR file");
+    int px = 0, py = 0;
+    if (debug) parse_pixel(o.pixel, px, py);
+    if (debug && !o.output.empty()) warn("--output is ignored with --pixel; nothing is written");
+
+    return with_threads(o.threads, [&]() -> int {
+        auto scene = load_scene(o.project, [&](Project& p) { apply_overrides(o, p); });
+        if (debug) return debug_pixel(scene, o.project, px, py, o.pass);
+
+        install_interrupt_handler();
+        Progress progress;
+        CliSink sink(progress);
+        RenderSession session(&sink);
+        session.start(scene);
+        while (!sink.wait_stopped(std::chrono::milliseconds(100)))
+            if (interrupted()) session.cancel();
+        session.wait();
+        progress.finish();
+        if (!sink.error().empty()) throw std::runtime_error("render failed: " + sink.error());
+
+        std::optional<RenderUpdate> last = sink.take_last();
+        if (!last) {
+            std::cerr << "error: interrupted before the first pass finished; nothing written\n";
+            return kInterruptedExit;
+        }
+        if (sink.cancelled())
+            warn("interrupted: writing the " + std::to_string(last->stats.passes) +
+                 " passes done so far");
+        write_result(o, kind, scene->photo(), *last);
+        const RenderStats& st = last->stats;
+        const double skipped =
+            st.pixels_total ? 1.0 - double(st.pixels_gathered) / double(st.pixels_total) : 0.0;
+        std::printf("wrote %s  passes %d  seconds %.2f  skipped pixels %.3f\n", o.output.c_str(),
+                    st.passes, progress.elapsed(), skipped);
+        if (st.non_finite_samples > 0)
+            warn(std::to_string(st.non_finite_samples) + " NaN/Inf samples were discarded");
+        return sink.cancelled() ? kInterruptedExit : 0;
+    });
+}
+
+}  // namespace
+
+Command add_render_command(CLI::App& app) {
+    auto o = std::make_shared<RenderOptions>();
+    CLI::App* sub = app.add_subcommand("render", "Render the virtual objects into the photo");
+    sub->add_option("project", o->project, "Project file (JSON)")->required();
+    sub->add_option("-o,--output", o->output, "Output image: .exr (linear) or .png/.jpg (sRGB)");
+    o->passes_opt =
+        sub->add_option("--passes", o->passes, "Number of passes (overrides the project)")
+            ->check(CLI::PositiveNumber);
+    o->time_opt = sub->add_option("--time", o->time_s, "Render for this many seconds instead")
+                      ->check(CLI::PositiveNumber & kFinite)
+                      ->excludes(o->passes_opt);
+    o->photons_opt = sub->add_option("--photons", o->photons, "Photons per pass")
+                         ->check(CLI::PositiveNumber);
+    o->seed_opt = sub->add_option("--seed", o->seed, "Random seed");
+    o->threads_opt = sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")
+                         ->check(CLI::NonNegativeNumber);
+    sub->add_flag("--layers", o->layers, "EXR only: also write layers dL, alpha and shadow");
+    sub->add_option("--exposure", o->exposure, "PNG/JPEG only: exposure in stops")
+        ->check(kFinite);
+    o->pixel_opt = sub->add_option("--pixel", o->pixel,
+                                   "Debug: print one pixel of one pass (X,Y) instead of rendering");
+    sub->add_option("--pass", o->pass, "Debug: the pass for --pixel (1-based)")
+        ->check(CLI::PositiveNumber)
+        ->needs(o->pixel_opt);
+    return {sub, [o] { return run_render(*o); }};
+}
+
+}  // namespace dp::cli

@@ -1,0 +1,82 @@
+// `diffphoton make-test-image` (hidden): small inputs for the shell tests, which have no other
+// way to write EXR files.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "base/error.h"
+#include "commands.h"
+#include "common.h"
+#include "image/image_io.h"
+#include "probe/probe.h"
+#include "probe/synthetic_probe.h"
+
+namespace dp::cli {
+
+namespace {
+
+struct TestImageOptions {
+    std::string output;
+    std::vector<int> size;
+    std::vector<float> value{0.5f, 0.5f, 0.5f};
+    std::vector<float> sun_dir{0.3f, 0.9f, 0.3f};
+    float sun_irradiance = 3.0f;
+    bool probe_sun = false;
+    size_t nan_pixels = 0;
+};
+
+/// A lat-long sky of constant `sky` radiance with a one-pixel sun whose radiance makes the
+/// given irradiance on a surface facing it.
+Image sun_probe(int w, int h, vec3 dir, vec3 sky, float irradiance) {
+    dir = glm::normalize(dir);
+    const size_t pixel = latlong_pixel(dir, w, h);
+    const int row = int(pixel / size_t(w));
+    const double theta0 = kPi * row / h, theta1 = kPi * (row + 1) / h;
+    const double omega = 2.0 * kPi / w * (std::cos(theta0) - std::cos(theta1));
+    const float sun = float(irradiance / omega);
+    Image img = make_sun_sky_probe(w, h, dir, vec3(sun), 0.0f, sky, sky);
+    return img;
+}
+
+int run_make_test_image(const TestImageOptions& o) {
+    const ImageKind kind = check_output_path(o.output, "output");
+    const int w = o.size[0], h = o.size[1];
+    const vec3 value(o.value[0], o.value[1], o.value[2]);
+    Image img = o.probe_sun
+                    ? sun_probe(w, h, vec3(o.sun_dir[0], o.sun_dir[1], o.sun_dir[2]), value,
+                                o.sun_irradiance)
+                    : Image(w, h, value);
+    if (o.nan_pixels > img.size())
+        throw InputError(o.output, "--nan", "more NaN pixels than the image has");
+    // Deliberately non-finite input: one NaN channel per pixel, spread over the image.
+    for (size_t i = 0; i < o.nan_pixels; ++i)
+        img[i * img.size() / o.nan_pixels].x = std::numeric_limits<float>::quiet_NaN();
+    if (kind == ImageKind::Exr)
+        save_exr(o.output, {{"", &img}});
+    else
+        save_ldr(o.output, img);
+    return 0;
+}
+
+}  // namespace
+
+Command add_make_test_image_command(CLI::App& app) {
+    auto o = std::make_shared<TestImageOptions>();
+    CLI::App* sub = app.add_subcommand("make-test-image", "Write a synthetic test image");
+    sub->group("");  // hidden from --help
+    sub->add_option("output", o->output, "Output .exr or .png")->required();
+    sub->add_option("--size", o->size, "Width and height")
+        ->expected(2)
+        ->required()
+        ->check(CLI::Range(1, 1 << 14));
+    sub->add_option("--value", o->value, "Constant linear RGB (the sky with --probe-sun)")
+        ->expected(3)
+        ->check(kFinite);
+    sub->add_flag("--probe-sun", o->probe_sun, "Lat-long probe: constant sky and a one-pixel sun");
+    sub->add_option("--sun-dir", o->sun_dir, "Direction towards the sun")->expected(3);
+    sub->add_option("--sun-irradiance", o->sun_irradiance, "Sun irradiance")->check(kFinite);
+    sub->add_option("--nan", o->nan_pixels, "Number of pixels whose red channel is NaN");
+    return {sub, [o] { return run_make_test_image(*o); }};
+}
+
+}  // namespace dp::cli

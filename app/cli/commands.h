@@ -1,0 +1,24 @@
+#pragma once
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace dp::cli {
+
+/// A subcommand registered on the top-level app, and what runs it once parsing succeeded.
+/// `run` returns the exit code; it throws InputError for bad input and anything else for
+/// internal errors (main maps them to exit codes 2 and 1).
+struct Command {
+    CLI::App* app = nullptr;
+    std::function<int()> run;
+};
+
+Command add_render_command(CLI::App& app);
+Command add_info_command(CLI::App& app);
+Command add_reference_command(CLI::App& app);
+Command add_convert_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
+/// Hidden: writes constant images and synthetic probes for the shell tests.
+Command add_make_test_image_command(CLI::App& app);
+
+}  // namespace dp::cli

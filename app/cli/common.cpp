@@ -1,0 +1,153 @@
+#include "common.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "base/error.h"
+#include "image/image_io.h"
+#include "render/scene_checks.h"
+#include "scene/project_io.h"
+
+namespace dp::cli {
+
+namespace fs = std::filesystem;
+
+const CLI::Validator kFinite(
+    [](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v))
+            return "value " + text + " is not a finite number";
+        return {};
+    },
+    "FINITE");
+
+void warn(const std::string& text) { std::cerr << "warning: " << text << "\n"; }
+
+std::shared_ptr<RenderScene> load_scene(const std::string& project_path,
+                                        const std::function<void(Project&)>& edit) {
+    Project project = load_project(project_path);
+    if (edit) edit(project);
+    SceneAssets assets = load_assets(project);
+    for (const std::string& w : assets.warnings) warn(w);
+    const size_t printed = assets.warnings.size();
+    auto scene = std::make_shared<RenderScene>(project, std::move(assets));
+    // Building the scene can add warnings of its own (albedo estimation).
+    const auto& all = scene->assets().warnings;
+    for (size_t i = printed; i < all.size(); ++i) warn(all[i]);
+    check_scene(*scene, project_path);
+    return scene;
+}
+
+ImageKind check_output_path(const std::string& path, const std::string& option) {
+    if (path.empty()) throw InputError(path, option, "no output file given");
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) {
+        return char(std::tolower(c));
+    });
+    ImageKind kind;
+    if (ext == ".exr") {
+        kind = ImageKind::Exr;
+    } else if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") {
+        kind = ImageKind::Ldr;
+    } else {
+        throw InputError(path, option,
+                         "unknown output format '" + ext + "' (use .exr, .png, .jpg or .jpeg)");
+    }
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError(path, option, "is a directory");
+    fs::path folder = fs::path(path).parent_path();
+    if (folder.empty()) folder = ".";
+    if (!fs::is_directory(folder, ec))
+        throw InputError(path, option, "folder '" + folder.string() + "' does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
+        throw InputError(path, option, "folder '" + folder.string() + "' is not writable");
+    return kind;
+}
+
+size_t sanitize(Image& image, const std::string& path, const std::string& layer) {
+    size_t replaced = 0;
+    for (size_t i = 0; i < image.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(image[i][c])) {
+                image[i][c] = 0.0f;
+                ++replaced;
+            }
+    if (replaced > 0)
+        warn(path + ": " + std::to_string(replaced) + " NaN/Inf values in layer '" + layer +
+             "' replaced by 0 before writing");
+    return replaced;
+}
+
+void write_image(const std::string& path, Image image, float exposure) {
+    ImageKind kind = check_output_path(path, "output");
+    sanitize(image, path, "main");
+    if (kind == ImageKind::Exr) {
+        save_exr(path, {{"", &image}});
+        return;
+    }
+    for (size_t i = 0; i < image.size(); ++i) image[i] = glm::max(image[i], vec3(0.0f));
+    save_ldr(path, image, exposure);
+}
+
+namespace {
+
+std::atomic<bool> g_interrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "used from a signal handler");
+
+extern "C" void on_interrupt(int) {
+    g_interrupted.store(true);
+    std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+}  // namespace
+
+void install_interrupt_handler() { std::signal(SIGINT, on_interrupt); }
+bool interrupted() { return g_interrupted.load(); }
+const std::atomic<bool>* interrupt_flag() { return &g_interrupted; }
+
+std::string sci(double v) {
+    if (!std::isfinite(v)) return "?";
+    if (v == 0) return "0";
+    int exponent = int(std::floor(std::log10(std::abs(v))));
+    double mantissa = v / std::pow(10.0, exponent);
+    if (std::abs(mantissa) >= 9.95) {  // 9.97e5 rounds to 10.0e5
+        mantissa /= 10;
+        ++exponent;
+    }
+    char buf[32];
+    if (exponent >= -2 && exponent <= 3)
+        std::snprintf(buf, sizeof(buf), "%.3g", v);
+    else
+        std::snprintf(buf, sizeof(buf), "%.1fe%d", mantissa, exponent);
+    return buf;
+}
+
+std::string duration(double seconds) {
+    char buf[32];
+    if (!std::isfinite(seconds) || seconds < 0) return "?";
+    if (seconds < 60) {
+        std::snprintf(buf, sizeof(buf), "%.1fs", seconds);
+    } else if (seconds < 3600) {
+        long s = std::lround(seconds);
+        std::snprintf(buf, sizeof(buf), "%ldm%02lds", s / 60, s % 60);
+    } else {
+        long m = std::lround(seconds / 60);
+        std::snprintf(buf, sizeof(buf), "%ldh%02ldm", m / 60, m % 60);
+    }
+    return buf;
+}
+
+std::string vec(const vec3& v) {
+    char buf[96];
+    std::snprintf(buf, sizeof(buf), "(%g, %g, %g)", v.x, v.y, v.z);
+    return buf;
+}
+
+}  // namespace dp::cli

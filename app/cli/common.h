@@ -1,0 +1,65 @@
+#pragma once
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <tbb/task_arena.h>
+
+#include "image/image.h"
+#include "render/render_scene.h"
+#include "scene/project.h"
+
+namespace dp::cli {
+
+/// Validator for floating-point flags: rejects nan and inf, which CLI11 parses happily.
+extern const CLI::Validator kFinite;
+
+/// Prints "warning: <text>" to stderr.
+void warn(const std::string& text);
+
+/// Runs `work` inside a TBB arena of `threads` workers; `threads` <= 0 leaves TBB's default.
+template <class F>
+auto with_threads(int threads, F&& work) {
+    if (threads <= 0) return work();
+    tbb::task_arena arena(threads);
+    return arena.execute(std::forward<F>(work));
+}
+
+/// Loads a project and every file it names, lets `edit` override settings, builds the scene
+/// and checks it (check_scene). Asset and scene warnings go to stderr. Throws InputError.
+std::shared_ptr<RenderScene> load_scene(const std::string& project_path,
+                                        const std::function<void(Project&)>& edit = {});
+
+enum class ImageKind { Exr, Ldr };
+
+/// Checks an output path before any work is done, so a typo does not cost a render: the
+/// extension must be .exr, .png, .jpg or .jpeg and the folder must exist and be writable.
+/// Throws InputError naming the path and `option`.
+ImageKind check_output_path(const std::string& path, const std::string& option);
+
+/// Replaces NaN/Inf channels by 0 and warns (naming `path` and `layer`) if there were any.
+size_t sanitize(Image& image, const std::string& path, const std::string& layer);
+
+/// Writes `image` (after sanitize) as a single-layer EXR, or as 8-bit sRGB with `exposure`
+/// stops and negative values clamped to 0 for PNG/JPEG.
+void write_image(const std::string& path, Image image, float exposure);
+
+/// Ctrl-C: the first one asks long commands to stop (they check interrupted()), a second one
+/// kills the process as usual.
+void install_interrupt_handler();
+bool interrupted();
+const std::atomic<bool>* interrupt_flag();
+/// Exit code after an interrupt (128 + SIGINT, as shells report it).
+inline constexpr int kInterruptedExit = 130;
+
+/// "1.2e6": compact scientific notation without the "+0" of printf's %e.
+std::string sci(double v);
+/// "2.1s", "3m05s" or "1h02m".
+std::string duration(double seconds);
+/// "(0.5, 0.5, 0.5)".
+std::string vec(const vec3& v);
+
+}  // namespace dp::cli

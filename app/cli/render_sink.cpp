@@ -1,0 +1,40 @@
+#include "render_sink.h"
+
+namespace dp::cli {
+
+void CliSink::on_update(const RenderUpdate& update) {
+    ProgressState s;
+    s.unit = "pass";
+    s.done = update.stats.passes;
+    s.total = update.target_passes;
+    s.budget_s = update.time_budget_s;
+    s.rate_name = "photons/s";
+    s.rate = update.stats.photons_per_second;
+    progress_.update(s);
+    // The update is only valid during this call, so it is copied; keeping the latest lets an
+    // interrupted render still write what it has.
+    std::lock_guard<std::mutex> lock(mutex_);
+    last_ = update;
+}
+
+void CliSink::on_stopped(bool cancelled, const std::string& error) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopped_ = true;
+        cancelled_ = cancelled;
+        error_ = error;
+    }
+    stopped_cv_.notify_all();
+}
+
+bool CliSink::wait_stopped(std::chrono::milliseconds timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return stopped_cv_.wait_for(lock, timeout, [&] { return stopped_; });
+}
+
+std::optional<RenderUpdate> CliSink::take_last() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return std::move(last_);
+}
+
+}  // namespace dp::cli
