@@ -12,6 +12,9 @@ namespace {
 // itself), then chosen by Russian roulette.
 constexpr int kGlassSplits = 2;
 constexpr int kDiffuseGatherDepth = 3;
+// Virtual diffuse surfaces seen by the camera are few pixels but carry the noisiest estimate
+// (probe and surroundings by Monte Carlo): average a few samples there per pass.
+constexpr int kCameraDiffuseSamples = 4;
 
 float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
 }  // namespace
@@ -129,9 +132,13 @@ SampleResult Shader::shade_camera(int x, int y, float px, float py, Rng& rng) co
         return r;
     }
     r.alpha = 1;
-    vec3 L = hit.surface->material.kind == Material::Kind::Diffuse
-                 ? virtual_diffuse_radiance(hit, ray.dir, rng, 0)
-                 : specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
+    vec3 L(0);
+    if (hit.surface->material.kind == Material::Kind::Diffuse) {
+        for (int k = 0; k < kCameraDiffuseSamples; ++k) L += virtual_diffuse_radiance(hit, ray.dir, rng, 0);
+        L /= float(kCameraDiffuseSamples);
+    } else {
+        L = specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
+    }
     r.delta = L - photo;
     return r;
 }

@@ -1,0 +1,96 @@
+// The render session: progressive images reach the sink; cancel and reset take effect.
+#include <gtest/gtest.h>
+
+#include <condition_variable>
+#include <mutex>
+#include <vector>
+
+#include "render/session.h"
+#include "test_scenes.h"
+
+using namespace dp;
+using namespace dp::test;
+
+namespace {
+
+class RecordingSink : public RenderSink {
+public:
+    void on_update(const RenderUpdate& u) override {
+        std::lock_guard<std::mutex> lock(m_);
+        passes_.push_back(u.stats.passes);
+        finished_.push_back(u.finished);
+        last_size_ = u.image.size();
+        cv_.notify_all();
+    }
+    void on_stopped(bool cancelled, const std::string& error) override {
+        std::lock_guard<std::mutex> lock(m_);
+        stopped_ = true;
+        cancelled_ = cancelled;
+        error_ = error;
+        cv_.notify_all();
+    }
+    void wait_for_passes(size_t n) {
+        std::unique_lock<std::mutex> lock(m_);
+        cv_.wait(lock, [&] { return passes_.size() >= n || stopped_; });
+    }
+    std::mutex m_;
+    std::condition_variable cv_;
+    std::vector<int> passes_;
+    std::vector<bool> finished_;
+    size_t last_size_ = 0;
+    bool stopped_ = false, cancelled_ = false;
+    std::string error_;
+};
+
+std::shared_ptr<RenderScene> small_scene(int passes) {
+    SunProbe sun;
+    Project p = look_at_project(vec3(0, 3, 4), vec3(0, 0.5f, 0), 45);
+    p.real.push_back(ground_plane(vec3(0.5f)));
+    p.objects.push_back(sphere(vec3(0, 0.5f, 0), 0.5f, diffuse(vec3(0.5f))));
+    p.render.passes = passes;
+    p.render.photons_per_pass = 20000;
+    return build(p, Image(48, 32, vec3(0.2f)), sun.image());
+}
+
+}  // namespace
+
+TEST(RenderSession, HandsOneImagePerPassToTheSinkAndFinishesOnBudget) {
+    RecordingSink sink;
+    RenderSession session(&sink);
+    session.start(small_scene(3));
+    session.wait();
+    ASSERT_EQ(sink.passes_, (std::vector<int>{1, 2, 3}));
+    EXPECT_EQ(sink.finished_.back(), true);
+    EXPECT_EQ(sink.finished_.front(), false);
+    EXPECT_EQ(sink.last_size_, 48u * 32u);
+    EXPECT_TRUE(sink.stopped_);
+    EXPECT_FALSE(sink.cancelled_);
+    EXPECT_TRUE(sink.error_.empty());
+}
+
+TEST(RenderSession, CancelStopsALongRunEarly) {
+    RecordingSink sink;
+    RenderSession session(&sink);
+    session.start(small_scene(100000));
+    sink.wait_for_passes(1);
+    session.cancel();
+    session.wait();
+    EXPECT_TRUE(sink.stopped_);
+    EXPECT_TRUE(sink.cancelled_);
+    EXPECT_LT(sink.passes_.size(), 100000u);
+    EXPECT_FALSE(session.running());
+}
+
+TEST(RenderSession, ResetRestartsRefinementFromTheFirstPass) {
+    RecordingSink sink;
+    RenderSession session(&sink);
+    session.start(small_scene(100000));
+    sink.wait_for_passes(3);
+    session.reset(small_scene(2));
+    session.wait();
+    // After the reset the pass counter starts again at 1 and runs to the new budget.
+    ASSERT_GE(sink.passes_.size(), 5u);
+    EXPECT_EQ(sink.passes_[sink.passes_.size() - 2], 1);
+    EXPECT_EQ(sink.passes_.back(), 2);
+    EXPECT_TRUE(sink.finished_.back());
+}
