@@ -105,15 +105,20 @@ void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector
     gathered = count.load();
 }
 
-bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
-    auto t0 = std::chrono::steady_clock::now();
-    const int pass = stats_.passes + 1;
+PhotonStats ProgressiveRenderer::build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel) const {
     PhotonPass photons = trace_photons(*scene_, seed_, uint64_t(pass), photons_per_pass_, cancel);
-    if (cancel && cancel->load()) return false;
-    PassMaps maps;
     maps.radius = radius_for_pass(pass);
     maps.real.build(std::move(photons.real), maps.radius);
     maps.caustic.build(std::move(photons.caustic), maps.radius);
+    return photons.stats;
+}
+
+bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
+    auto t0 = std::chrono::steady_clock::now();
+    const int pass = stats_.passes + 1;
+    PassMaps maps;
+    PhotonStats photon_stats = build_pass_maps(pass, maps, cancel);
+    if (cancel && cancel->load()) return false;
     std::vector<SampleResult> samples;
     size_t gathered = 0;
     shade_pass(pass, maps, samples, cancel, gathered);
@@ -132,9 +137,9 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats_.passes = pass;
     stats_.seconds += dt;
-    stats_.photons_emitted += photons.stats.emitted;
-    stats_.photons_stored += photons.stats.stored_real + photons.stats.stored_caustic;
-    stats_.rays += photons.stats.rays;
+    stats_.photons_emitted += photon_stats.emitted;
+    stats_.photons_stored += photon_stats.stored_real + photon_stats.stored_caustic;
+    stats_.rays += photon_stats.rays;
     stats_.photons_per_second = stats_.seconds > 0 ? double(stats_.photons_emitted) / stats_.seconds : 0;
     stats_.pixels_gathered = gathered;
     stats_.radius = maps.radius;
@@ -143,11 +148,8 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
 }
 
 void ProgressiveRenderer::render_single_pass(int pass, Image& delta, Image& dL, Image& alpha) {
-    PhotonPass photons = trace_photons(*scene_, seed_, uint64_t(pass), photons_per_pass_, nullptr);
     PassMaps maps;
-    maps.radius = radius_for_pass(pass);
-    maps.real.build(std::move(photons.real), maps.radius);
-    maps.caustic.build(std::move(photons.caustic), maps.radius);
+    build_pass_maps(pass, maps, nullptr);
     std::vector<SampleResult> samples;
     size_t gathered = 0;
     shade_pass(pass, maps, samples, nullptr, gathered);

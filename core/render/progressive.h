@@ -60,6 +60,8 @@ public:
 
 private:
     void build_pixel_cache();
+    /// Traces pass `pass`'s photons and builds its maps with the pass's radius.
+    PhotonStats build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel) const;
     void shade_pass(int pass, const PassMaps& maps, std::vector<SampleResult>& out,
                     const std::atomic<bool>* cancel, size_t& gathered);
 

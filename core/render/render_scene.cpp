@@ -39,6 +39,31 @@ vec2 sphere_uv(const vec3& n) {
     return vec2(u, v);
 }
 
+/// Places a proxy's or object's shape in the world: an exact Embree sphere when the scale is
+/// uniform, otherwise a triangle mesh stored in `mesh_slot`.
+void place_shape(const Shape& shape, const Transform& transform, const TriangleMesh* loaded, Surface& s,
+                 TriangleMesh& mesh_slot) {
+    glm::mat4 m = transform.matrix();
+    if (shape.kind == Shape::Kind::Sphere && is_uniform(transform.scale)) {
+        s.analytic_sphere = true;
+        s.sphere_center = vec3(m * glm::vec4(0, 0, 0, 1));
+        s.sphere_radius = shape.radius * std::abs(transform.scale.x);
+        return;
+    }
+    TriangleMesh mesh;
+    switch (shape.kind) {
+        case Shape::Kind::Plane: mesh = make_plane(shape.size.x, shape.size.z); break;
+        case Shape::Kind::Box: mesh = make_box(shape.size); break;
+        case Shape::Kind::Sphere: mesh = make_uv_sphere(shape.radius); break;
+        case Shape::Kind::Mesh:
+            if (loaded) mesh = *loaded;
+            break;
+    }
+    mesh.transform(m);
+    mesh_slot = std::move(mesh);
+    s.mesh = &mesh_slot;
+}
+
 }  // namespace
 
 vec3 Surface::reflectance_at(const vec2& uv) const {
@@ -111,25 +136,8 @@ void RenderScene::build_virtual() {
         s.albedo = o.material.albedo.rgb;
         if (i < assets_.object_textures.size() && !assets_.object_textures[i].empty())
             s.texture = &assets_.object_textures[i];
-        glm::mat4 m = o.transform.matrix();
-        if (o.shape.kind == Shape::Kind::Sphere && is_uniform(o.transform.scale)) {
-            s.analytic_sphere = true;
-            s.sphere_center = vec3(m * glm::vec4(0, 0, 0, 1));
-            s.sphere_radius = o.shape.radius * std::abs(o.transform.scale.x);
-        } else {
-            TriangleMesh mesh;
-            switch (o.shape.kind) {
-                case Shape::Kind::Plane: mesh = make_plane(o.shape.size.x, o.shape.size.z); break;
-                case Shape::Kind::Box: mesh = make_box(o.shape.size); break;
-                case Shape::Kind::Sphere: mesh = make_uv_sphere(o.shape.radius); break;
-                case Shape::Kind::Mesh:
-                    if (i < assets_.object_meshes.size()) mesh = assets_.object_meshes[i];
-                    break;
-            }
-            mesh.transform(m);
-            virtual_world_meshes_[i] = std::move(mesh);
-            s.mesh = &virtual_world_meshes_[i];
-        }
+        const TriangleMesh* loaded = i < assets_.object_meshes.size() ? &assets_.object_meshes[i] : nullptr;
+        place_shape(o.shape, o.transform, loaded, s, virtual_world_meshes_[i]);
         virtual_surfaces_.push_back(s);
     }
     for (size_t i = 0; i < objs.size(); ++i) {
@@ -174,25 +182,8 @@ void RenderScene::build_real() {
         s.albedo = r.albedo.rgb;
         if (i < assets_.real_textures.size() && !assets_.real_textures[i].empty())
             s.texture = &assets_.real_textures[i];
-        glm::mat4 m = r.transform.matrix();
-        if (r.shape.kind == Shape::Kind::Sphere && is_uniform(r.transform.scale)) {
-            s.analytic_sphere = true;
-            s.sphere_center = vec3(m * glm::vec4(0, 0, 0, 1));
-            s.sphere_radius = r.shape.radius * std::abs(r.transform.scale.x);
-        } else {
-            TriangleMesh mesh;
-            switch (r.shape.kind) {
-                case Shape::Kind::Plane: mesh = make_plane(r.shape.size.x, r.shape.size.z); break;
-                case Shape::Kind::Box: mesh = make_box(r.shape.size); break;
-                case Shape::Kind::Sphere: mesh = make_uv_sphere(r.shape.radius); break;
-                case Shape::Kind::Mesh:
-                    if (i < assets_.real_meshes.size()) mesh = assets_.real_meshes[i];
-                    break;
-            }
-            mesh.transform(m);
-            real_world_meshes_[i] = std::move(mesh);
-            s.mesh = &real_world_meshes_[i];
-        }
+        const TriangleMesh* loaded = i < assets_.real_meshes.size() ? &assets_.real_meshes[i] : nullptr;
+        place_shape(r.shape, r.transform, loaded, s, real_world_meshes_[i]);
         real_surfaces_.push_back(s);
     }
     for (const Surface& s : real_surfaces_) attach(real_, s, s.mesh);
