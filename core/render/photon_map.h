@@ -15,7 +15,8 @@ struct Photon {
 };
 
 /// Signed photons in a spatial hash grid whose cells are one gather diameter wide, so a gather
-/// of radius r touches at most 2x2x2 cells.
+/// of radius r touches at most 2x2x2 cells. Photons are sorted by cell; an open-addressing table
+/// keyed by the exact cell finds a cell's run, so empty cells are known to be empty.
 class PhotonMap {
 public:
     PhotonMap() = default;
@@ -34,13 +35,19 @@ public:
     bool reaches(const vec3& x) const;
 
 private:
-    uint32_t bucket_of(int64_t cx, int64_t cy, int64_t cz) const;
-    void cell_of(const vec3& p, int64_t& cx, int64_t& cy, int64_t& cz) const;
+    struct Cell {
+        uint64_t key = kEmpty;
+        uint32_t begin = 0, end = 0;
+    };
+    static constexpr uint64_t kEmpty = ~uint64_t(0);
+    static uint64_t cell_key(int64_t cx, int64_t cy, int64_t cz);
+    const Cell* find(uint64_t key) const;
 
-    std::vector<Photon> photons_;          ///< sorted by bucket
-    std::vector<uint32_t> bucket_start_;   ///< size buckets+1
-    uint32_t bucket_mask_ = 0;
-    float radius_ = 0, inv_cell_ = 0;
+    std::vector<Photon> photons_;  ///< sorted by cell key (ties keep emission order)
+    std::vector<Cell> table_;      ///< power-of-two size, linear probing
+    uint64_t table_mask_ = 0;
+    float radius_ = 0;
+    double inv_cell_ = 0;
 };
 
 }  // namespace dp

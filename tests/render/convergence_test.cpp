@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "render/progressive.h"
-#include "test_scenes.h"
+#include "common/test_scenes.h"
 
 using namespace dp;
 using namespace dp::test;

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "render/photon_tracer.h"
-#include "test_scenes.h"
+#include "common/test_scenes.h"
 
 using namespace dp;
 using namespace dp::test;

@@ -6,7 +6,7 @@
 
 #include "reference/path_tracer.h"
 #include "render/progressive.h"
-#include "test_scenes.h"
+#include "common/test_scenes.h"
 
 using namespace dp;
 using namespace dp::test;

@@ -5,7 +5,7 @@
 
 #include "render/photon_tracer.h"
 #include "render/progressive.h"
-#include "test_scenes.h"
+#include "common/test_scenes.h"
 
 using namespace dp;
 using namespace dp::test;

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "render/progressive.h"
-#include "test_scenes.h"
+#include "common/test_scenes.h"
 
 using namespace dp;
 using namespace dp::test;

@@ -3,7 +3,7 @@
 #include <tbb/task_arena.h>
 
 #include "render/progressive.h"
-#include "test_scenes.h"
+#include "common/test_scenes.h"
 
 using namespace dp;
 using namespace dp::test;

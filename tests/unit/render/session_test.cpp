@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "render/session.h"
-#include "test_scenes.h"
+#include "common/test_scenes.h"
 
 using namespace dp;
 using namespace dp::test;

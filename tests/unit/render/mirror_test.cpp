@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "render/shading.h"
-#include "test_scenes.h"
+#include "common/test_scenes.h"
 
 using namespace dp;
 using namespace dp::test;

@@ -1,0 +1,60 @@
+#include <gtest/gtest.h>
+
+#include "base/rng.h"
+#include "render/photon_map.h"
+
+using namespace dp;
+
+namespace {
+std::vector<Photon> random_photons(size_t n, uint64_t seed) {
+    Rng rng(seed, 3);
+    std::vector<Photon> ps(n);
+    for (Photon& p : ps) {
+        p.position = vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - 1.0f;
+        p.flux = vec3(rng.uniform() - 0.5f, rng.uniform(), -rng.uniform());
+        p.normal = rng.uniform() < 0.8f ? vec3(0, 1, 0) : vec3(0, -1, 0);
+    }
+    return ps;
+}
+}  // namespace
+
+TEST(PhotonMap, GatherEqualsABruteForceSumOverPhotonsInRangeFacingTheSameWay) {
+    std::vector<Photon> ps = random_photons(20000, 1);
+    for (float r : {0.01f, 0.07f, 0.3f}) {
+        PhotonMap map;
+        map.build(ps, r);
+        Rng rng(9, 9);
+        for (int q = 0; q < 200; ++q) {
+            vec3 x = vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.4f - 1.2f;
+            dvec3 brute(0);
+            for (const Photon& p : ps)
+                if (glm::dot(p.position - x, p.position - x) <= r * r && p.normal.y > 0) brute += dvec3(p.flux);
+            dvec3 got = map.gather(x, vec3(0, 1, 0));
+            EXPECT_NEAR(got.x, brute.x, 1e-9);
+            EXPECT_NEAR(got.y, brute.y, 1e-9);
+            EXPECT_NEAR(got.z, brute.z, 1e-9);
+        }
+    }
+}
+
+TEST(PhotonMap, ReachesIsTrueNearEveryPhotonAndFalseFarFromAll) {
+    std::vector<Photon> ps = random_photons(500, 2);
+    PhotonMap map;
+    map.build(ps, 0.01f);
+    for (const Photon& p : ps) EXPECT_TRUE(map.reaches(p.position + vec3(0.005f)));
+    EXPECT_FALSE(PhotonMap().reaches(vec3(0)));
+    // Cells are looked up by their exact key: far from every photon the answer is no.
+    for (int i = 0; i < 100; ++i) EXPECT_FALSE(map.reaches(vec3(50.0f + i, 50.0f, 50.0f)));
+    EXPECT_FALSE(map.reaches(vec3(0, 0, 1.2f)));
+}
+
+TEST(PhotonMap, SignedFluxCancelsExactlyInDouble) {
+    std::vector<Photon> ps;
+    for (int i = 0; i < 100000; ++i) {
+        ps.push_back({vec3(0), vec3(1e6f + i), vec3(0, 1, 0)});
+        ps.push_back({vec3(0), -vec3(1e6f + i), vec3(0, 1, 0)});
+    }
+    PhotonMap map;
+    map.build(ps, 0.1f);
+    EXPECT_EQ(map.gather(vec3(0), vec3(0, 1, 0)), dvec3(0));
+}
