@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "common.h"
 #include "image/image_io.h"
+#include "render/progressive.h"
 #include "render/session.h"
 #include "render_pixel.h"
 #include "render_sink.h"
@@ -42,17 +43,6 @@ void apply_overrides(const RenderOptions& o, Project& p) {
     if (o.threads_opt->count()) p.render.threads = o.threads;
 }
 
-/// Shadow-only matte: the fraction of the photo's light the virtual objects remove.
-Image shadow_layer(const Image& photo, const Image& dL) {
-    Image out(photo.width(), photo.height());
-    for (size_t i = 0; i < out.size(); ++i) {
-        float lp = luminance(photo[i]), dl = luminance(dL[i]);
-        float m = (lp > 0 && dl < 0) ? std::min(1.0f, -dl / lp) : 0.0f;
-        out[i] = vec3(std::isfinite(m) ? m : 0.0f);
-    }
-    return out;
-}
-
 void write_result(const RenderOptions& o, ImageKind kind, const Image& photo, RenderUpdate& u) {
     if (kind == ImageKind::Ldr) {
         write_image(o.output, std::move(u.image), o.exposure);
@@ -64,7 +54,7 @@ void write_result(const RenderOptions& o, ImageKind kind, const Image& photo, Re
     if (o.layers) {
         sanitize(u.delta, o.output, "dL");
         sanitize(u.alpha, o.output, "alpha");
-        shadow = shadow_layer(photo, u.delta);
+        shadow = shadow_matte(photo, u.delta);
         layers.push_back({"dL", &u.delta});
         layers.push_back({"alpha", &u.alpha});
         layers.push_back({"shadow", &shadow});

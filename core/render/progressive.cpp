@@ -190,18 +190,17 @@ Image ProgressiveRenderer::alpha_layer() const {
     return out;
 }
 
-Image ProgressiveRenderer::shadow_matte() const {
-    Image out(scene_->photo().width(), scene_->photo().height());
-    if (stats_.passes == 0) return out;
-    const Image& photo = scene_->photo();
+Image shadow_matte(const Image& photo, const Image& dL) {
+    Image out(photo.width(), photo.height());
     for (size_t i = 0; i < out.size(); ++i) {
-        double dl = luminance(sum_dL_[i] / double(stats_.passes));
-        double lp = luminance(photo[i]);
-        float m = (dl < 0 && lp > 0) ? float(std::min(1.0, -dl / lp)) : 0.0f;
-        out[i] = vec3(m);
+        double lp = luminance(photo[i]), dl = luminance(dL[i]);
+        double m = (dl < 0 && lp > 0) ? std::min(1.0, -dl / lp) : 0.0;
+        out[i] = vec3(std::isfinite(m) ? float(m) : 0.0f);
     }
     return out;
 }
+
+Image ProgressiveRenderer::shadow_matte() const { return dp::shadow_matte(scene_->photo(), delta_layer()); }
 
 double ProgressiveRenderer::skipped_fraction() const {
     if (stats_.pixels_total == 0) return 0;

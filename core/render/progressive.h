@@ -25,6 +25,10 @@ struct RenderStats {
     size_t non_finite_samples = 0; ///< samples discarded because they were NaN/Inf
 };
 
+/// Shadow-only matte: the fraction of the photo's light the virtual objects remove,
+/// clamp(-lum(dL) / lum(photo), 0, 1), grey RGB; 0 where the photo is black or dL >= 0.
+Image shadow_matte(const Image& photo, const Image& dL);
+
 /// Progressive differential photon mapping (Knaus & Zwicker 2011): each pass shoots fresh
 /// photons with its own seed and gathers with a shrinking radius; the image is the mean of the
 /// pass images, accumulated in double. A pass depends only on (seed, pass index).
