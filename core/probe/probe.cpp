@@ -63,62 +63,94 @@ Probe::Probe(Image latlong, const glm::mat3& rotation, float intensity)
         if (!is_finite(image_[k])) image_[k] = vec3(0);
 
     const int w = width(), h = height();
+    rows_.resize(size_t(std::max(h, 0)));
+    for (int j = 0; j < h; ++j) {
+        // The same expressions sample() used to evaluate per call, so results are unchanged.
+        rows_[j].cos_top = std::cos(kPiD * j / h);
+        rows_[j].cos_bottom = std::cos(kPiD * (j + 1) / h);
+        rows_[j].solid_angle = row_solid_angle(j, w, h);
+    }
+
     std::vector<double> weights(image_.size(), 0.0);
     for (int j = 0; j < h; ++j) {
-        double omega = pixel_solid_angle(j);
+        double omega = rows_[j].solid_angle;
         for (int i = 0; i < w; ++i) {
             double lum = luminance(dvec3(image_.at(i, j)) * double(intensity_));
             weights[size_t(j) * w + i] = lum > 0 ? lum * omega : 0.0;
         }
     }
-    table_ = AliasTable(weights);
+    const AliasTable table(weights);
+    total_power_ = table.total();
+    pixels_.resize(image_.size());
+    for (size_t k = 0; k < pixels_.size(); ++k) {
+        PixelEntry& e = pixels_[k];
+        e.prob = table.prob(k);
+        e.pmf = table.pmf(k);
+        e.alias = table.alias(k);
+        const vec3 radiance = image_[k] * intensity_;
+        for (int c = 0; c < 3; ++c) e.radiance[c] = radiance[c];
+    }
 }
 
 double Probe::pixel_solid_angle(int row) const {
     return row_solid_angle(row, width(), height());
 }
 
-vec3 Probe::pixel_radiance(size_t pixel) const { return image_[pixel] * intensity_; }
+vec3 Probe::pixel_radiance(size_t pixel) const {
+    const float* r = pixels_[pixel].radiance;
+    return vec3(r[0], r[1], r[2]);
+}
 
 vec3 Probe::radiance(const vec3& dir) const {
-    if (image_.empty()) return vec3(0);
+    if (pixels_.empty()) return vec3(0);
     return pixel_radiance(latlong_pixel(to_probe(dir), width(), height()));
 }
 
 ProbeSample Probe::sample(float u0, float u1, float u2) const {
     ProbeSample s;
-    if (table_.total() <= 0 || image_.empty()) {
+    if (total_power_ <= 0 || pixels_.empty()) {
         s.dir = glm::normalize(to_world(vec3(0, 1, 0)));  // glm vectors are not zeroed by default
         s.radiance = vec3(0);
         return s;
     }
     // A float carries 24 bits: too few to pick among millions of pixels and still flip the
     // alias coin. u1 fills in the bits below u0; what the table leaves of the combined number
-    // is the horizontal position inside the pixel.
-    double u = std::min(double(u0) + double(u1) * 0x1p-24, kOneMinusEpsilon);
-    double x_in_pixel = 0;
-    size_t pixel = table_.sample(u, &x_in_pixel);
+    // is the horizontal position inside the pixel. The arithmetic is AliasTable::sample's, on
+    // the packed entries.
+    const size_t n = pixels_.size();
+    const double u = std::min(double(u0) + double(u1) * 0x1p-24, kOneMinusEpsilon);
+    const double scaled = u * double(n);
+    const size_t column = std::min(size_t(scaled), n - 1);
+    const double frac = std::min(scaled - double(column), kOneMinusEpsilon);
+    const double prob = pixels_[column].prob;
+    // Selects rather than branches: the coin is unpredictable, and the picked entry is the one
+    // just loaded whenever the column keeps its own pixel.
+    const bool keep = frac < prob;
+    const size_t pixel = keep ? column : size_t(pixels_[column].alias);
+    const double x_in_pixel =
+        std::clamp((keep ? frac : frac - prob) / (keep ? prob : 1.0 - prob), 0.0, kOneMinusEpsilon);
+    const PixelEntry& e = pixels_[pixel];
 
-    const int w = width(), h = height();
-    int i = int(pixel % size_t(w)), j = int(pixel / size_t(w));
+    const uint32_t w = uint32_t(width());
+    const uint32_t j = uint32_t(pixel) / w, i = uint32_t(pixel) - j * w;
+    const RowEntry& row = rows_[j];
     // Uniform in solid angle inside the pixel: phi uniform, cos(theta) uniform in the band.
-    double cos_top = std::cos(kPiD * j / h), cos_bottom = std::cos(kPiD * (j + 1) / h);
-    double cos_theta = cos_top + (cos_bottom - cos_top) * double(u2);
+    double cos_theta = row.cos_top + (row.cos_bottom - row.cos_top) * double(u2);
     double sin_theta = std::sqrt(std::max(0.0, (1 - cos_theta) * (1 + cos_theta)));
     double phi = 2 * kPiD * ((i + x_in_pixel) / w - 0.5);
     dvec3 d(sin_theta * std::sin(phi), cos_theta, -sin_theta * std::cos(phi));
 
     s.dir = glm::normalize(to_world(vec3(d)));
-    s.radiance = pixel_radiance(pixel);
-    s.pdf = float(table_.pmf(pixel) / pixel_solid_angle(j));
+    s.radiance = vec3(e.radiance[0], e.radiance[1], e.radiance[2]);
+    s.pdf = float(e.pmf / row.solid_angle);
     s.pixel = pixel;
     return s;
 }
 
 float Probe::pdf(const vec3& dir) const {
-    if (table_.total() <= 0 || image_.empty()) return 0;
-    size_t pixel = latlong_pixel(to_probe(dir), width(), height());
-    return float(table_.pmf(pixel) / pixel_solid_angle(int(pixel / size_t(width()))));
+    if (total_power_ <= 0 || pixels_.empty()) return 0;
+    const size_t pixel = latlong_pixel(to_probe(dir), width(), height());
+    return float(pixels_[pixel].pmf / rows_[pixel / size_t(width())].solid_angle);
 }
 
 glm::mat3 euler_xyz_deg(const vec3& deg) {

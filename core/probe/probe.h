@@ -36,6 +36,10 @@ public:
     double pmf(size_t i) const { return pmf_[i]; }
     double total() const { return total_; }
     size_t size() const { return pmf_.size(); }
+    /// Column i of the table: sample() keeps index i when the fraction of u within the column
+    /// is below prob(i), and returns alias(i) otherwise.
+    double prob(size_t i) const { return prob_[i]; }
+    uint32_t alias(size_t i) const { return alias_[i]; }
 
 private:
     std::vector<double> pmf_, prob_;
@@ -80,9 +84,9 @@ public:
     /// Solid-angle pdf of sample() for a world direction.
     float pdf(const vec3& dir) const;
     /// Probability that sample() picks pixel `pixel`.
-    double pixel_pmf(size_t pixel) const { return table_.pmf(pixel); }
+    double pixel_pmf(size_t pixel) const { return pixels_[pixel].pmf; }
     /// Sum over pixels of luminance(L_j) * Omega_j (zero for a black probe).
-    double total_luminance_power() const { return table_.total(); }
+    double total_luminance_power() const { return total_power_; }
 
     vec3 to_world(const vec3& probe_dir) const { return rotation_ * probe_dir; }
     vec3 to_probe(const vec3& world_dir) const { return inverse_rotation_ * world_dir; }
@@ -91,7 +95,26 @@ private:
     Image image_;
     glm::mat3 rotation_{1.0f}, inverse_rotation_{1.0f};
     float intensity_ = 1.0f;
-    AliasTable table_;
+
+    /// Everything sample() needs from one pixel, packed so that a call touches one cache line
+    /// (two when the alias is taken) instead of one per array: the alias-table column whose
+    /// index is this pixel, this pixel's pmf and its scaled radiance.
+    struct alignas(32) PixelEntry {
+        double prob = 1;     ///< keep this column's pixel when the in-column fraction is below
+        double pmf = 0;      ///< probability that sample() picks this pixel
+        uint32_t alias = 0;  ///< pixel picked otherwise
+        float radiance[3] = {0, 0, 0};  ///< image * intensity
+    };
+    static_assert(sizeof(PixelEntry) == 32);
+    /// Per-row constants, so that no call evaluates trigonometry for the band.
+    struct RowEntry {
+        double cos_top = 1, cos_bottom = 1;  ///< cos theta at the row's upper and lower edge
+        double solid_angle = 0;              ///< pixel_solid_angle(row)
+    };
+
+    std::vector<PixelEntry> pixels_;  ///< row-major, one per pixel (empty for an empty image)
+    std::vector<RowEntry> rows_;
+    double total_power_ = 0;
 };
 
 /// Euler XYZ angles in degrees to a rotation matrix (X applied first).

@@ -87,15 +87,17 @@ dvec3 PhotonMap::gather(const vec3& x, const vec3& normal) const {
     return sum;
 }
 
-bool PhotonMap::reaches(const vec3& x) const {
+glm::i64vec3 PhotonMap::cell_of(const vec3& x) const {
+    return glm::i64vec3(int64_t(std::floor(x.x * inv_cell_)), int64_t(std::floor(x.y * inv_cell_)),
+                        int64_t(std::floor(x.z * inv_cell_)));
+}
+
+bool PhotonMap::reaches_cell(const glm::i64vec3& c) const {
     if (photons_.empty()) return false;
-    int64_t cx = int64_t(std::floor(x.x * inv_cell_));
-    int64_t cy = int64_t(std::floor(x.y * inv_cell_));
-    int64_t cz = int64_t(std::floor(x.z * inv_cell_));
     for (int dz = -1; dz <= 1; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx)
-                if (find(cell_key(cx + dx, cy + dy, cz + dz))) return true;
+                if (find(cell_key(c.x + dx, c.y + dy, c.z + dz))) return true;
     return false;
 }
 

@@ -32,7 +32,11 @@ public:
     dvec3 gather(const vec3& x, const vec3& normal) const;
     /// True if some cell within one cell of x's holds a photon: pixels for which this is false
     /// everywhere can skip the gather.
-    bool reaches(const vec3& x) const;
+    bool reaches(const vec3& x) const { return reaches_cell(cell_of(x)); }
+    /// The integer cell of a point, so that callers can reuse reaches_cell() for points that
+    /// share a cell (neighbouring pixels often do).
+    glm::i64vec3 cell_of(const vec3& x) const;
+    bool reaches_cell(const glm::i64vec3& cell) const;
 
 private:
     struct Cell {

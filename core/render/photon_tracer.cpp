@@ -155,19 +155,23 @@ PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass,
             }
         }
     });
-    size_t nr = 0, nc = 0;
-    for (const Block& b : out) nr += b.real.size(), nc += b.caustic.size();
-    result.real.reserve(nr);
-    result.caustic.reserve(nc);
-    for (Block& b : out) {
-        result.real.insert(result.real.end(), b.real.begin(), b.real.end());
-        result.caustic.insert(result.caustic.end(), b.caustic.begin(), b.caustic.end());
-        result.stats.emitted += b.stats.emitted;
-        result.stats.hit_virtual += b.stats.hit_virtual;
-        result.stats.stored_real += b.stats.stored_real;
-        result.stats.stored_caustic += b.stats.stored_caustic;
-        result.stats.rays += b.stats.rays;
+    // Merge blocks in order (deterministic), copying in parallel into precomputed offsets.
+    std::vector<size_t> real_at(blocks + 1, 0), caustic_at(blocks + 1, 0);
+    for (int64_t b = 0; b < blocks; ++b) {
+        real_at[b + 1] = real_at[b] + out[b].real.size();
+        caustic_at[b + 1] = caustic_at[b] + out[b].caustic.size();
+        result.stats.emitted += out[b].stats.emitted;
+        result.stats.hit_virtual += out[b].stats.hit_virtual;
+        result.stats.stored_real += out[b].stats.stored_real;
+        result.stats.stored_caustic += out[b].stats.stored_caustic;
+        result.stats.rays += out[b].stats.rays;
     }
+    result.real.resize(real_at[blocks]);
+    result.caustic.resize(caustic_at[blocks]);
+    tbb::parallel_for(int64_t(0), blocks, [&](int64_t b) {
+        std::copy(out[b].real.begin(), out[b].real.end(), result.real.begin() + real_at[b]);
+        std::copy(out[b].caustic.begin(), out[b].caustic.end(), result.caustic.begin() + caustic_at[b]);
+    });
     return result;
 }
 

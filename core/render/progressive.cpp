@@ -80,7 +80,9 @@ void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector
                                      const std::atomic<bool>* cancel, size_t& gathered) {
     const RenderScene& s = *scene_;
     const int W = s.photo().width(), H = s.photo().height();
-    out.assign(size_t(W) * H, SampleResult{});
+    // Reused across passes: a fresh 2M-pixel buffer each pass costs page faults.
+    out.resize(size_t(W) * H);
+    std::fill(out.begin(), out.end(), SampleResult{});
     std::atomic<size_t> count{0};
     if (!s.has_virtual()) {
         gathered = 0;
@@ -90,11 +92,18 @@ void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector
     tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const tbb::blocked_range<int>& rows) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return;
         size_t local = 0;
+        glm::i64vec3 last_cell(INT64_MIN);
+        bool last_reaches = false;
+        auto reaches = [&](const vec3& p) {
+            glm::i64vec3 c = maps.real.cell_of(p);
+            if (c != last_cell) last_cell = c, last_reaches = maps.real.reaches_cell(c);
+            return last_reaches;
+        };
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < W; ++x) {
                 size_t i = size_t(y) * W + x;
                 // Pixels no photon cell can reach keep the photo: no ray, no gather.
-                if (!near_virtual_[i] && !(has_real_[i] && maps.real.reaches(real_point_[i]))) continue;
+                if (!near_virtual_[i] && !(has_real_[i] && reaches(real_point_[i]))) continue;
                 Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
                 float jx = rng.uniform() - 0.5f, jy = rng.uniform() - 0.5f;
                 out[i] = shader.shade_camera(x, y, float(x) + jx, float(y) + jy, rng);
@@ -119,7 +128,7 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     PassMaps maps;
     PhotonStats photon_stats = build_pass_maps(pass, maps, cancel);
     if (cancel && cancel->load()) return false;
-    std::vector<SampleResult> samples;
+    std::vector<SampleResult>& samples = samples_;
     size_t gathered = 0;
     shade_pass(pass, maps, samples, cancel, gathered);
     if (cancel && cancel->load()) return false;

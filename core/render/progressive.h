@@ -80,6 +80,7 @@ private:
     // Accumulators (double: shadow and caustic photons cancel).
     std::vector<dvec3> sum_delta_, sum_dL_;
     std::vector<double> sum_alpha_;
+    std::vector<SampleResult> samples_;  ///< the current pass's samples, reused
     RenderStats stats_;
 };
 

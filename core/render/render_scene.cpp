@@ -84,11 +84,13 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets)
     if (!device_) throw std::runtime_error("Embree: cannot create device");
     build_virtual();  // sets scale_, used for epsilons by everything after
     build_real();
+    build_top_level();
     compute_clusters();
     estimate_albedos();
 }
 
 RenderScene::~RenderScene() {
+    if (all_) rtcReleaseScene(all_);
     if (real_) rtcReleaseScene(real_);
     if (virtual_) rtcReleaseScene(virtual_);
     if (device_) rtcReleaseDevice(device_);
@@ -202,14 +204,8 @@ void RenderScene::update_materials(const Project& project) {
                                 [](const Surface& s) { return s.material.kind != Material::Kind::Diffuse; });
 }
 
-Hit RenderScene::intersect_in(RTCScene scene, const std::vector<Surface>& surfaces, const Ray& ray,
-                              float tmax) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRayHit rh = make_rayhit(ray, 0.0f, tmax);
-    rtcIntersect1(scene, &ctx, &rh);
+Hit RenderScene::finish_hit(const RTCRayHit& rh, const std::vector<Surface>& surfaces, const Ray& ray) const {
     Hit hit;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
     const Surface& s = surfaces[rh.hit.geomID];
     hit.surface = &s;
     hit.t = rh.ray.tfar;
@@ -219,7 +215,7 @@ Hit RenderScene::intersect_in(RTCScene scene, const std::vector<Surface>& surfac
         // Re-project onto the sphere: removes the error of org + t*dir at large t.
         hit.p = s.sphere_center + n * s.sphere_radius;
         hit.ng = hit.ns = n;
-        hit.uv = sphere_uv(n);
+        if (s.texture) hit.uv = sphere_uv(n);  // trigonometry only where a texture needs it
         return hit;
     }
     hit.ng = glm::normalize(vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
@@ -239,6 +235,16 @@ Hit RenderScene::intersect_in(RTCScene scene, const std::vector<Surface>& surfac
     return hit;
 }
 
+Hit RenderScene::intersect_in(RTCScene scene, const std::vector<Surface>& surfaces, const Ray& ray,
+                              float tmax) const {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh = make_rayhit(ray, 0.0f, tmax);
+    rtcIntersect1(scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Hit{};
+    return finish_hit(rh, surfaces, ray);
+}
+
 bool RenderScene::occluded_in(RTCScene scene, const Ray& ray, float tmax) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
@@ -254,13 +260,29 @@ Hit RenderScene::intersect_virtual(const Ray& ray, float tmax) const {
     return intersect_in(virtual_, virtual_surfaces_, ray, tmax);
 }
 Hit RenderScene::intersect(const Ray& ray, float tmax) const {
-    Hit v = intersect_virtual(ray, tmax);
-    Hit r = intersect_real(ray, v ? v.t : tmax);
-    return r ? r : v;
+    // One traversal of the top-level scene that instances both BVHs.
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh = make_rayhit(ray, 0.0f, tmax);
+    rtcIntersect1(all_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Hit{};
+    return finish_hit(rh, rh.hit.instID[0] == kVirtualInstance ? virtual_surfaces_ : real_surfaces_, ray);
 }
 bool RenderScene::occluded_real(const Ray& ray, float tmax) const { return occluded_in(real_, ray, tmax); }
-bool RenderScene::occluded(const Ray& ray, float tmax) const {
-    return occluded_in(virtual_, ray, tmax) || occluded_in(real_, ray, tmax);
+bool RenderScene::occluded(const Ray& ray, float tmax) const { return occluded_in(all_, ray, tmax); }
+
+void RenderScene::build_top_level() {
+    if (!all_) all_ = rtcNewScene(device_);
+    const glm::mat4 identity(1.0f);
+    for (RTCScene scene : {real_, virtual_}) {
+        RTCGeometry inst = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, scene);
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &identity[0][0]);
+        rtcCommitGeometry(inst);
+        rtcAttachGeometryByID(all_, inst, scene == virtual_ ? kVirtualInstance : kRealInstance);
+        rtcReleaseGeometry(inst);
+    }
+    rtcCommitScene(all_);
 }
 
 vec3 RenderScene::offset_origin(const Hit& hit, const vec3& dir) const {

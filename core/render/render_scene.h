@@ -63,8 +63,9 @@ struct EmissionCluster {
     std::vector<int> objects;
 };
 
-/// The scene compiled for rendering: real and virtual geometry in separate Embree BVHs, the
-/// photo, the probe, the camera, and the emission clusters.
+/// The scene compiled for rendering: real and virtual geometry in separate Embree BVHs (a
+/// top-level scene instances both for queries against everything), the photo, the probe, the
+/// camera, and the emission clusters.
 class RenderScene {
 public:
     RenderScene(const Project& project, SceneAssets assets);
@@ -107,6 +108,8 @@ private:
     void build_virtual();
     void compute_clusters();
     void estimate_albedos();
+    void build_top_level();
+    Hit finish_hit(const RTCRayHit& rh, const std::vector<Surface>& surfaces, const Ray& ray) const;
     Hit intersect_in(RTCScene scene, const std::vector<Surface>& surfaces, const Ray& ray,
                      float tmax) const;
     bool occluded_in(RTCScene scene, const Ray& ray, float tmax) const;
@@ -117,7 +120,9 @@ private:
     Probe probe_;
     Camera camera_;
     RTCDevice device_ = nullptr;
+    static constexpr unsigned kRealInstance = 0, kVirtualInstance = 1;
     RTCScene real_ = nullptr, virtual_ = nullptr;
+    RTCScene all_ = nullptr;  ///< instances real_ and virtual_: one traversal for both
     std::vector<Surface> real_surfaces_, virtual_surfaces_;
     std::vector<TriangleMesh> real_world_meshes_, virtual_world_meshes_;
     std::vector<EmissionCluster> clusters_;
