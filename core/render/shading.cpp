@@ -13,8 +13,8 @@ namespace {
 constexpr int kGlassSplits = 2;
 constexpr int kDiffuseGatherDepth = 3;
 // Virtual diffuse surfaces seen by the camera are few pixels but carry the noisiest estimate
-// (probe and surroundings by Monte Carlo): average a few samples there per pass.
-constexpr int kCameraDiffuseSamples = 4;
+// (probe and surroundings by Monte Carlo): average two samples there per pass.
+constexpr int kCameraDiffuseSamples = 2;
 
 float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
 }  // namespace
@@ -59,47 +59,52 @@ vec3 Shader::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
     return L + real_delta(hit, dir);
 }
 
-vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth) const {
+vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples) const {
     const Surface& s = *hit.surface;
-    vec3 rho = s.reflectance_at(hit.uv);
-    vec3 n = facing_normal(hit.ns, dir);
-    vec3 ng = facing_normal(hit.ng, dir);
+    const vec3 rho = s.reflectance_at(hit.uv);
+    const vec3 n = facing_normal(hit.ns, dir);
+    const vec3 ng = facing_normal(hit.ng, dir);
     const Probe& probe = scene_.probe();
-    vec3 L(0);
-    // Probe light by next-event estimation, MIS-weighted against the cosine bounce below.
-    ProbeSample ls = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
-    float cos_l = glm::dot(n, ls.dir);
-    if (ls.pdf > 0 && cos_l > 0 && glm::dot(ng, ls.dir) > 0) {
-        Hit h = hit;
-        h.ng = ng;
-        if (!scene_.occluded(Ray{scene_.offset_origin(h, ls.dir), ls.dir})) {
-            float bsdf_pdf = cos_l * kInvPi;
-            L += rho * kInvPi * ls.radiance * (cos_l / ls.pdf) * power_heuristic(ls.pdf, bsdf_pdf);
-        }
-    }
-    // Caustics arriving through virtual glass and mirrors.
-    if (!maps_.caustic.empty()) L += vec3(dvec3(rho) * (double(kInvPi) * inv_area_) * maps_.caustic.gather(hit.p, ng));
-    if (depth >= kDiffuseGatherDepth) return L;
-    // One cosine-weighted bounce: real surroundings (the photo), other virtual objects, probe.
     Hit h = hit;
     h.ng = ng;
     h.ns = n;
-    vec3 d = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
-    Ray ray{scene_.offset_origin(h, d), d};
-    Hit next = scene_.intersect(ray);
-    if (!next) {
-        float bsdf_pdf = std::max(0.0f, glm::dot(n, d)) * kInvPi;
-        return L + rho * probe.radiance(d) * power_heuristic(bsdf_pdf, probe.pdf(d));
+    vec3 sum(0);
+    for (int k = 0; k < samples; ++k) {
+        // Probe light by next-event estimation, MIS-weighted against the cosine bounce below.
+        ProbeSample ls = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
+        float cos_l = glm::dot(n, ls.dir);
+        if (ls.pdf > 0 && cos_l > 0 && glm::dot(ng, ls.dir) > 0 &&
+            !scene_.occluded(Ray{scene_.offset_origin(h, ls.dir), ls.dir}))
+            sum += ls.radiance * (cos_l / ls.pdf) * power_heuristic(ls.pdf, cos_l * kInvPi) * kInvPi;
+        if (depth >= kDiffuseGatherDepth) continue;
+        // One cosine-weighted bounce: real surroundings (the photo), other virtual objects, probe.
+        vec3 d = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
+        Ray ray{scene_.offset_origin(h, d), d};
+        Hit next = scene_.intersect(ray);
+        if (!next) {
+            float bsdf_pdf = std::max(0.0f, glm::dot(n, d)) * kInvPi;
+            sum += probe.radiance(d) * power_heuristic(bsdf_pdf, probe.pdf(d));
+        } else {
+            sum += radiance_at(next, ray, rng, depth + 1, true, kGlassSplits);
+        }
     }
-    return L + rho * incoming(ray, rng, depth + 1, true, kGlassSplits);
+    vec3 L = rho * sum / float(samples);
+    // Caustics arriving through virtual glass and mirrors (once: it does not depend on samples).
+    if (!maps_.caustic.empty())
+        L += vec3(dvec3(rho) * (double(kInvPi) * inv_area_) * maps_.caustic.gather(hit.p, ng));
+    return L;
 }
 
 vec3 Shader::incoming(const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const {
-    Hit hit = scene_.intersect(ray);
+    return radiance_at(scene_.intersect(ray), ray, rng, depth, from_diffuse, splits);
+}
+
+vec3 Shader::radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse,
+                         int splits) const {
     if (!hit) return from_diffuse ? vec3(0) : scene_.probe().radiance(ray.dir);
     if (!hit.surface->is_virtual) return real_radiance(hit, ray.dir, rng);
     if (hit.surface->material.kind == Material::Kind::Diffuse)
-        return virtual_diffuse_radiance(hit, ray.dir, rng, depth);
+        return virtual_diffuse_radiance(hit, ray.dir, rng, depth, 1);
     return specular_radiance(hit, ray.dir, rng, depth, from_diffuse, splits);
 }
 
@@ -132,13 +137,9 @@ SampleResult Shader::shade_camera(int x, int y, float px, float py, Rng& rng) co
         return r;
     }
     r.alpha = 1;
-    vec3 L(0);
-    if (hit.surface->material.kind == Material::Kind::Diffuse) {
-        for (int k = 0; k < kCameraDiffuseSamples; ++k) L += virtual_diffuse_radiance(hit, ray.dir, rng, 0);
-        L /= float(kCameraDiffuseSamples);
-    } else {
-        L = specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
-    }
+    vec3 L = hit.surface->material.kind == Material::Kind::Diffuse
+                 ? virtual_diffuse_radiance(hit, ray.dir, rng, 0, kCameraDiffuseSamples)
+                 : specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
     r.delta = L - photo;
     return r;
 }

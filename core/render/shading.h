@@ -32,11 +32,15 @@ public:
     /// Radiance leaving a real point towards -dir in the augmented scene: the photo where the
     /// camera sees the point, rho E / pi elsewhere, plus dL.
     vec3 real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const;
-    /// Radiance leaving a virtual diffuse point towards -dir.
-    vec3 virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth) const;
+    /// Radiance leaving a virtual diffuse point towards -dir, averaging `samples` estimates
+    /// of the probe and bounce light (caustic photons are gathered once).
+    vec3 virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples) const;
     /// Radiance arriving along a ray after a specular interaction or a gather bounce.
     /// `from_diffuse`: light from the probe through specular chains is in the caustic map.
     vec3 incoming(const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const;
+
+    /// Radiance arriving along `ray` whose first hit is already known (`hit` may be empty).
+    vec3 radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const;
 
 private:
     vec3 specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,
