@@ -15,8 +15,8 @@ struct Photon {
 };
 
 /// Signed photons in a spatial hash grid whose cells are one gather diameter wide, so a gather
-/// of radius r touches at most 2x2x2 cells. Photons are sorted by cell; an open-addressing table
-/// keyed by the exact cell finds a cell's run, so empty cells are known to be empty.
+/// of radius r touches at most 2x2x2 cells. Photons are radix-sorted by cell; an open-addressing
+/// table keyed by the exact cell finds a cell's run, so empty cells are known to be empty.
 class PhotonMap {
 public:
     PhotonMap() = default;
@@ -40,12 +40,12 @@ public:
 
 private:
     struct Cell {
-        uint64_t key = kEmpty;
+        glm::i64vec3 cell{0};
         uint32_t begin = 0, end = 0;
+        bool used = false;
     };
-    static constexpr uint64_t kEmpty = ~uint64_t(0);
-    static uint64_t cell_key(int64_t cx, int64_t cy, int64_t cz);
-    const Cell* find(uint64_t key) const;
+    static uint64_t hash_cell(const glm::i64vec3& c);
+    const Cell* find(const glm::i64vec3& cell) const;
 
     std::vector<Photon> photons_;  ///< sorted by cell key (ties keep emission order)
     std::vector<Cell> table_;      ///< power-of-two size, linear probing

@@ -1,0 +1,68 @@
+#pragma once
+// Helpers shared by the benchmarks: the bundled sample scene, thread arenas, peak memory.
+#include <benchmark/benchmark.h>
+#include <tbb/task_arena.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "render/render_scene.h"
+#include "scene/project_io.h"
+
+namespace dp::bench {
+
+/// The bundled sample project; DP_SAMPLE_PROJECT overrides it (e.g. to try another scene).
+inline std::string sample_project_path() {
+    if (const char* env = std::getenv("DP_SAMPLE_PROJECT"); env && *env) return env;
+    return std::string(DP_SOURCE_DIR) + "/resources/sample/sample.json";
+}
+
+/// The sample scene exactly as the CLI loads it, built once per process.
+inline std::shared_ptr<const RenderScene> sample_scene() {
+    static std::shared_ptr<const RenderScene> scene = [] {
+        Project project = load_project(sample_project_path());
+        SceneAssets assets = load_assets(project);
+        return std::make_shared<const RenderScene>(project, std::move(assets));
+    }();
+    return scene;
+}
+
+/// A counter reported per second of wall time (the benchmarks use UseRealTime()).
+inline benchmark::Counter rate(double count) {
+    return benchmark::Counter(count, benchmark::Counter::kIsRate);
+}
+
+/// Threads for a benchmark argument: 0 means the project's setting (0 there: all cores), as
+/// RenderSession does; anything else is an explicit count.
+inline int arena_threads(const RenderScene& scene, int64_t arg) {
+    int t = arg > 0 ? int(arg) : scene.project().render.threads;
+    return t > 0 ? t : tbb::task_arena::automatic;
+}
+
+/// Reads a "Name:   123 kB" line of /proc/self/status, in bytes (0 if unavailable).
+inline double proc_status_bytes(const char* name) {
+    std::ifstream in("/proc/self/status");
+    std::string line, key = std::string(name) + ":";
+    while (std::getline(in, line)) {
+        if (line.compare(0, key.size(), key) == 0)
+            return std::strtod(line.c_str() + key.size(), nullptr) * 1024.0;
+    }
+    return 0;
+}
+
+/// Peak resident set size of the process so far.
+inline double peak_rss_bytes() { return proc_status_bytes("VmHWM"); }
+
+/// Resets VmHWM to the current RSS (Linux >= 4.0) so a benchmark reports its own peak rather
+/// than an earlier benchmark's; returns false where the kernel refuses.
+inline bool reset_peak_rss() {
+    std::ofstream out("/proc/self/clear_refs");
+    out << "5";
+    out.flush();
+    return bool(out);
+}
+
+}  // namespace dp::bench
