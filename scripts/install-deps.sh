@@ -4,10 +4,8 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libglm-dev libopenexr-dev libopencv-dev libassimp-dev
-  nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libexiv2-dev
-  qt6-base-dev xvfb xauth
-  blender-data opencv-doc
-  python3-matplotlib python3-numpy
+  nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  blender-data  # the CC0 light probes the sample project and benchmarks use
 )
 missing=()
 for p in "${packages[@]}"; do
