@@ -65,92 +65,95 @@ Probe::Probe(Image latlong, const glm::mat3& rotation, float intensity)
     const int w = width(), h = height();
     rows_.resize(size_t(std::max(h, 0)));
     for (int j = 0; j < h; ++j) {
-        // The same expressions sample() used to evaluate per call, so results are unchanged.
-        rows_[j].cos_top = std::cos(kPiD * j / h);
-        rows_[j].cos_bottom = std::cos(kPiD * (j + 1) / h);
-        rows_[j].solid_angle = row_solid_angle(j, w, h);
+        // Once per row here rather than once per sample.
+        const double cos_top = std::cos(kPiD * j / h), cos_bottom = std::cos(kPiD * (j + 1) / h);
+        rows_[j] = Row{cos_top, cos_bottom - cos_top, row_solid_angle(j, w, h)};
     }
 
-    std::vector<double> weights(image_.size(), 0.0);
-    for (int j = 0; j < h; ++j) {
-        double omega = rows_[j].solid_angle;
-        for (int i = 0; i < w; ++i) {
-            double lum = luminance(dvec3(image_.at(i, j)) * double(intensity_));
-            weights[size_t(j) * w + i] = lum > 0 ? lum * omega : 0.0;
-        }
-    }
+    std::vector<double> weights(image_.size());
+    for (size_t k = 0; k < weights.size(); ++k) weights[k] = pixel_weight(k);
     const AliasTable table(weights);
+    weights = {};
     total_power_ = table.total();
+
+    pdf_.resize(image_.size());
     pixels_.resize(image_.size());
-    for (size_t k = 0; k < pixels_.size(); ++k) {
-        PixelEntry& e = pixels_[k];
-        e.prob = table.prob(k);
-        e.pmf = table.pmf(k);
-        e.alias = table.alias(k);
-        const vec3 radiance = image_[k] * intensity_;
-        for (int c = 0; c < 3; ++c) e.radiance[c] = radiance[c];
+    for (size_t k = 0; k < pdf_.size(); ++k) {
+        // pmf / Omega rounded once, so that sample() and pdf() agree bit for bit.
+        pdf_[k] = float(pixel_pmf(k) / rows_[k / size_t(w)].solid_angle);
+        const vec3 radiance = pixel_radiance(k);
+        pixels_[k] = PixelData{{radiance.x, radiance.y, radiance.z}, pdf_[k]};
     }
+    columns_.resize(image_.size());
+    for (size_t k = 0; k < columns_.size(); ++k)
+        columns_[k] = Column{table.prob(k), table.alias(k)};
+}
+
+double Probe::pixel_weight(size_t pixel) const {
+    const double lum = luminance(dvec3(image_[pixel]) * double(intensity_));
+    return lum > 0 ? lum * rows_[pixel / size_t(width())].solid_angle : 0.0;
+}
+
+double Probe::pixel_pmf(size_t pixel) const {
+    // The alias table's pmf, weight / total, without keeping a table of it.
+    return total_power_ > 0 ? pixel_weight(pixel) / total_power_ : 0.0;
 }
 
 double Probe::pixel_solid_angle(int row) const {
     return row_solid_angle(row, width(), height());
 }
 
-vec3 Probe::pixel_radiance(size_t pixel) const {
-    const float* r = pixels_[pixel].radiance;
-    return vec3(r[0], r[1], r[2]);
-}
+vec3 Probe::pixel_radiance(size_t pixel) const { return image_[pixel] * intensity_; }
 
 vec3 Probe::radiance(const vec3& dir) const {
-    if (pixels_.empty()) return vec3(0);
+    if (image_.empty()) return vec3(0);
     return pixel_radiance(latlong_pixel(to_probe(dir), width(), height()));
 }
 
 ProbeSample Probe::sample(float u0, float u1, float u2) const {
     ProbeSample s;
-    if (total_power_ <= 0 || pixels_.empty()) {
+    if (total_power_ <= 0 || columns_.empty()) {
         s.dir = glm::normalize(to_world(vec3(0, 1, 0)));  // glm vectors are not zeroed by default
         s.radiance = vec3(0);
         return s;
     }
     // A float carries 24 bits: too few to pick among millions of pixels and still flip the
     // alias coin. u1 fills in the bits below u0; what the table leaves of the combined number
-    // is the horizontal position inside the pixel. The arithmetic is AliasTable::sample's, on
-    // the packed entries.
-    const size_t n = pixels_.size();
+    // is the horizontal position inside the pixel. This is AliasTable::sample's arithmetic, so
+    // the same numbers pick the same pixel.
+    const size_t n = columns_.size();
     const double u = std::min(double(u0) + double(u1) * 0x1p-24, kOneMinusEpsilon);
     const double scaled = u * double(n);
     const size_t column = std::min(size_t(scaled), n - 1);
     const double frac = std::min(scaled - double(column), kOneMinusEpsilon);
-    const double prob = pixels_[column].prob;
-    // Selects rather than branches: the coin is unpredictable, and the picked entry is the one
-    // just loaded whenever the column keeps its own pixel.
-    const bool keep = frac < prob;
-    const size_t pixel = keep ? column : size_t(pixels_[column].alias);
-    const double x_in_pixel =
-        std::clamp((keep ? frac : frac - prob) / (keep ? prob : 1.0 - prob), 0.0, kOneMinusEpsilon);
-    const PixelEntry& e = pixels_[pixel];
+    const Column& c = columns_[column];
+    const bool keep = frac < c.prob;
+    const size_t pixel = keep ? column : size_t(c.alias);
+    const double rest = keep ? frac / c.prob : (frac - c.prob) / (1.0 - c.prob);
+    const double x_in_pixel = std::clamp(rest, 0.0, kOneMinusEpsilon);
 
     const uint32_t w = uint32_t(width());
     const uint32_t j = uint32_t(pixel) / w, i = uint32_t(pixel) - j * w;
-    const RowEntry& row = rows_[j];
+    const Row& row = rows_[j];
     // Uniform in solid angle inside the pixel: phi uniform, cos(theta) uniform in the band.
-    double cos_theta = row.cos_top + (row.cos_bottom - row.cos_top) * double(u2);
-    double sin_theta = std::sqrt(std::max(0.0, (1 - cos_theta) * (1 + cos_theta)));
-    double phi = 2 * kPiD * ((i + x_in_pixel) / w - 0.5);
-    dvec3 d(sin_theta * std::sin(phi), cos_theta, -sin_theta * std::cos(phi));
+    // cos(theta) and sin(theta) stay in double, which keeps sin(theta) accurate near the poles;
+    // phi lies in [-pi, pi], where float trigonometry is as accurate as the float result.
+    const double cos_theta = row.cos_top + row.cos_span * double(u2);
+    const float sin_theta = float(std::sqrt(std::max(0.0, (1 - cos_theta) * (1 + cos_theta))));
+    const float phi = float(2 * kPiD * ((i + x_in_pixel) / w - 0.5));
+    const vec3 d(sin_theta * std::sin(phi), float(cos_theta), -sin_theta * std::cos(phi));
 
-    s.dir = glm::normalize(to_world(vec3(d)));
-    s.radiance = vec3(e.radiance[0], e.radiance[1], e.radiance[2]);
-    s.pdf = float(e.pmf / row.solid_angle);
+    const PixelData& p = pixels_[pixel];
+    s.dir = glm::normalize(to_world(d));
+    s.radiance = vec3(p.radiance[0], p.radiance[1], p.radiance[2]);
+    s.pdf = p.pdf;
     s.pixel = pixel;
     return s;
 }
 
 float Probe::pdf(const vec3& dir) const {
-    if (total_power_ <= 0 || pixels_.empty()) return 0;
-    const size_t pixel = latlong_pixel(to_probe(dir), width(), height());
-    return float(pixels_[pixel].pmf / rows_[pixel / size_t(width())].solid_angle);
+    if (total_power_ <= 0 || pdf_.empty()) return 0;
+    return pdf_[latlong_pixel(to_probe(dir), width(), height())];
 }
 
 glm::mat3 euler_xyz_deg(const vec3& deg) {

@@ -6,6 +6,7 @@
 
 #include "base/math.h"
 #include "image/image.h"
+#include "probe/huge_pages.h"
 
 namespace dp {
 
@@ -84,7 +85,7 @@ public:
     /// Solid-angle pdf of sample() for a world direction.
     float pdf(const vec3& dir) const;
     /// Probability that sample() picks pixel `pixel`.
-    double pixel_pmf(size_t pixel) const { return pixels_[pixel].pmf; }
+    double pixel_pmf(size_t pixel) const;
     /// Sum over pixels of luminance(L_j) * Omega_j (zero for a black probe).
     double total_luminance_power() const { return total_power_; }
 
@@ -96,24 +97,34 @@ private:
     glm::mat3 rotation_{1.0f}, inverse_rotation_{1.0f};
     float intensity_ = 1.0f;
 
-    /// Everything sample() needs from one pixel, packed so that a call touches one cache line
-    /// (two when the alias is taken) instead of one per array: the alias-table column whose
-    /// index is this pixel, this pixel's pmf and its scaled radiance.
-    struct alignas(32) PixelEntry {
-        double prob = 1;     ///< keep this column's pixel when the in-column fraction is below
-        double pmf = 0;      ///< probability that sample() picks this pixel
+    /// luminance(L_j) * Omega_j of a pixel as the sampling weights are built (0 unless positive).
+    double pixel_weight(size_t pixel) const;
+
+    /// One column of the alias table: the coin that sample() flips once it has picked the
+    /// column. Only the coin decides the direction, so it is kept apart from the per-pixel data
+    /// in a 16-byte entry: the table sample() reads first is as small as it can be while keeping
+    /// the double-precision coins, and so more likely to stay in cache.
+    struct alignas(16) Column {
+        double prob = 1;     ///< keep the column's own pixel when the in-column fraction is below
         uint32_t alias = 0;  ///< pixel picked otherwise
-        float radiance[3] = {0, 0, 0};  ///< image * intensity
     };
-    static_assert(sizeof(PixelEntry) == 32);
+    /// What sample() returns for a pixel besides the direction, in one 16-byte entry.
+    struct alignas(16) PixelData {
+        float radiance[3] = {0, 0, 0};  ///< image * intensity
+        float pdf = 0;                  ///< solid-angle pdf, as pdf() returns it
+    };
     /// Per-row constants, so that no call evaluates trigonometry for the band.
-    struct RowEntry {
-        double cos_top = 1, cos_bottom = 1;  ///< cos theta at the row's upper and lower edge
-        double solid_angle = 0;              ///< pixel_solid_angle(row)
+    struct Row {
+        double cos_top = 1;      ///< cos theta at the row's upper edge
+        double cos_span = 0;     ///< cos theta at the lower edge minus cos_top
+        double solid_angle = 0;  ///< pixel_solid_angle(row)
     };
 
-    std::vector<PixelEntry> pixels_;  ///< row-major, one per pixel (empty for an empty image)
-    std::vector<RowEntry> rows_;
+    // Read at random once per call: huge pages spare most lookups a TLB miss as well.
+    std::vector<Column, HugePageAllocator<Column>> columns_;        ///< one per pixel, row-major
+    std::vector<PixelData, HugePageAllocator<PixelData>> pixels_;  ///< row-major
+    std::vector<float, HugePageAllocator<float>> pdf_;  ///< per pixel, compact for pdf()
+    std::vector<Row> rows_;
     double total_power_ = 0;
 };
 
