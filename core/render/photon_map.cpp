@@ -13,37 +13,52 @@ namespace {
 constexpr float kNormalAgreement = 0.7f;
 }  // namespace
 
-uint64_t PhotonMap::hash_cell(const glm::i64vec3& c) {
-    return mix64(uint64_t(c.x) * 0x9e3779b97f4a7c15ull ^ mix64(uint64_t(c.y) + 0x632be59bd9b4e019ull) ^
-                 (uint64_t(c.z) << 1));
+uint64_t PhotonMap::key_of(const glm::i64vec3& c) const {
+    if (!exact_) {
+        // Wrapped 21-bit coordinates: distant cells may share a key (and a run); every
+        // photon's distance is checked, so that costs time, never correctness.
+        const int64_t m = (int64_t(1) << 21) - 1;
+        return uint64_t(c.x & m) | (uint64_t(c.y & m) << 21) | (uint64_t(c.z & m) << 42);
+    }
+    glm::i64vec3 o = c - lo_;
+    if (o.x < 0 || o.y < 0 || o.z < 0 || o.x > span_.x || o.y > span_.y || o.z > span_.z) return kEmpty;
+    return uint64_t(o.x) | (uint64_t(o.y) << shift_y_) | (uint64_t(o.z) << shift_z_);
 }
 
 const PhotonMap::Cell* PhotonMap::find(const glm::i64vec3& cell) const {
     if (table_.empty()) return nullptr;
-    for (uint64_t slot = hash_cell(cell) & table_mask_;; slot = (slot + 1) & table_mask_) {
+    const uint64_t key = key_of(cell);
+    if (key == kEmpty) return nullptr;
+    for (uint64_t slot = mix64(key) & table_mask_;; slot = (slot + 1) & table_mask_) {
         const Cell& c = table_[slot];
-        if (!c.used) return nullptr;
-        if (c.cell == cell) return &c;
+        if (c.key == key) return &c;
+        if (c.key == kEmpty) return nullptr;
     }
 }
 
 namespace {
 
-/// Stable LSD radix sort of `index` by cell, 8 bits a pass: x first, then y, then z, each over
-/// the bits its offset from the lowest cell uses. Works for any scene extent.
-void sort_by_cell(const std::vector<glm::i64vec3>& cells, glm::i64vec3 lo, glm::i64vec3 hi,
-                  std::vector<uint32_t>& index) {
-    std::vector<uint32_t> next(index.size());
-    for (int axis = 0; axis < 3; ++axis) {
-        const uint64_t range = uint64_t(hi[axis] - lo[axis]);
-        for (int shift = 0; shift < 64 && (range >> shift) != 0; shift += 8) {
-            auto digit = [&](uint32_t i) { return (uint64_t(cells[i][axis] - lo[axis]) >> shift) & 0xFF; };
-            size_t count[257] = {};
-            for (uint32_t i : index) ++count[digit(i) + 1];
-            for (int d = 0; d < 256; ++d) count[d + 1] += count[d];
-            for (uint32_t i : index) next[count[digit(i)]++] = i;
-            index.swap(next);
+int bits_for(uint64_t v) {
+    int b = 0;
+    while (b < 64 && (v >> b) != 0) ++b;
+    return b;
+}
+
+/// Stable LSD radix sort of (key, index) pairs by key, 8 bits a pass over `bits` bits.
+void radix_sort(std::vector<uint64_t>& keys, std::vector<uint32_t>& index, int bits) {
+    std::vector<uint64_t> keys2(keys.size());
+    std::vector<uint32_t> index2(index.size());
+    for (int shift = 0; shift < bits; shift += 8) {
+        size_t count[257] = {};
+        for (uint64_t k : keys) ++count[((k >> shift) & 0xFF) + 1];
+        for (int d = 0; d < 256; ++d) count[d + 1] += count[d];
+        for (size_t i = 0; i < keys.size(); ++i) {
+            size_t at = count[(keys[i] >> shift) & 0xFF]++;
+            keys2[at] = keys[i];
+            index2[at] = index[i];
         }
+        keys.swap(keys2);
+        index.swap(index2);
     }
 }
 
@@ -56,34 +71,43 @@ void PhotonMap::build(std::vector<Photon> photons, float radius) {
     photons_.clear();
     table_.clear();
     if (n == 0) return;
-    std::vector<glm::i64vec3> cells(n);
     glm::i64vec3 lo(INT64_MAX), hi(INT64_MIN);
-    for (size_t i = 0; i < n; ++i) {
-        cells[i] = cell_of(photons[i].position);
-        lo = glm::min(lo, cells[i]);
-        hi = glm::max(hi, cells[i]);
+    for (const Photon& p : photons) {
+        glm::i64vec3 c = cell_of(p.position);
+        lo = glm::min(lo, c);
+        hi = glm::max(hi, c);
     }
+    // Exact keys (offsets from the lowest cell) when they fit in 63 bits: the usual case.
+    lo_ = lo;
+    span_ = hi - lo;
+    const int bx = bits_for(uint64_t(span_.x)), by = bits_for(uint64_t(span_.y)), bz = bits_for(uint64_t(span_.z));
+    exact_ = bx + by + bz <= 63;
+    shift_y_ = bx;
+    shift_z_ = bx + by;
+    std::vector<uint64_t> keys(n);
     std::vector<uint32_t> index(n);
-    for (size_t i = 0; i < n; ++i) index[i] = uint32_t(i);
+    for (size_t i = 0; i < n; ++i) {
+        keys[i] = key_of(cell_of(photons[i].position));
+        index[i] = uint32_t(i);
+    }
     // Stable: photons of one cell keep their emission order, so sums are deterministic.
-    sort_by_cell(cells, lo, hi, index);
+    radix_sort(keys, index, exact_ ? bx + by + bz : 63);
     photons_.resize(n);
     size_t distinct = 0;
     for (size_t i = 0; i < n; ++i) {
         photons_[i] = photons[index[i]];
-        distinct += (i == 0 || cells[index[i]] != cells[index[i - 1]]);
+        distinct += (i == 0 || keys[i] != keys[i - 1]);
     }
     size_t size = 16;
     while (size < 2 * distinct) size <<= 1;
     table_.assign(size, Cell{});
     table_mask_ = size - 1;
     for (size_t i = 0; i < n;) {
-        const glm::i64vec3& c = cells[index[i]];
         size_t j = i;
-        while (j < n && cells[index[j]] == c) ++j;
-        uint64_t slot = hash_cell(c) & table_mask_;
-        while (table_[slot].used) slot = (slot + 1) & table_mask_;
-        table_[slot] = Cell{c, uint32_t(i), uint32_t(j), true};
+        while (j < n && keys[j] == keys[i]) ++j;
+        uint64_t slot = mix64(keys[i]) & table_mask_;
+        while (table_[slot].key != kEmpty) slot = (slot + 1) & table_mask_;
+        table_[slot] = Cell{keys[i], uint32_t(i), uint32_t(j)};
         i = j;
     }
 }

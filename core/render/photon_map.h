@@ -40,16 +40,20 @@ public:
 
 private:
     struct Cell {
-        glm::i64vec3 cell{0};
+        uint64_t key = kEmpty;
         uint32_t begin = 0, end = 0;
-        bool used = false;
     };
-    static uint64_t hash_cell(const glm::i64vec3& c);
+    static constexpr uint64_t kEmpty = ~uint64_t(0);
+    /// One 64-bit key per cell (see build()); kEmpty for cells outside the photons' range.
+    uint64_t key_of(const glm::i64vec3& cell) const;
     const Cell* find(const glm::i64vec3& cell) const;
 
     std::vector<Photon> photons_;  ///< sorted by cell key (ties keep emission order)
     std::vector<Cell> table_;      ///< power-of-two size, linear probing
     uint64_t table_mask_ = 0;
+    bool exact_ = true;  ///< keys are exact cell offsets (else wrapped coordinates)
+    glm::i64vec3 lo_{0}, span_{0};
+    int shift_y_ = 0, shift_z_ = 0;
     float radius_ = 0;
     double inv_cell_ = 0;
 };

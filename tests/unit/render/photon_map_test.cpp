@@ -58,3 +58,23 @@ TEST(PhotonMap, SignedFluxCancelsExactlyInDouble) {
     map.build(ps, 0.1f);
     EXPECT_EQ(map.gather(vec3(0), vec3(0, 1, 0)), dvec3(0));
 }
+
+TEST(PhotonMap, GatherStaysExactWhenPhotonsSpanMoreCellsThanOneKeyHolds) {
+    // 1e-4 radius over +-1000 units: ~1e7 cells per axis, beyond 63 bits of exact offsets.
+    std::vector<Photon> ps = random_photons(3000, 4);
+    for (size_t i = 0; i < ps.size(); ++i) ps[i].position *= (i % 2 ? 1000.0f : 1e-3f);
+    const float r = 1e-4f;
+    PhotonMap map;
+    map.build(ps, r);
+    for (size_t q = 0; q < ps.size(); q += 7) {
+        vec3 x = ps[q].position + vec3(3e-5f);
+        dvec3 brute(0);
+        for (const Photon& p : ps)
+            if (glm::dot(p.position - x, p.position - x) <= r * r && p.normal.y > 0) brute += dvec3(p.flux);
+        dvec3 got = map.gather(x, vec3(0, 1, 0));
+        EXPECT_NEAR(got.x, brute.x, 1e-9);
+        EXPECT_NEAR(got.y, brute.y, 1e-9);
+        EXPECT_NEAR(got.z, brute.z, 1e-9);
+        EXPECT_TRUE(map.reaches(x));
+    }
+}
