@@ -13,6 +13,7 @@
 #include "base/rng.h"
 #include "bench_common.h"
 #include "render/photon_tracer.h"
+#include "render/pixel_cache.h"
 #include "render/progressive.h"
 #include "render/shading.h"
 
@@ -81,46 +82,7 @@ BENCHMARK(BM_OnePass1080p)
     ->Unit(benchmark::kMillisecond);
 
 /// What the camera's centre ray sees per pixel, as ProgressiveRenderer caches it.
-struct PixelCache {
-    std::vector<uint8_t> near_virtual, has_real;
-    std::vector<vec3> real_point;
-};
 
-PixelCache build_pixel_cache(const RenderScene& s) {
-    const int W = s.photo().width(), H = s.photo().height();
-    const size_t n = size_t(W) * H;
-    PixelCache c;
-    c.near_virtual.assign(n, 0);
-    c.has_real.assign(n, 0);
-    c.real_point.assign(n, vec3(0));
-    std::vector<uint8_t> sees_virtual(n, 0);
-    tbb::parallel_for(0, H, [&](int y) {
-        for (int x = 0; x < W; ++x) {
-            size_t i = size_t(y) * W + x;
-            Hit hit = s.intersect(s.camera().generate_ray(float(x), float(y)));
-            if (!hit) continue;
-            if (hit.surface->is_virtual) {
-                sees_virtual[i] = 1;
-            } else {
-                c.has_real[i] = 1;
-                c.real_point[i] = hit.p;
-            }
-        }
-    });
-    tbb::parallel_for(0, H, [&](int y) {
-        for (int x = 0; x < W; ++x) {
-            uint8_t v = 0;
-            for (int dy = -1; dy <= 1 && !v; ++dy)
-                for (int dx = -1; dx <= 1 && !v; ++dx) {
-                    int xx = x + dx, yy = y + dy;
-                    if (xx >= 0 && yy >= 0 && xx < W && yy < H)
-                        v = sees_virtual[size_t(yy) * W + xx];
-                }
-            c.near_virtual[size_t(y) * W + x] = v;
-        }
-    });
-    return c;
-}
 
 /// Runs body(pixel index, x, y) over the image in blocks of rows, as shade_pass does; returns
 /// the sum of what it returned.

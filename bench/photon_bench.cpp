@@ -29,38 +29,13 @@ constexpr uint64_t kSeed = 1;
 /// cluster, the ray pointing back at the objects. Precomputed so the benchmark times Embree
 /// (and the Hit set-up RenderScene does) alone.
 std::vector<Ray> photon_rays(const RenderScene& scene, int64_t count) {
-    const auto& clusters = scene.clusters();
-    std::vector<double> w;
-    for (const EmissionCluster& c : clusters) w.push_back(double(c.radius) * c.radius);
-    AliasTable table(w);
-    vec3 gc = clusters[0].center;
-    float gr = clusters[0].radius;
-    for (size_t i = 1; i < clusters.size(); ++i)
-        enclose(gc, gr, clusters[i].center, clusters[i].radius, gc, gr);
+    PhotonEmitter emitter(scene, count);
     std::vector<Ray> rays;
     rays.reserve(size_t(count));
     for (uint64_t i = 0; int64_t(rays.size()) < count; ++i) {
         Rng rng = Rng::keyed(kSeed, 1000, i);
-        const size_t k = table.sample(rng.uniform_double());
-        const EmissionCluster& c = clusters[k];
-        ProbeSample ps = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
-        if (ps.pdf <= 0) continue;
-        const vec3 dir = ps.dir;
-        Frame frame(dir);
-        vec2 d = sample_concentric_disk(vec2(rng.uniform(), rng.uniform())) * c.radius;
-        vec3 disk = c.center + c.radius * dir + frame.t * d.x + frame.b * d.y;
-        vec3 oc = disk - gc;
-        float b = glm::dot(oc, dir), cc = glm::dot(oc, oc) - gr * gr;
-        float s_exit = -b + std::sqrt(std::max(0.0f, b * b - cc));
-        const vec3 origin = disk + dir * (std::max(0.0f, s_exit) + scene.ray_epsilon());
-        // The tracer casts nothing for lines that an earlier cluster owns.
-        bool owned = false;
-        for (size_t j = 0; j < k && !owned; ++j) {
-            vec3 to_c = clusters[j].center - origin;
-            vec3 perp = to_c - glm::dot(to_c, dir) * dir;
-            owned = glm::dot(perp, perp) < clusters[j].radius * clusters[j].radius;
-        }
-        if (!owned) rays.push_back(Ray{origin, -dir});
+        EmittedPhoton e = emitter.emit(rng);
+        if (e.valid) rays.push_back(e.ray);  // the tracer casts nothing for invalid starts
     }
     return rays;
 }

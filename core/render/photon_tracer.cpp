@@ -24,30 +24,11 @@ struct Block {
 
 struct Tracer {
     const RenderScene& scene;
-    AliasTable cluster_table;
-    double cluster_area_total = 0;  // sum of pi R^2
-    vec3 global_center{0};
-    float global_radius = 0;
+    PhotonEmitter emitter;
     int max_depth = 8;
 
-    explicit Tracer(const RenderScene& s) : scene(s) {
-        std::vector<double> w;
-        for (const EmissionCluster& c : s.clusters()) w.push_back(double(c.radius) * c.radius);
-        cluster_table = AliasTable(w);
-        cluster_area_total = kPi * cluster_table.total();
-        const auto& cl = s.clusters();
-        global_center = cl[0].center;
-        global_radius = cl[0].radius;
-        for (size_t i = 1; i < cl.size(); ++i)
-            enclose(global_center, global_radius, cl[i].center, cl[i].radius, global_center, global_radius);
-        max_depth = std::max(1, s.project().render.max_depth);
-    }
-
-    static bool line_hits_sphere(const vec3& o, const vec3& d, const vec3& c, float r) {
-        vec3 oc = c - o;
-        vec3 perp = oc - glm::dot(oc, d) * d;
-        return glm::dot(perp, perp) < r * r;
-    }
+    Tracer(const RenderScene& s, int64_t count)
+        : scene(s), emitter(s, count), max_depth(std::max(1, s.project().render.max_depth)) {}
 
     /// Follows a photon from a known first hit: stores on real surfaces (and caustics on
     /// virtual diffuse ones), bounces until absorbed. Negative photons die on virtual objects.
@@ -95,32 +76,12 @@ struct Tracer {
         }
     }
 
-    void trace_one(Rng& rng, Block& out, double inv_count) const {
+    void trace_one(Rng& rng, Block& out) const {
         ++out.stats.emitted;
-        size_t k = cluster_table.sample(rng.uniform_double());
-        const EmissionCluster& c = scene.clusters()[k];
-        ProbeSample ps = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
-        if (ps.pdf <= 0) return;
-        const Probe& probe = scene.probe();
-        int row = int(ps.pixel / size_t(probe.width()));
-        double pmf = probe.pixel_pmf(ps.pixel) * cluster_table.pmf(k);
-        if (pmf <= 0) return;
-        // Flux through the cluster's cross-section from this probe pixel, per photon.
-        double scale = probe.pixel_solid_angle(row) * kPi * double(c.radius) * c.radius * inv_count / pmf;
-        vec3 flux = vec3(dvec3(ps.radiance) * scale);
-        const vec3 w = ps.dir;
-        Frame frame(w);
-        vec2 d = sample_concentric_disk(vec2(rng.uniform(), rng.uniform())) * c.radius;
-        vec3 disk = c.center + c.radius * w + frame.t * d.x + frame.b * d.y;
-        // Start outside every cluster so the ray meets all virtual objects on its line.
-        vec3 oc = disk - global_center;
-        float b = glm::dot(oc, w), cc = glm::dot(oc, oc) - global_radius * global_radius;
-        float s_exit = -b + std::sqrt(std::max(0.0f, b * b - cc));
-        vec3 origin = disk + w * (std::max(0.0f, s_exit) + scene.ray_epsilon());
-        // A line through several clusters is owned by the first one it crosses.
-        for (size_t j = 0; j < k; ++j)
-            if (line_hits_sphere(origin, w, scene.clusters()[j].center, scene.clusters()[j].radius)) return;
-        Ray down{origin, -w};
+        EmittedPhoton e = emitter.emit(rng);
+        if (!e.valid) return;
+        const vec3 w = -e.ray.dir, origin = e.ray.org, flux = e.flux;
+        const Ray& down = e.ray;
         Hit hv = scene.intersect_virtual(down);
         ++out.stats.rays;
         if (!hv) return;
@@ -137,21 +98,66 @@ struct Tracer {
 
 }  // namespace
 
+PhotonEmitter::PhotonEmitter(const RenderScene& scene, int64_t count)
+    : scene_(scene), inv_count_(1.0 / double(std::max<int64_t>(1, count))) {
+    std::vector<double> w;
+    for (const EmissionCluster& c : scene.clusters()) w.push_back(double(c.radius) * c.radius);
+    cluster_table_ = AliasTable(w);
+    const auto& cl = scene.clusters();
+    if (cl.empty()) return;
+    global_center_ = cl[0].center;
+    global_radius_ = cl[0].radius;
+    for (size_t i = 1; i < cl.size(); ++i)
+        enclose(global_center_, global_radius_, cl[i].center, cl[i].radius, global_center_, global_radius_);
+}
+
+EmittedPhoton PhotonEmitter::emit(Rng& rng) const {
+    EmittedPhoton e;
+    size_t k = cluster_table_.sample(rng.uniform_double());
+    const EmissionCluster& c = scene_.clusters()[k];
+    const Probe& probe = scene_.probe();
+    ProbeSample ps = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
+    if (ps.pdf <= 0) return e;
+    double pmf = probe.pixel_pmf(ps.pixel) * cluster_table_.pmf(k);
+    if (pmf <= 0) return e;
+    // Flux through the cluster's cross-section from this probe pixel, per photon.
+    int row = int(ps.pixel / size_t(probe.width()));
+    double scale = probe.pixel_solid_angle(row) * kPi * double(c.radius) * c.radius * inv_count_ / pmf;
+    e.flux = vec3(dvec3(ps.radiance) * scale);
+    const vec3 w = ps.dir;
+    Frame frame(w);
+    vec2 d = sample_concentric_disk(vec2(rng.uniform(), rng.uniform())) * c.radius;
+    vec3 disk = c.center + c.radius * w + frame.t * d.x + frame.b * d.y;
+    // Start outside every cluster so the ray meets all virtual objects on its line.
+    vec3 oc = disk - global_center_;
+    float b = glm::dot(oc, w), cc = glm::dot(oc, oc) - global_radius_ * global_radius_;
+    float s_exit = -b + std::sqrt(std::max(0.0f, b * b - cc));
+    vec3 origin = disk + w * (std::max(0.0f, s_exit) + scene_.ray_epsilon());
+    // A line through several clusters is owned by the first one it crosses.
+    for (size_t j = 0; j < k; ++j) {
+        vec3 to_c = scene_.clusters()[j].center - origin;
+        vec3 perp = to_c - glm::dot(to_c, w) * w;
+        if (glm::dot(perp, perp) < scene_.clusters()[j].radius * scene_.clusters()[j].radius) return e;
+    }
+    e.ray = Ray{origin, -w};
+    e.valid = true;
+    return e;
+}
+
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
                          const std::atomic<bool>* cancel) {
     PhotonPass result;
     if (!scene.has_virtual() || count <= 0 || scene.probe().total_luminance_power() <= 0) return result;
-    Tracer tracer(scene);
+    Tracer tracer(scene, count);
     const int64_t blocks = (count + kBlock - 1) / kBlock;
     std::vector<Block> out(blocks);
-    const double inv_count = 1.0 / double(count);
     tbb::parallel_for(tbb::blocked_range<int64_t>(0, blocks, 1), [&](const tbb::blocked_range<int64_t>& r) {
         for (int64_t b = r.begin(); b < r.end(); ++b) {
             if (cancel && cancel->load(std::memory_order_relaxed)) return;
             int64_t end = std::min(count, (b + 1) * kBlock);
             for (int64_t i = b * kBlock; i < end; ++i) {
                 Rng rng = Rng::keyed(seed, pass * 2 + 0, uint64_t(i));
-                tracer.trace_one(rng, out[b], inv_count);
+                tracer.trace_one(rng, out[b]);
             }
         }
     });

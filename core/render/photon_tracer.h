@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "base/rng.h"
 #include "render/photon_map.h"
 #include "render/render_scene.h"
 
@@ -23,6 +24,29 @@ struct PhotonPass {
     std::vector<Photon> real;
     std::vector<Photon> caustic;
     PhotonStats stats;
+};
+
+/// A photon's start: the ray from outside all clusters towards the objects, and its flux.
+struct EmittedPhoton {
+    Ray ray;         ///< travels along -w from outside every cluster
+    vec3 flux{0};    ///< RGB flux through the cluster's cross-section, per photon
+    bool valid = false;  ///< false: a black pixel, or a line an earlier cluster owns
+};
+
+/// Samples photon starts (method.md, "Photon distribution"): a cluster by cross-section, a
+/// probe pixel by the luminance of its flux, a direction inside it, a point on the cluster's
+/// disk; lines crossing several clusters belong to the first one.
+class PhotonEmitter {
+public:
+    PhotonEmitter(const RenderScene& scene, int64_t count);
+    EmittedPhoton emit(Rng& rng) const;
+
+private:
+    const RenderScene& scene_;
+    AliasTable cluster_table_;
+    vec3 global_center_{0};
+    float global_radius_ = 0;
+    double inv_count_ = 1;
 };
 
 /// Shoots `count` photons from the probe at the emission clusters and traces their change to

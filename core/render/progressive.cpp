@@ -31,49 +31,13 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
     sum_dL_.assign(n, dvec3(0));
     sum_alpha_.assign(n, 0.0);
     stats_.pixels_total = n;
-    build_pixel_cache();
+    cache_ = build_pixel_cache(*scene_);
 }
 
 float ProgressiveRenderer::radius_for_pass(int pass) const {
     double r2 = double(r1_) * r1_;
     for (int k = 1; k < pass; ++k) r2 *= (k + double(alpha_)) / (k + 1.0);
     return float(std::sqrt(r2));
-}
-
-void ProgressiveRenderer::build_pixel_cache() {
-    const RenderScene& s = *scene_;
-    const int W = s.photo().width(), H = s.photo().height();
-    const size_t n = size_t(W) * H;
-    near_virtual_.assign(n, 0);
-    has_real_.assign(n, 0);
-    real_point_.assign(n, vec3(0));
-    if (!s.has_virtual()) return;
-    std::vector<uint8_t> sees_virtual(n, 0);
-    tbb::parallel_for(0, H, [&](int y) {
-        for (int x = 0; x < W; ++x) {
-            size_t i = size_t(y) * W + x;
-            Hit hit = s.intersect(s.camera().generate_ray(float(x), float(y)));
-            if (!hit) continue;
-            if (hit.surface->is_virtual) {
-                sees_virtual[i] = 1;
-            } else {
-                has_real_[i] = 1;
-                real_point_[i] = hit.p;
-            }
-        }
-    });
-    // Jittered samples may cross an object's edge within one pixel of a centre that sees it.
-    tbb::parallel_for(0, H, [&](int y) {
-        for (int x = 0; x < W; ++x) {
-            uint8_t v = 0;
-            for (int dy = -1; dy <= 1 && !v; ++dy)
-                for (int dx = -1; dx <= 1 && !v; ++dx) {
-                    int xx = x + dx, yy = y + dy;
-                    if (xx >= 0 && yy >= 0 && xx < W && yy < H) v = sees_virtual[size_t(yy) * W + xx];
-                }
-            near_virtual_[size_t(y) * W + x] = v;
-        }
-    });
 }
 
 void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector<SampleResult>& out,
@@ -103,7 +67,7 @@ void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector
             for (int x = 0; x < W; ++x) {
                 size_t i = size_t(y) * W + x;
                 // Pixels no photon cell can reach keep the photo: no ray, no gather.
-                if (!near_virtual_[i] && !(has_real_[i] && reaches(real_point_[i]))) continue;
+                if (!cache_.near_virtual[i] && !(cache_.has_real[i] && reaches(cache_.real_point[i]))) continue;
                 Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
                 float jx = rng.uniform() - 0.5f, jy = rng.uniform() - 0.5f;
                 out[i] = shader.shade_camera(x, y, float(x) + jx, float(y) + jy, rng);

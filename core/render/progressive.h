@@ -6,6 +6,7 @@
 
 #include "image/image.h"
 #include "render/photon_tracer.h"
+#include "render/pixel_cache.h"
 #include "render/render_scene.h"
 #include "render/shading.h"
 
@@ -63,7 +64,6 @@ public:
     double skipped_fraction() const;
 
 private:
-    void build_pixel_cache();
     /// Traces pass `pass`'s photons and builds its maps with the pass's radius.
     PhotonStats build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel) const;
     void shade_pass(int pass, const PassMaps& maps, std::vector<SampleResult>& out,
@@ -73,10 +73,7 @@ private:
     int64_t photons_per_pass_;
     uint64_t seed_;
     float r1_ = 0, alpha_ = 2.0f / 3.0f;
-    // Pixel cache: what the centre ray sees, computed once per camera/geometry.
-    std::vector<uint8_t> near_virtual_;  ///< the pixel or a neighbour sees a virtual object
-    std::vector<vec3> real_point_;       ///< centre hit on real geometry (valid if has_real_)
-    std::vector<uint8_t> has_real_;
+    PixelCache cache_;  ///< what the centre rays see, once per camera and geometry
     // Accumulators (double: shadow and caustic photons cancel).
     std::vector<dvec3> sum_delta_, sum_dL_;
     std::vector<double> sum_alpha_;
