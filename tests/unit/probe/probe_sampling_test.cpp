@@ -14,16 +14,8 @@ namespace {
 
 constexpr double kPiD = std::numbers::pi;
 
-Image random_probe(int w, int h, uint64_t seed) {
-    Rng rng(seed, 7);
-    Image img(w, h);
-    for (size_t k = 0; k < img.size(); ++k) {
-        float scale = std::exp(6 * rng.uniform() - 3);
-        img[k] = scale * vec3(rng.uniform(), rng.uniform(), rng.uniform());
-        if (rng.uniform() < 0.03f) img[k] = vec3(0);
-    }
-    return img;
-}
+/// This file's random probes: log-uniform radiance over e^6, a few black pixels.
+Image random_probe(int w, int h, uint64_t seed) { return test::random_probe(w, h, seed, 7, 6.0f, 0.03f); }
 
 double band_solid_angle(int row, int w, int h) {
     return 2 * kPiD / w * (std::cos(kPiD * row / h) - std::cos(kPiD * (row + 1) / h));

@@ -8,6 +8,7 @@
 #include "base/sampling.h"
 #include "probe/probe.h"
 #include "probe/synthetic_probe.h"
+#include "probe_test_util.h"
 
 using namespace dp;
 
@@ -15,16 +16,8 @@ namespace {
 
 constexpr double kPiD = std::numbers::pi;
 
-Image random_probe(int w, int h, uint64_t seed) {
-    Rng rng(seed, 5);
-    Image img(w, h);
-    for (size_t k = 0; k < img.size(); ++k) {
-        float scale = std::exp(8 * rng.uniform() - 4);
-        img[k] = scale * vec3(rng.uniform(), rng.uniform(), rng.uniform());
-        if (rng.uniform() < 0.05f) img[k] = vec3(0);
-    }
-    return img;
-}
+/// This file's random probes: log-uniform radiance over e^8, a few black pixels.
+Image random_probe(int w, int h, uint64_t seed) { return test::random_probe(w, h, seed, 5, 8.0f, 0.05f); }
 
 vec3 pixel_centre(int i, int j, int w, int h) {
     return latlong_direction((i + 0.5f) / w, (j + 0.5f) / h);

@@ -4,7 +4,22 @@
 #include <limits>
 #include <vector>
 
+#include "base/rng.h"
+#include "image/image.h"
+
 namespace dp::test {
+
+/// A probe with log-uniform random colours spanning e^log_range, `zero_fraction` of it black.
+inline Image random_probe(int w, int h, uint64_t seed, uint64_t stream, float log_range, float zero_fraction) {
+    Rng rng(seed, stream);
+    Image img(w, h);
+    for (size_t k = 0; k < img.size(); ++k) {
+        float scale = std::exp(log_range * rng.uniform() - 0.5f * log_range);
+        img[k] = scale * vec3(rng.uniform(), rng.uniform(), rng.uniform());
+        if (rng.uniform() < zero_fraction) img[k] = vec3(0);
+    }
+    return img;
+}
 
 /// Regularised upper incomplete gamma function Q(a, x) = Gamma(a, x) / Gamma(a): a series below
 /// x = a + 1 and Lentz's continued fraction above (Numerical Recipes, section 6.2).

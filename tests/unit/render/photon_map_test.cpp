@@ -16,6 +16,20 @@ std::vector<Photon> random_photons(size_t n, uint64_t seed) {
     }
     return ps;
 }
+/// Reference: sum over every photon within r of x on an upward-facing surface.
+dvec3 brute_gather(const std::vector<Photon>& ps, const vec3& x, float r) {
+    dvec3 sum(0);
+    for (const Photon& p : ps)
+        if (glm::dot(p.position - x, p.position - x) <= r * r && p.normal.y > 0) sum += dvec3(p.flux);
+    return sum;
+}
+
+void expect_near(const dvec3& got, const dvec3& want) {
+    EXPECT_NEAR(got.x, want.x, 1e-9);
+    EXPECT_NEAR(got.y, want.y, 1e-9);
+    EXPECT_NEAR(got.z, want.z, 1e-9);
+}
+
 }  // namespace
 
 TEST(PhotonMap, GatherEqualsABruteForceSumOverPhotonsInRangeFacingTheSameWay) {
@@ -26,13 +40,7 @@ TEST(PhotonMap, GatherEqualsABruteForceSumOverPhotonsInRangeFacingTheSameWay) {
         Rng rng(9, 9);
         for (int q = 0; q < 200; ++q) {
             vec3 x = vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 2.4f - 1.2f;
-            dvec3 brute(0);
-            for (const Photon& p : ps)
-                if (glm::dot(p.position - x, p.position - x) <= r * r && p.normal.y > 0) brute += dvec3(p.flux);
-            dvec3 got = map.gather(x, vec3(0, 1, 0));
-            EXPECT_NEAR(got.x, brute.x, 1e-9);
-            EXPECT_NEAR(got.y, brute.y, 1e-9);
-            EXPECT_NEAR(got.z, brute.z, 1e-9);
+            expect_near(map.gather(x, vec3(0, 1, 0)), brute_gather(ps, x, r));
         }
     }
 }
@@ -68,13 +76,7 @@ TEST(PhotonMap, GatherStaysExactWhenPhotonsSpanMoreCellsThanOneKeyHolds) {
     map.build(ps, r);
     for (size_t q = 0; q < ps.size(); q += 7) {
         vec3 x = ps[q].position + vec3(3e-5f);
-        dvec3 brute(0);
-        for (const Photon& p : ps)
-            if (glm::dot(p.position - x, p.position - x) <= r * r && p.normal.y > 0) brute += dvec3(p.flux);
-        dvec3 got = map.gather(x, vec3(0, 1, 0));
-        EXPECT_NEAR(got.x, brute.x, 1e-9);
-        EXPECT_NEAR(got.y, brute.y, 1e-9);
-        EXPECT_NEAR(got.z, brute.z, 1e-9);
+        expect_near(map.gather(x, vec3(0, 1, 0)), brute_gather(ps, x, r));
         EXPECT_TRUE(map.reaches(x));
     }
 }
