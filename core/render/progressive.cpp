@@ -173,8 +173,6 @@ Image shadow_matte(const Image& photo, const Image& dL) {
     return out;
 }
 
-Image ProgressiveRenderer::shadow_matte() const { return dp::shadow_matte(scene_->photo(), delta_layer()); }
-
 double ProgressiveRenderer::skipped_fraction() const {
     if (stats_.pixels_total == 0) return 0;
     return 1.0 - double(stats_.pixels_gathered) / double(stats_.pixels_total);

@@ -58,9 +58,7 @@ public:
     Image delta_layer() const;
     /// Fraction of samples that saw a virtual object first (grey RGB).
     Image alpha_layer() const;
-    /// Shadow-only matte: fraction of the photo's light removed, in [0, 1] (grey RGB).
-    Image shadow_matte() const;
-    /// True if pixel i needs no gather in the current pass state (for benchmarks).
+    /// Fraction of pixels the last pass left as the photo, with no ray and no gather.
     double skipped_fraction() const;
 
 private:
