@@ -18,6 +18,8 @@ Command add_info_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_convert_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+/// Time against error of both methods on benchmark scenes.
+Command add_bench_command(CLI::App& app);
 /// Hidden: writes constant images and synthetic probes for the shell tests.
 Command add_make_test_image_command(CLI::App& app);
 
