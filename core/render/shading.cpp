@@ -14,7 +14,7 @@ constexpr int kGlassSplits = 2;
 constexpr int kDiffuseGatherDepth = 3;
 // Virtual diffuse surfaces seen by the camera are few pixels but carry the noisiest estimate
 // (probe and surroundings by Monte Carlo): average two samples there per pass.
-constexpr int kCameraDiffuseSamples = 2;
+constexpr int kCameraDiffuseSamples = 4;
 
 float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
 }  // namespace
