@@ -50,6 +50,7 @@ def main():
     ap.add_argument("rows")
     ap.add_argument("--out", required=True)
     ap.add_argument("--image-prefix", default="", help="prefix of the PNG links in summary.md")
+    ap.add_argument("--note", default="", help="a line about the machine, printed under the table")
     args = ap.parse_args()
     doc = json.load(open(args.rows))
     os.makedirs(args.out, exist_ok=True)
@@ -100,10 +101,11 @@ def main():
             lines.append(f"| {name} | {scene['changed_pixels']} | {100 * floor:.2f}% | {m} | " +
                          " | ".join(fmt_time(t) for t in r[:3]) +
                          f" | {100 * r[3]:.2f}% | {r[4]:.1f} s | {speedup} |")
-    out = ["# Time against error", "",
-           "Relative RMSE over the pixels the virtual objects change (whole image for the no-op "
+    out = ["Relative RMSE over the pixels the virtual objects change (whole image for the no-op "
            "scene) against render time; times interpolated log-log between measurements.", ""]
     out += lines
+    if args.note:
+        out += ["", "Machine: " + args.note]
     if ("big_proxy", "differential") in pass_times and ("shadow_hard", "differential") in pass_times:
         a, b = pass_times[("big_proxy", "differential")], pass_times[("shadow_hard", "differential")]
         out += ["", f"Median differential pass with the 1M-triangle proxy: {a * 1000:.0f} ms; "
@@ -113,7 +115,9 @@ def main():
     for scene in doc["scenes"]:
         n = scene["scene"]
         out.append(f"| {n} | " + " | ".join(f"{pass_times.get((n, m), float('nan')):.3f}" for m in methods) + " |")
-    out += ["", "Plots:", ""] + [f"![{s['scene']}]({args.image_prefix}{s['scene']}.png)" for s in doc["scenes"]]
+    out += ["", "Plots (solid: changed pixels; dotted: whole image; dashed: the truth's noise):", ""]
+    out += [" ".join(f"![{s['scene']}]({args.image_prefix}{s['scene']}.png)" for s in doc["scenes"][i:i + 2])
+            for i in range(0, len(doc["scenes"]), 2)]
     with open(os.path.join(args.out, "summary.md"), "w") as f:
         f.write("\n".join(out) + "\n")
     print(f"wrote {args.out}/summary.md and {len(doc['scenes'])} plots")

@@ -16,14 +16,25 @@ cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
 cmake --build "$BUILD" --target diffphoton
 /usr/bin/python3 bench/scenes/make_scenes.py --diffphoton "$BUILD/app/diffphoton" --out "$SCENES"
 mkdir -p "$OUT"
+load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 "$BUILD/app/diffphoton" bench "${ORDER[@]/#/$SCENES/}" -o "$OUT/rows.json" --images "$OUT/images" \
   --max-seconds-differential "$DIFF_S" --max-seconds-standard "$STD_S"
-/usr/bin/python3 bench/plot_time_vs_error.py "$OUT/rows.json" --out "$OUT" --image-prefix images/time-vs-error/
+/usr/bin/python3 bench/plot_time_vs_error.py "$OUT/rows.json" --out "$OUT" --image-prefix images/time-vs-error/ \
+  --note "$(nproc) cores; load average (1, 5, 15 min) $load_before before the run, $(cut -d' ' -f1-3 /proc/loadavg) after; commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)."
 if [ "${1:-}" = "--update-docs" ]; then
+  # The summary replaces the marked region of docs/benchmarks.md; plots and last images go
+  # beside it, the rows to docs/time-vs-error-rows.json.
   mkdir -p docs/images/time-vs-error
   cp "$OUT"/*.png docs/images/time-vs-error/
   for f in "$OUT"/images/*.png; do cp "$f" "docs/images/time-vs-error/render-$(basename "$f")"; done
-  cp "$OUT/summary.md" docs/time-vs-error.md
   cp "$OUT/rows.json" docs/time-vs-error-rows.json
-  echo "updated docs/time-vs-error.md and docs/images/time-vs-error/"
+  /usr/bin/python3 - "$OUT/summary.md" docs/benchmarks.md <<'PY'
+import re, sys
+summary, doc = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+begin, end = "<!-- time-vs-error:begin -->", "<!-- time-vs-error:end -->"
+assert begin in doc and end in doc, "docs/benchmarks.md lacks the time-vs-error markers"
+head, rest = doc.split(begin, 1)
+open(sys.argv[2], "w").write(head + begin + "\n" + summary + end + rest.split(end, 1)[1])
+PY
+  echo "updated docs/benchmarks.md and docs/images/time-vs-error/"
 fi

@@ -46,6 +46,8 @@ public:
     Image alpha_layer() const override;
     /// Fraction of pixels the last pass left as the photo, with no ray and no gather.
     double skipped_fraction() const;
+    /// Estimates per camera sample on virtual diffuse surfaces (shading.h).
+    int camera_diffuse_samples() const { return diffuse_samples_; }
 
 private:
     /// Traces pass `pass`'s photons and builds its maps with the pass's radius.
@@ -58,6 +60,7 @@ private:
     uint64_t seed_;
     float r1_ = 0, alpha_ = 2.0f / 3.0f;
     PixelCache cache_;  ///< what the centre rays see, once per camera and geometry
+    int diffuse_samples_ = 2;
     // Accumulators (double: shadow and caustic photons cancel).
     std::vector<dvec3> sum_delta_, sum_dL_;
     std::vector<double> sum_alpha_;
