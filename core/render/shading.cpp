@@ -13,7 +13,6 @@ namespace {
 constexpr int kGlassSplits = 2;
 constexpr int kDiffuseGatherDepth = 3;
 
-float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
 }  // namespace
 
 int camera_diffuse_samples(int64_t photons_per_pass, size_t pixels_near_virtual) {
