@@ -21,6 +21,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// Errors are measured on pixel values clamped at this multiple of the photograph's 99.9th
+/// percentile luminance: a display of the photo shows nothing brighter, and a few pixels that
+/// see the sun in a mirror (10^4 times brighter) would otherwise decide every figure.
+constexpr float kCeilingFactor = 8.0f;
+
 struct BenchOptions {
     std::vector<std::string> scenes;
     std::vector<std::string> methods{"differential", "standard", "standard-correlated"};
@@ -36,6 +41,7 @@ struct BenchScene {
     std::shared_ptr<RenderScene> scene;
     Image truth, alpha;
     std::vector<bool> changed, on_objects, on_real;  ///< changed pixels; split by what they see
+    float ceiling = 0;  ///< errors are measured on values clamped here
     nlohmann::json info;
 };
 
@@ -61,12 +67,14 @@ BenchScene load_bench_scene(const std::string& dir) {
         b.on_objects[i] = b.changed[i] && b.alpha[i].x > 0;
         b.on_real[i] = b.changed[i] && b.alpha[i].x == 0;
     }
+    b.ceiling = kCeilingFactor * luminance_quantile(photo, 0.999);
     // The mean of two independent halves has half the error of their difference.
-    const ImageError whole = image_error(a, bb), changed = image_error(a, bb, b.changed);
+    const ImageError whole = image_error(a, bb, {}, b.ceiling), changed = image_error(a, bb, b.changed, b.ceiling);
     b.info = {{"scene", b.name},
               {"width", photo.width()},
               {"height", photo.height()},
               {"changed_pixels", changed.pixels},
+              {"error_ceiling", b.ceiling},
               {"truth_rmse", whole.rmse / 2},
               {"truth_rel_rmse", whole.rel_rmse / 2},
               {"truth_rmse_changed", changed.rmse / 2},
@@ -99,9 +107,10 @@ nlohmann::json run_method(const BenchOptions& o, const BenchScene& b, const std:
         if (r->passes() + 1e-9 < next_snapshot && !last) continue;
         while (next_snapshot <= r->passes()) next_snapshot = std::max(next_snapshot + 1, std::round(next_snapshot * std::sqrt(2.0)));
         const Image img = r->image();
-        const ImageError whole = image_error(img, b.truth), changed = image_error(img, b.truth, b.changed);
-        const ImageError objects = image_error(img, b.truth, b.on_objects);
-        const ImageError real = image_error(img, b.truth, b.on_real);
+        const ImageError whole = image_error(img, b.truth, {}, b.ceiling);
+        const ImageError changed = image_error(img, b.truth, b.changed, b.ceiling);
+        const ImageError objects = image_error(img, b.truth, b.on_objects, b.ceiling);
+        const ImageError real = image_error(img, b.truth, b.on_real, b.ceiling);
         const RenderStats& st = r->stats();
         rows.push_back({{"scene", b.name},
                         {"method", method},

@@ -1,12 +1,13 @@
 #include "image/image_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 namespace dp {
 
-ImageError image_error(const Image& a, const Image& truth, const std::vector<bool>& mask) {
+ImageError image_error(const Image& a, const Image& truth, const std::vector<bool>& mask, float ceiling) {
     if (a.width() != truth.width() || a.height() != truth.height())
         throw std::invalid_argument("image_error: images differ in size");
     if (!mask.empty() && mask.size() != a.size())
@@ -15,9 +16,12 @@ ImageError image_error(const Image& a, const Image& truth, const std::vector<boo
     ImageError e;
     for (size_t i = 0; i < a.size(); ++i) {
         if (!mask.empty() && !mask[i]) continue;
-        const dvec3 d = dvec3(a[i]) - dvec3(truth[i]);
+        // NaN survives glm::min (it compares false), so a non-finite pixel still shows.
+        const vec3 ai = is_finite(a[i]) ? glm::min(a[i], vec3(ceiling)) : a[i];
+        const vec3 ti = glm::min(truth[i], vec3(ceiling));
+        const dvec3 d = dvec3(ai) - dvec3(ti);
         se += (d.x * d.x + d.y * d.y + d.z * d.z) / 3.0;
-        sum_truth += luminance(dvec3(truth[i]));
+        sum_truth += luminance(dvec3(ti));
         ++e.pixels;
     }
     if (e.pixels == 0) return e;
@@ -38,6 +42,15 @@ std::vector<bool> changed_pixels(const Image& photo, const Image& truth, const I
         mask[i] = change > threshold * std::max(p, floor) || (!alpha.empty() && alpha[i].x > 0);
     }
     return mask;
+}
+
+float luminance_quantile(const Image& image, double q) {
+    if (image.empty()) return 0;
+    std::vector<float> lum(image.size());
+    for (size_t i = 0; i < image.size(); ++i) lum[i] = luminance(image[i]);
+    const size_t k = std::min(lum.size() - 1, size_t(std::clamp(q, 0.0, 1.0) * double(lum.size())));
+    std::nth_element(lum.begin(), lum.begin() + std::ptrdiff_t(k), lum.end());
+    return lum[k];
 }
 
 Image mean_image(const Image& a, const Image& b) {

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "image/image.h"
@@ -14,9 +15,14 @@ struct ImageError {
 };
 
 /// Compares `a` with `truth` over the pixels where `mask` is true (all pixels if `mask` is
-/// empty). Non-finite pixels of `a` count as an infinite error. Throws std::invalid_argument
-/// if the sizes differ.
-ImageError image_error(const Image& a, const Image& truth, const std::vector<bool>& mask = {});
+/// empty), both clamped to `ceiling` per channel first (so that a few pixels showing the sun
+/// need not decide the figure). Non-finite pixels of `a` count as an infinite error. Throws
+/// std::invalid_argument if the sizes differ.
+ImageError image_error(const Image& a, const Image& truth, const std::vector<bool>& mask = {},
+                       float ceiling = std::numeric_limits<float>::infinity());
+
+/// The luminance below which the fraction `q` of the image's pixels lie (0 for an empty image).
+float luminance_quantile(const Image& image, double q);
 
 /// The pixels a virtual object changes: seen through it (alpha > 0) or with a luminance change
 /// from the photograph larger than `threshold` times the photo's (floored at `floor`).

@@ -44,3 +44,22 @@ TEST(ImageMetrics, SizeMismatchesAreRejected) {
     EXPECT_THROW(image_error(Image(2, 2), Image(2, 3)), std::invalid_argument);
     EXPECT_THROW(mean_image(Image(2, 2), Image(3, 2)), std::invalid_argument);
 }
+
+TEST(ImageMetrics, ACeilingClampsBothImagesBeforeTheyAreCompared) {
+    Image truth(2, 1, vec3(1.0f)), a = truth;
+    truth[1] = vec3(1000.0f);  // the sun in a mirror
+    a[1] = vec3(10.0f);
+    EXPECT_GT(image_error(a, truth).rmse, 500.0);
+    ImageError e = image_error(a, truth, {}, 4.0f);
+    EXPECT_NEAR(e.rmse, 0.0, 1e-9);
+    a[0] = vec3(2.0f);
+    EXPECT_NEAR(image_error(a, truth, {}, 4.0f).rmse, std::sqrt(0.5), 1e-6);
+}
+
+TEST(ImageMetrics, TheLuminanceQuantileSplitsThePixels) {
+    Image img(10, 1);
+    for (int i = 0; i < 10; ++i) img[i] = vec3(float(i));
+    EXPECT_FLOAT_EQ(luminance_quantile(img, 0.0), 0.0f);
+    EXPECT_FLOAT_EQ(luminance_quantile(img, 0.5), 5.0f);
+    EXPECT_FLOAT_EQ(luminance_quantile(img, 1.0), 9.0f);
+}
