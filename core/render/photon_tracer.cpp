@@ -8,6 +8,7 @@
 
 #include "base/rng.h"
 #include "base/sampling.h"
+#include "render/photographed_radiance.h"
 #include "render/scattering.h"
 
 namespace dp {
@@ -27,13 +28,14 @@ struct Tracer {
     PhotonEmitter emitter;
     int max_depth = 8;
 
-    Tracer(const RenderScene& s, int64_t count)
-        : scene(s), emitter(s, count), max_depth(std::max(1, s.project().render.max_depth)) {}
+    Tracer(const RenderScene& s, int64_t count, int64_t surround_count)
+        : scene(s), emitter(s, count, surround_count), max_depth(std::max(1, s.project().render.max_depth)) {}
 
     /// Follows a photon from a known first hit: stores on real surfaces (and caustics on
-    /// virtual diffuse ones), bounces until absorbed. Negative photons die on virtual objects.
-    void follow(Hit hit, vec3 dir, vec3 flux, bool negative, Rng& rng, Block& out) const {
-        bool specular_only = !negative;
+    /// virtual diffuse ones if `caustics`), bounces until absorbed. Negative photons die on
+    /// virtual objects.
+    void follow(Hit hit, vec3 dir, vec3 flux, bool negative, Rng& rng, Block& out, bool caustics = true) const {
+        bool specular_only = !negative && caustics;
         const vec3 flux0 = glm::abs(flux);
         const float flux0_max = std::max({flux0.x, flux0.y, flux0.z});
         for (int depth = 0; depth < max_depth; ++depth) {
@@ -94,12 +96,56 @@ struct Tracer {
         if (hr) follow(hr, -w, -flux, true, rng, out);
         follow(hv, -w, flux, false, rng, out);
     }
+
+    /// The probe light a real point no longer reflects towards -dir because a virtual object
+    /// blocks it (one probe sample): the photo shows the point unshadowed, and a floor in the
+    /// object's own shadow must not light the object's underside as if it were sunlit.
+    vec3 shadowed_radiance(const Hit& x, const vec3& dir, Rng& rng, Block& out) const {
+        const vec3 n = facing_normal(x.ng, dir);
+        const ProbeSample s = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
+        const float cos_t = glm::dot(n, s.dir);
+        if (cos_t <= 0 || s.pdf <= 0) return vec3(0);
+        Hit h = x;
+        h.ng = n;
+        const Ray to_probe{scene.offset_origin(h, s.dir), s.dir};
+        out.stats.rays += 2;
+        if (!scene.intersect_virtual(to_probe) || scene.occluded_real(to_probe)) return vec3(0);
+        return x.surface->reflectance_at(x.uv) * kInvPi * s.radiance * (cos_t / s.pdf);
+    }
+
+    /// Light from a real surface at the objects: reflected on (positive photons) and blocked
+    /// from the real surface behind them (negative: indirect shadows). No caustic photons: the
+    /// display's final gather already sees real surfaces through specular chains.
+    void trace_surround(Rng& rng, Block& out) const {
+        ++out.stats.emitted;
+        const PhotonEmitter::SurroundLine line = emitter.emit_surround_line(rng);
+        if (!line.valid) return;
+        Hit x = scene.intersect_real(Ray{line.through, line.w});
+        ++out.stats.rays;
+        if (!x) return;  // the probe: the probe photons carry that light
+        const vec3 down = -line.w;
+        const Ray ray{scene.offset_origin(x, down), down};
+        Hit hv = scene.intersect_virtual(ray);
+        ++out.stats.rays;
+        if (!hv) return;
+        Hit hr = scene.intersect_real(ray);
+        ++out.stats.rays;
+        if (hr && hr.t < hv.t) return;  // another real surface takes this light, as photographed
+        const vec3 L = photographed_radiance(scene, x, line.w, rng) - shadowed_radiance(x, line.w, rng, out);
+        if (L == vec3(0) || !is_finite(L)) return;
+        const vec3 flux = vec3(dvec3(L) * line.flux_per_radiance);
+        ++out.stats.hit_virtual;
+        if (hr) follow(hr, down, -flux, true, rng, out);
+        follow(hv, down, flux, false, rng, out, false);
+    }
 };
 
 }  // namespace
 
-PhotonEmitter::PhotonEmitter(const RenderScene& scene, int64_t count)
-    : scene_(scene), inv_count_(1.0 / double(std::max<int64_t>(1, count))) {
+PhotonEmitter::PhotonEmitter(const RenderScene& scene, int64_t count, int64_t surround_count)
+    : scene_(scene),
+      inv_count_(1.0 / double(std::max<int64_t>(1, count))),
+      inv_surround_count_(surround_count > 0 ? 1.0 / double(surround_count) : 0.0) {
     std::vector<double> w;
     for (const EmissionCluster& c : scene.clusters()) w.push_back(double(c.radius) * c.radius);
     cluster_table_ = AliasTable(w);
@@ -133,31 +179,58 @@ EmittedPhoton PhotonEmitter::emit(Rng& rng) const {
     float b = glm::dot(oc, w), cc = glm::dot(oc, oc) - global_radius_ * global_radius_;
     float s_exit = -b + std::sqrt(std::max(0.0f, b * b - cc));
     vec3 origin = disk + w * (std::max(0.0f, s_exit) + scene_.ray_epsilon());
-    // A line through several clusters is owned by the first one it crosses.
-    for (size_t j = 0; j < k; ++j) {
-        vec3 to_c = scene_.clusters()[j].center - origin;
-        vec3 perp = to_c - glm::dot(to_c, w) * w;
-        if (glm::dot(perp, perp) < scene_.clusters()[j].radius * scene_.clusters()[j].radius) return e;
-    }
+    if (owned_by_earlier_cluster(k, origin, w)) return e;
     e.ray = Ray{origin, -w};
     e.valid = true;
     return e;
+}
+
+bool PhotonEmitter::owned_by_earlier_cluster(size_t k, const vec3& point, const vec3& w) const {
+    for (size_t j = 0; j < k; ++j) {
+        const vec3 to_c = scene_.clusters()[j].center - point;
+        const vec3 perp = to_c - glm::dot(to_c, w) * w;
+        if (glm::dot(perp, perp) < scene_.clusters()[j].radius * scene_.clusters()[j].radius) return true;
+    }
+    return false;
+}
+
+PhotonEmitter::SurroundLine PhotonEmitter::emit_surround_line(Rng& rng) const {
+    SurroundLine line;
+    const size_t k = cluster_table_.sample(rng.uniform_double());
+    const EmissionCluster& c = scene_.clusters()[k];
+    const double pmf = cluster_table_.pmf(k);
+    if (pmf <= 0) return line;
+    const float z = 1.0f - 2.0f * rng.uniform(), phi = 2.0f * kPi * rng.uniform();
+    const float sz = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    line.w = vec3(sz * std::cos(phi), z, sz * std::sin(phi));
+    const Frame frame(line.w);
+    const vec2 d = sample_concentric_disk(vec2(rng.uniform(), rng.uniform())) * c.radius;
+    line.through = c.center + frame.t * d.x + frame.b * d.y;
+    if (owned_by_earlier_cluster(k, line.through, line.w)) return line;
+    // Radiance L through the disk (area pi R^2) from a direction of pdf 1 / (4 pi).
+    line.flux_per_radiance = 4.0 * kPi * kPi * double(c.radius) * c.radius * inv_surround_count_ / pmf;
+    line.valid = true;
+    return line;
 }
 
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
                          const std::atomic<bool>* cancel) {
     PhotonPass result;
     if (!scene.has_virtual() || count <= 0 || scene.probe().total_luminance_power() <= 0) return result;
-    Tracer tracer(scene, count);
-    const int64_t blocks = (count + kBlock - 1) / kBlock;
+    const int64_t surround = count / kSurroundPhotonDivisor, total = count + surround;
+    Tracer tracer(scene, count, surround);
+    const int64_t blocks = (total + kBlock - 1) / kBlock;
     std::vector<Block> out(blocks);
     tbb::parallel_for(tbb::blocked_range<int64_t>(0, blocks, 1), [&](const tbb::blocked_range<int64_t>& r) {
         for (int64_t b = r.begin(); b < r.end(); ++b) {
             if (cancel && cancel->load(std::memory_order_relaxed)) return;
-            int64_t end = std::min(count, (b + 1) * kBlock);
+            int64_t end = std::min(total, (b + 1) * kBlock);
             for (int64_t i = b * kBlock; i < end; ++i) {
                 Rng rng = Rng::keyed(seed, pass * 2 + 0, uint64_t(i));
-                tracer.trace_one(rng, out[b]);
+                if (i < count)
+                    tracer.trace_one(rng, out[b]);
+                else
+                    tracer.trace_surround(rng, out[b]);
             }
         }
     });

@@ -38,19 +38,39 @@ struct EmittedPhoton {
 /// disk; lines crossing several clusters belong to the first one.
 class PhotonEmitter {
 public:
-    PhotonEmitter(const RenderScene& scene, int64_t count);
+    /// `count` probe photons and `surround_count` photons from the real surroundings per pass.
+    PhotonEmitter(const RenderScene& scene, int64_t count, int64_t surround_count = 0);
     EmittedPhoton emit(Rng& rng) const;
 
+    /// A line towards the objects for light from the real surroundings: a cluster by
+    /// cross-section, a direction `w` uniform on the sphere, a point on the cluster's disk
+    /// (through its centre, across `w`). The emitter is the first real surface from `through`
+    /// along `w`; a photon's flux is its radiance times `flux_per_radiance`.
+    struct SurroundLine {
+        vec3 through{0}, w{0};
+        double flux_per_radiance = 0;
+        bool valid = false;  ///< false: a line an earlier cluster owns
+    };
+    SurroundLine emit_surround_line(Rng& rng) const;
+
 private:
+    /// A line through several clusters is owned by the first one it crosses.
+    bool owned_by_earlier_cluster(size_t k, const vec3& point, const vec3& w) const;
+
     const RenderScene& scene_;
     AliasTable cluster_table_;
     vec3 global_center_{0};
     float global_radius_ = 0;
-    double inv_count_ = 1;
+    double inv_count_ = 1, inv_surround_count_ = 0;
 };
 
+/// Photons from the real surroundings per probe photon: light that real surfaces send at the
+/// objects, reflected onto other real surfaces or blocked from them (past the paper).
+inline constexpr int64_t kSurroundPhotonDivisor = 4;
+
 /// Shoots `count` photons from the probe at the emission clusters and traces their change to
-/// the light (method.md, "Photon distribution"). The result depends only on (seed, pass), not
+/// the light (method.md, "Photon distribution"), then count / kSurroundPhotonDivisor photons
+/// of light from the real surroundings (their photographed radiance) at the same clusters. The result depends only on (seed, pass), not
 /// on the number of threads. Checks `cancel` between blocks of photons.
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
                          const std::atomic<bool>* cancel = nullptr);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/photographed_radiance.h"
 #include "render/scattering.h"
 
 namespace dp {
@@ -35,30 +36,7 @@ vec3 Shader::real_delta(const Hit& hit, const vec3& dir) const {
 }
 
 vec3 Shader::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
-    const Camera& cam = scene_.camera();
-    vec3 to_cam = cam.position() - hit.p;
-    vec2 px;
-    // The photo shows this point if it is in frame, on the side the camera sees, unoccluded.
-    bool same_side = glm::dot(hit.ng, to_cam) * glm::dot(hit.ng, -dir) > 0;
-    if (same_side && cam.project(hit.p, px) && cam.in_image(px)) {
-        float dist = glm::length(to_cam);
-        vec3 d = to_cam / dist;
-        vec3 org = scene_.offset_origin(hit, d);
-        if (!scene_.occluded_real(Ray{org, d}, dist * (1 - 1e-4f)))
-            return scene_.photo().bilinear(px.x, px.y) + real_delta(hit, dir);
-    }
-    // Not in the photo: the proxy's albedo lit by the probe (one sample, averaged over passes).
-    vec3 n = facing_normal(hit.ng, dir);
-    ProbeSample s = scene_.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
-    vec3 L(0);
-    float cos_t = glm::dot(n, s.dir);
-    if (cos_t > 0 && s.pdf > 0) {
-        Hit h = hit;
-        h.ng = n;
-        if (!scene_.occluded_real(Ray{scene_.offset_origin(h, s.dir), s.dir}))
-            L = hit.surface->reflectance_at(hit.uv) * kInvPi * s.radiance * (cos_t / s.pdf);
-    }
-    return L + real_delta(hit, dir);
+    return photographed_radiance(scene_, hit, dir, rng) + real_delta(hit, dir);
 }
 
 vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples) const {

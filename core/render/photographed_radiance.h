@@ -1,0 +1,13 @@
+#pragma once
+#include "base/rng.h"
+#include "render/render_scene.h"
+
+namespace dp {
+
+/// Radiance a real surface point sends towards -dir in the unaltered scene: the photograph's
+/// pixel where the camera sees the point (same side, in frame, unoccluded by real geometry;
+/// Lambertian, so the direction does not matter), else rho E / pi with E from one probe sample
+/// with real-geometry visibility (unbiased, averaged over passes).
+vec3 photographed_radiance(const RenderScene& scene, const Hit& hit, const vec3& dir, Rng& rng);
+
+}  // namespace dp
