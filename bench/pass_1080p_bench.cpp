@@ -141,7 +141,8 @@ void BM_OnePass1080pPhases(benchmark::State& state) {
             // Same sample streams as ProgressiveRenderer::shade_pass for pass 1.
             auto shade = [&](size_t i, int x, int y) {
                 Rng rng = Rng::keyed(seed, uint64_t(kPass) * 2 + 1, i);
-                float jx = rng.uniform() - 0.5f, jy = rng.uniform() - 0.5f;
+                const vec2 j = camera_jitter(seed, kPass, i);
+                const float jx = j.x, jy = j.y;
                 out[i] = shader.shade_camera(x, y, float(x) + jx, float(y) + jy, rng);
             };
             auto rows = [&](auto&& body) { return count_over_rows(W, H, body); };

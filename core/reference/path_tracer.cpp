@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "base/rng.h"
+#include "base/sampling.h"
 #include "render/scattering.h"
 
 namespace dp {
@@ -79,6 +80,14 @@ struct PathTracer {
 
 }  // namespace
 
+Ray reference_camera_ray(const RenderScene& scene, uint64_t seed, int x, int y, uint64_t sample) {
+    const uint64_t pixel = uint64_t(y) * uint64_t(scene.camera().width()) + uint64_t(x);
+    Rng shift_rng = Rng::keyed(seed ^ 0x7265665f7074ull, pixel, ~uint64_t(0));
+    const vec2 shift(shift_rng.uniform(), shift_rng.uniform());
+    const vec2 j = r2_point(sample, shift) - vec2(0.5f);
+    return scene.camera().generate_ray(float(x) + j.x, float(y) + j.y);
+}
+
 vec3 reference_radiance(const RenderScene& scene, const ReferenceOptions& options, const Ray& ray,
                         uint64_t pixel, int sample) {
     Rng rng = Rng::keyed(options.seed ^ 0x7265665f7074ull, pixel, uint64_t(sample) * 2 + 1);
@@ -99,7 +108,7 @@ Image render_reference(const RenderScene& scene, const ReferenceOptions& options
                 dvec3 sum(0);
                 for (int s = 0; s < options.samples_per_pixel; ++s) {
                     Rng rng = Rng::keyed(options.seed ^ 0x7265665f7074ull, pixel, uint64_t(s) * 2);
-                    Ray ray = scene.camera().generate_ray(x + rng.uniform() - 0.5f, y + rng.uniform() - 0.5f);
+                    const Ray ray = reference_camera_ray(scene, options.seed, x, y, uint64_t(s));
                     vec3 L = pt.radiance(ray, rng);
                     if (is_finite(L)) sum += dvec3(L);
                 }

@@ -28,6 +28,10 @@ Image render_reference(const RenderScene& scene, const ReferenceOptions& options
                        const std::atomic<bool>* cancel = nullptr,
                        const std::function<void(int, int)>& progress = {});
 
+/// Camera ray of sample `sample` in pixel (x, y): sub-pixel positions from the R2 sequence with
+/// a per-pixel random shift (r2_point), so a pixel's samples cover it evenly.
+Ray reference_camera_ray(const RenderScene& scene, uint64_t seed, int x, int y, uint64_t sample);
+
 /// Radiance along one camera ray (exposed for tests and the per-pixel debugger).
 vec3 reference_radiance(const RenderScene& scene, const ReferenceOptions& options, const Ray& ray,
                         uint64_t pixel, int sample);

@@ -11,13 +11,7 @@
 namespace dp {
 
 namespace {
-constexpr uint64_t kCameraStream = 0x7265665f7074ull;  // the reference path tracer's
 constexpr uint64_t kIndependentSeed = 0x9e3779b97f4a7c15ull;
-
-Ray camera_ray(const RenderScene& s, uint64_t seed, int x, int y, uint64_t pixel, uint64_t sample) {
-    Rng rng = Rng::keyed(seed ^ kCameraStream, pixel, sample * 2);
-    return s.camera().generate_ray(x + rng.uniform() - 0.5f, y + rng.uniform() - 0.5f);
-}
 }  // namespace
 
 StandardDifferentialRenderer::StandardDifferentialRenderer(std::shared_ptr<const RenderScene> scene,
@@ -55,7 +49,7 @@ bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) 
                 const uint64_t pixel = uint64_t(y) * W + x;
                 for (uint64_t smp = first; smp < last; ++smp) {
                     // Same camera jitter as the reference path tracer.
-                    const Ray ray = camera_ray(s, with_virtual_.seed, x, y, pixel, smp);
+                    const Ray ray = reference_camera_ray(s, with_virtual_.seed, x, y, smp);
                     Hit first_hit = s.intersect(ray);
                     vec3 L_new = reference_radiance(s, with_virtual_, ray, pixel, int(smp));
                     if (first_hit && first_hit.surface->is_virtual) {
@@ -66,7 +60,7 @@ bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) 
                     }
                     const Ray old_ray = sampling_ == Sampling::Correlated
                                             ? ray
-                                            : camera_ray(s, real_only_.seed, x, y, pixel, smp);
+                                            : reference_camera_ray(s, real_only_.seed, x, y, smp);
                     vec3 L_old = reference_radiance(s, real_only_, old_ray, pixel, int(smp));
                     vec3 d = L_new - L_old;
                     if (!is_finite(d)) { ++local_bad; continue; }

@@ -200,9 +200,7 @@ PhotonEmitter::SurroundLine PhotonEmitter::emit_surround_line(Rng& rng) const {
     const EmissionCluster& c = scene_.clusters()[k];
     const double pmf = cluster_table_.pmf(k);
     if (pmf <= 0) return line;
-    const float z = 1.0f - 2.0f * rng.uniform(), phi = 2.0f * kPi * rng.uniform();
-    const float sz = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    line.w = vec3(sz * std::cos(phi), z, sz * std::sin(phi));
+    line.w = sample_uniform_sphere(vec2(rng.uniform(), rng.uniform()));
     const Frame frame(line.w);
     const vec2 d = sample_concentric_disk(vec2(rng.uniform(), rng.uniform())) * c.radius;
     line.through = c.center + frame.t * d.x + frame.b * d.y;

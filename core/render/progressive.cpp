@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "base/rng.h"
+#include "base/sampling.h"
 #include "render/shading.h"
 
 namespace dp {
@@ -34,6 +35,12 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
     cache_ = build_pixel_cache(*scene_);
     const size_t near = size_t(std::count(cache_.near_virtual.begin(), cache_.near_virtual.end(), uint8_t(1)));
     diffuse_samples_ = dp::camera_diffuse_samples(photons_per_pass_, near);
+}
+
+vec2 camera_jitter(uint64_t seed, int pass, size_t pixel) {
+    Rng shift_rng = Rng::keyed(seed, ~uint64_t(0), pixel);
+    const vec2 shift(shift_rng.uniform(), shift_rng.uniform());
+    return r2_point(uint64_t(pass), shift) - vec2(0.5f);
 }
 
 float ProgressiveRenderer::radius_for_pass(int pass) const {
@@ -71,7 +78,8 @@ void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector
                 // Pixels no photon cell can reach keep the photo: no ray, no gather.
                 if (!cache_.near_virtual[i] && !(cache_.has_real[i] && reaches(cache_.real_point[i]))) continue;
                 Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
-                float jx = rng.uniform() - 0.5f, jy = rng.uniform() - 0.5f;
+                const vec2 j = camera_jitter(seed_, pass, i);
+                const float jx = j.x, jy = j.y;
                 out[i] = shader.shade_camera(x, y, float(x) + jx, float(y) + jy, rng);
                 ++local;
             }

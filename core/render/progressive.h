@@ -17,6 +17,10 @@ namespace dp {
 /// clamp(-lum(dL) / lum(photo), 0, 1), grey RGB; 0 where the photo is black or dL >= 0.
 Image shadow_matte(const Image& photo, const Image& dL);
 
+/// Sub-pixel offset in [-0.5, 0.5)^2 of pixel `pixel`'s camera sample in pass `pass`: point
+/// `pass` of the pixel's shifted R2 sequence, so the passes cover each pixel evenly.
+vec2 camera_jitter(uint64_t seed, int pass, size_t pixel);
+
 /// Progressive differential photon mapping (Knaus & Zwicker 2011): each pass shoots fresh
 /// photons with its own seed and gathers with a shrinking radius; the image is the mean of the
 /// pass images, accumulated in double. A pass depends only on (seed, pass index).
