@@ -47,6 +47,9 @@ struct CalibrationResult {
     Intrinsics intrinsics;
     Pose pose;
     double rms_px = 0;
+    /// World positions of the points the fit used, where the method defines them (board or
+    /// rectangle corners in the frame it chose, the given points), in input order.
+    std::vector<glm::dvec3> world_points;
     std::vector<std::string> warnings;
 
     /// The project's camera (model "opencv").

@@ -88,7 +88,15 @@ ChessboardView detect_chessboard(const Image& image, const ChessboardSpec& spec,
                              std::to_string(spec.rows) +
                              " inner corners found in the image (count the inner corners, "
                              "where four squares meet; the whole board must be visible)");
-    cv::cornerSubPix(grey, corners, cv::Size(5, 5), cv::Size(-1, -1),
+    // The refinement window grows with the squares' size in the image, staying inside them.
+    double spacing = 1e30;
+    for (int r = 0; r < spec.rows; ++r)
+        for (int c = 0; c + 1 < spec.cols; ++c) {
+            const size_t i = size_t(r * spec.cols + c);
+            spacing = std::min(spacing, double(cv::norm(corners[i + 1] - corners[i])));
+        }
+    const int half = std::clamp(int(0.3 * spacing), 2, 11);
+    cv::cornerSubPix(grey, corners, cv::Size(half, half), cv::Size(-1, -1),
                      cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-3));
     ChessboardView view;
     view.source = source;
@@ -131,7 +139,10 @@ ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& vi
     }
     cv::Mat K, dist;
     std::vector<cv::Mat> rvecs, tvecs;
-    const double rms = cv::calibrateCamera(object_f, image_f, image_size, K, dist, rvecs, tvecs);
+    // k3 stays 0: with the photos people take it mostly fits noise at the image corners, where
+    // no board was seen (OpenCV's advice for lenses that are not fisheyes).
+    const double rms = cv::calibrateCamera(object_f, image_f, image_size, K, dist, rvecs, tvecs,
+                                           cv::CALIB_FIX_K3);
 
     ChessboardCalibration out;
     Intrinsics& k = out.result.intrinsics;
@@ -153,6 +164,7 @@ ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& vi
             calib::rms_reprojection(as_cv(out.world_corners.back()), image[i], k, pose));
     }
     out.result.pose = out.poses[0];
+    out.result.world_points = out.world_corners[0];
     if (views.size() < 5)
         out.result.warnings.push_back("only " + std::to_string(views.size()) +
                                       " photos: the lens distortion is poorly constrained; "
@@ -175,7 +187,8 @@ CalibrationResult chessboard_pose(const ChessboardView& view, const ChessboardSp
     r.intrinsics = intrinsics;
     glm::dmat3 M;
     r.pose = calib::planar_to_world(calib::pose_from(rvec, tvec), &M);
-    r.rms_px = calib::rms_reprojection(as_cv(to_world(spec, M)), image, intrinsics, r.pose);
+    r.world_points = to_world(spec, M);
+    r.rms_px = calib::rms_reprojection(as_cv(r.world_points), image, intrinsics, r.pose);
     return r;
 }
 
