@@ -6,6 +6,7 @@
 
 #include "calibration/chessboard.h"
 #include "calibration/correspondences.h"
+#include "calibration/vanishing.h"
 #include "synthetic_board.h"
 
 using namespace dp;
@@ -23,7 +24,7 @@ const GroundBoard& board() {
 
 /// Photographs rendered by the path tracer (4 samples per pixel), for the single-photo methods.
 const std::vector<glm::dvec3>& traced_eyes() {
-    static const std::vector<glm::dvec3> e = {{0.2, 1.2, 1.3}, {1.2, 1.0, -0.6}};
+    static const std::vector<glm::dvec3> e = {{1.0, 1.1, 1.1}, {1.2, 1.0, -0.6}};
     return e;
 }
 
@@ -150,4 +151,50 @@ TEST(SyntheticPoints, SixPointsOffThePlaneRecoverTheCamera) {
     EXPECT_LT(r.rms_px, 0.05);
     CalibrationResult k = calibrate_points(pts, kW, kH, Intrinsics::centred(kW, kH, kFocal), "");
     expect_matches(k, truth, world, world);
+}
+
+namespace {
+
+/// Back-projects image points onto the ground (y = 0) of a calibrated camera.
+std::vector<glm::dvec3> on_ground(const CalibrationResult& r, const std::vector<ImagePoint>& px) {
+    std::vector<glm::dvec3> out;
+    const glm::dmat3 Rt = glm::transpose(r.pose.R);
+    const glm::dvec3 c = r.pose.position();
+    for (const ImagePoint& p : px) {
+        glm::dvec3 d = Rt * glm::dvec3((p.x - r.intrinsics.cx) / r.intrinsics.fx,
+                                       (p.y - r.intrinsics.cy) / r.intrinsics.fy, 1.0);
+        out.push_back(c + (-c.y / d.y) * d);
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST(SyntheticVanishing, BoardLinesAndOneDistanceRecoverTheCamera) {
+    const GroundBoard& b = board();
+    for (size_t i = 0; i < views().size(); ++i) {
+        SCOPED_TRACE("view " + std::to_string(i));
+        const ChessboardView& v = views()[i];
+        auto at = [&](int c, int r) { return v.corners[size_t(r * b.cols + c)]; };
+        // Detected rows and columns: lines along the board's two axes on the ground.
+        VanishingInput in;
+        for (int r = 0; r < b.rows; ++r) in.x.push_back({at(0, r), at(b.cols - 1, r)});
+        for (int c = 0; c < b.cols; ++c) in.z.push_back({at(c, 0), at(c, b.rows - 1)});
+        in.origin = at(0, 0);
+        in.distance = VanishingInput::Distance{at(0, 0), at(b.cols - 1, 0),
+                                               (b.cols - 1) * b.square};
+        CalibrationResult r = calibrate_vanishing(in, kW, kH, "");
+        EXPECT_LT(r.rms_px, 0.5);
+        // The origin is where it was put, on the ground.
+        EXPECT_LT(glm::length(on_ground(r, {at(0, 0)})[0]), 1e-9);
+        expect_matches(r, true_camera(i), on_ground(r, v.corners),
+                       true_corners_for(v, b, true_camera(i)));
+        // The camera height gives the same camera.
+        VanishingInput h = in;
+        h.distance.reset();
+        h.camera_height = traced_eyes()[i].y;
+        CalibrationResult rh = calibrate_vanishing(h, kW, kH, "");
+        expect_matches(rh, true_camera(i), on_ground(rh, v.corners),
+                       true_corners_for(v, b, true_camera(i)));
+    }
 }
