@@ -189,6 +189,11 @@ CalibrationResult chessboard_pose(const ChessboardView& view, const ChessboardSp
     r.pose = calib::planar_to_world(calib::pose_from(rvec, tvec), &M);
     r.world_points = to_world(spec, M);
     r.rms_px = calib::rms_reprojection(as_cv(r.world_points), image, intrinsics, r.pose);
+    // Detected corners are good to a few tenths of a pixel: more means the lens model is off.
+    if (r.rms_px > 0.5)
+        r.warnings.push_back("the board does not fit well (rms " + std::to_string(r.rms_px) +
+                             " px): the lens may be distorted or the focal length wrong; "
+                             "calibrate the lens from several photos");
     return r;
 }
 
