@@ -173,8 +173,11 @@ Command add_calibrate_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand(
         "calibrate", "Match the camera (and the scene) to the photograph; see docs/calibration.md");
     sub->require_subcommand(1);
-    auto commands = std::make_shared<std::vector<Command>>(add_calibrate_camera_commands(*sub));
-    // Further groups of subcommands append theirs here.
+    // Each group adds its subcommands to `calibrate`; a new group is one more entry here.
+    using Group = std::vector<Command> (*)(CLI::App&);
+    auto commands = std::make_shared<std::vector<Command>>();
+    for (Group add_group : {&add_calibrate_camera_commands})
+        for (Command& c : add_group(*sub)) commands->push_back(std::move(c));
     return {sub, [commands] {
                 for (const Command& c : *commands)
                     if (c.app->parsed()) return c.run();
