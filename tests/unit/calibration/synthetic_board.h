@@ -90,7 +90,7 @@ struct GroundBoard {
     /// A cheaper photo for many views: the board's albedo seen through `camera` (no lighting,
     /// no distortion) with n x n stratified samples per pixel, a box filter as the path
     /// tracer's.
-    Image draw(const CameraSpec& camera, int width, int height, int n = 3) const {
+    Image draw(const CameraSpec& camera, int width, int height, int n = 2) const {
         const glm::dmat3 Rt = glm::transpose(glm::dmat3(camera.rotation));
         const glm::dvec3 org = -(Rt * glm::dvec3(camera.translation));
         Image img(width, height);
