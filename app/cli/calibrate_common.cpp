@@ -186,8 +186,13 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
 void print_result(const CalibrationResult& r, const std::string& method) {
     const Intrinsics& k = r.intrinsics;
     const Distortion& d = k.distortion;
-    const glm::dvec3 c = r.pose.position();
-    const glm::dvec3 f = glm::transpose(r.pose.R) * glm::dvec3(0, 0, 1);
+    // Below the printed precision, 0 (not "-0.0000" from rounding noise).
+    auto tidy = [](glm::dvec3 v) {
+        for (int i = 0; i < 3; ++i) v[i] = std::abs(v[i]) < 5e-5 ? 0.0 : v[i];
+        return v;
+    };
+    const glm::dvec3 c = tidy(r.pose.position());
+    const glm::dvec3 f = tidy(glm::transpose(r.pose.R) * glm::dvec3(0, 0, 1));
     std::printf("method: %s\n", method.c_str());
     std::printf("image: %dx%d\n", k.width, k.height);
     std::printf("intrinsics: fx %.3f fy %.3f cx %.3f cy %.3f hfov_deg %.3f\n", k.fx, k.fy, k.cx,
