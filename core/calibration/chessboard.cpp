@@ -73,15 +73,23 @@ ChessboardView detect_chessboard(const Image& image, const ChessboardSpec& spec,
     check_spec(spec, source);
     if (image.empty()) throw InputError(source, "", "the image is empty");
     cv::Mat grey = detector_input(image);
+    // The detectors slow down steeply with size: find the board at most 1600 px across, then
+    // refine the corners at full resolution.
+    cv::Mat search = grey;
+    const double scale = std::min(1.0, 1600.0 / std::max(grey.cols, grey.rows));
+    if (scale < 1) cv::resize(grey, search, cv::Size(), scale, scale, cv::INTER_AREA);
     const cv::Size size(spec.cols, spec.rows);
     std::vector<cv::Point2f> corners;
     bool found = cv::findChessboardCorners(
-        grey, size, corners,
+        search, size, corners,
         cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_FILTER_QUADS);
     if (!found) {  // the sector-based detector copes better with blur and noise
         corners.clear();
-        found = cv::findChessboardCornersSB(grey, size, corners, cv::CALIB_CB_NORMALIZE_IMAGE);
+        found = cv::findChessboardCornersSB(search, size, corners, cv::CALIB_CB_NORMALIZE_IMAGE);
     }
+    // Pixel centres at integers: a centre maps as (p + 0.5) / scale - 0.5.
+    for (cv::Point2f& p : corners)
+        p = cv::Point2f(float((p.x + 0.5) / scale - 0.5), float((p.y + 0.5) / scale - 0.5));
     if (!found || corners.size() != size_t(spec.cols) * size_t(spec.rows))
         throw InputError(source, "",
                          "no chessboard with " + std::to_string(spec.cols) + "x" +
@@ -95,7 +103,7 @@ ChessboardView detect_chessboard(const Image& image, const ChessboardSpec& spec,
             const size_t i = size_t(r * spec.cols + c);
             spacing = std::min(spacing, double(cv::norm(corners[i + 1] - corners[i])));
         }
-    const int half = std::clamp(int(0.3 * spacing), 2, 11);
+    const int half = std::clamp(int(0.3 * spacing), 2, 30);
     cv::cornerSubPix(grey, corners, cv::Size(half, half), cv::Size(-1, -1),
                      cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-3));
     ChessboardView view;

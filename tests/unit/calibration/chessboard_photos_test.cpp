@@ -1,10 +1,14 @@
 // Calibration from real photographs: OpenCV's own chessboard samples (Debian package opencv-doc).
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
+
+#include <opencv2/imgproc.hpp>
 
 #include "base/error.h"
 #include "calibration/chessboard.h"
+#include "image/image_io.h"
 
 using namespace dp;
 
@@ -102,5 +106,23 @@ TEST(ChessboardPhotos, APhotoWithoutTheBoardIsAnInputError) {
         EXPECT_NE(std::string(e.what()).find("no chessboard with 9x6 inner corners"),
                   std::string::npos)
             << e.what();
+    }
+}
+
+TEST(ChessboardPhotos, ALargePhotoGivesTheSameCornersAsTheSmallOne) {
+    // left01 enlarged four times (2560x1920): searched downscaled, refined at full size.
+    const std::string path = std::string(kSampleDir) + "/left01.jpg";
+    Image small = load_image(path);
+    cv::Mat src(small.height(), small.width(), CV_32FC3, small.data()), big;
+    cv::resize(src, big, cv::Size(), 4, 4, cv::INTER_CUBIC);
+    Image large(big.cols, big.rows);
+    std::memcpy(large.data(), big.ptr<float>(), large.size() * sizeof(vec3));
+    ChessboardView a = detect_chessboard(small, kBoard, "small");
+    ChessboardView b = detect_chessboard(large, kBoard, "large");
+    ASSERT_EQ(a.corners.size(), b.corners.size());
+    // Within 0.4 px of the original photo: the two refinements see differently blurred edges.
+    for (size_t i = 0; i < a.corners.size(); ++i) {
+        const ImagePoint expected = (a.corners[i] + 0.5) * 4.0 - 0.5;
+        EXPECT_LT(glm::length(b.corners[i] - expected), 4 * 0.4) << "corner " << i;
     }
 }
