@@ -5,6 +5,8 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libembree-dev libtbb-dev libglm-dev libopenexr-dev libopencv-dev libassimp-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libexiv2-dev  # EXIF focal length for camera calibration
+  opencv-doc    # OpenCV's chessboard photographs, used by the calibration tests
   blender-data  # the CC0 light probes the sample project and benchmarks use
 )
 # `--bench`: also what the benchmark plots need.

@@ -1,5 +1,6 @@
 #pragma once
 #include <functional>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +21,11 @@ Command add_convert_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 /// Time against error of both methods on benchmark scenes.
 Command add_bench_command(CLI::App& app);
+/// `calibrate`: a parent command; each add_calibrate_*_commands function adds a group of its
+/// subcommands, and add_calibrate_command runs whichever was parsed.
+Command add_calibrate_command(CLI::App& app);
+/// Camera matching: chessboard, rectangle, points, vanishing, exif, fspy.
+std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate);
 /// Hidden: writes constant images and synthetic probes for the shell tests.
 Command add_make_test_image_command(CLI::App& app);
 

@@ -24,6 +24,7 @@ int run(int argc, char** argv) {
         add_render_command(app),    add_info_command(app),    add_reference_command(app),
         add_convert_command(app),   add_compare_command(app), add_make_test_image_command(app),
         add_bench_command(app),
+        add_calibrate_command(app),
     };
     try {
         app.parse(argc, argv);

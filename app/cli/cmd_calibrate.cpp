@@ -1,0 +1,188 @@
+// `diffphoton calibrate`: the parent command, and its camera subcommands from a chessboard,
+// EXIF data and fSpy projects (the ones from clicked points are in cmd_calibrate_points.cpp).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "base/error.h"
+#include "calibrate_common.h"
+#include "calibration/chessboard.h"
+#include "calibration/exif.h"
+#include "calibration/fspy.h"
+#include "commands.h"
+#include "common.h"
+#include "scene/project_io.h"
+
+namespace dp::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ChessboardOptions {
+    std::string project;
+    std::vector<std::string> photos;
+    std::string board = "9x6";
+    double square = 0;
+    FocalOptions focal;
+};
+
+ChessboardSpec parse_board(const std::string& text, double square) {
+    ChessboardSpec spec;
+    const size_t x = text.find('x');
+    try {
+        size_t a = 0, b = 0;
+        if (x == std::string::npos) throw std::invalid_argument("no x");
+        spec.cols = std::stoi(text.substr(0, x), &a);
+        spec.rows = std::stoi(text.substr(x + 1), &b);
+        if (a != x || b != text.size() - x - 1) throw std::invalid_argument("junk");
+    } catch (const std::exception&) {
+        throw InputError("", "--board", "expected COLSxROWS inner corners (e.g. 9x6), got '" +
+                                            text + "'");
+    }
+    spec.square_size = square;
+    return spec;
+}
+
+int run_chessboard(const ChessboardOptions& o) {
+    const ChessboardSpec spec = parse_board(o.board, o.square);
+    std::vector<ChessboardView> views;
+    for (const std::string& photo : o.photos) views.push_back(detect_chessboard(photo, spec));
+    CalibrationResult r;
+    std::string method;
+    if (views.size() > 1) {
+        if (o.focal.given())
+            throw InputError("", "--focal",
+                             "several photos calibrate the focal length themselves; give a "
+                             "focal length only with a single photo");
+        ChessboardCalibration c = calibrate_chessboard(views, spec);
+        for (size_t i = 0; i < views.size(); ++i)
+            std::printf("photo %s: rms_px %.4f\n", views[i].source.c_str(), c.view_rms_px[i]);
+        r = c.result;
+        method = "chessboard, " + std::to_string(views.size()) +
+                 " photos (pose of the first)";
+    } else {
+        const ChessboardView& v = views[0];
+        if (auto f = o.focal.resolve(o.photos[0], v.width)) {
+            r = chessboard_pose(v, spec, Intrinsics::centred(v.width, v.height, *f));
+            method = "chessboard, one photo, given focal length";
+        } else {
+            r = chessboard_single(v, spec);
+            method = "chessboard, one photo, focal length from the board";
+        }
+    }
+    print_result(r, method);
+    write_camera(o.project, r, o.photos[0]);
+    return 0;
+}
+
+struct ExifOptions {
+    std::string project, photo;
+    std::optional<double> sensor_width;
+};
+
+/// Sets the focal length from EXIF and centres the principal point; the pose is kept (a
+/// look-at camera is converted to the same pose).
+int run_exif(const ExifOptions& o) {
+    ExifFocal e = read_exif_focal(o.photo, o.sensor_width);
+    CalibrationResult r;
+    r.intrinsics = Intrinsics::centred(e.width, e.height, e.focal_px);
+    r.rms_px = std::numeric_limits<double>::quiet_NaN();
+    if (fs::exists(o.project)) {
+        const Camera cam = load_project(o.project).camera.build(e.width, e.height);
+        r.pose.R = glm::dmat3(cam.rotation());
+        r.pose.t = glm::dvec3(cam.translation());
+        r.intrinsics.distortion = cam.distortion();
+    }
+    std::printf("exif: %s%s%s\n", e.camera.c_str(), e.camera.empty() ? "" : ", ",
+                e.method.c_str());
+    print_result(r, "EXIF focal length (pose kept from the project)");
+    write_camera(o.project, r, o.photo);
+    return 0;
+}
+
+struct FspyOptions {
+    std::string project, file, extract;
+};
+
+int run_fspy(const FspyOptions& o) {
+    FspyImport f = read_fspy(o.file);
+    std::string photo;
+    if (!o.extract.empty()) {
+        std::ofstream out(o.extract, std::ios::binary);
+        if (!out) throw InputError(o.extract, "--extract-photo", "cannot write the file");
+        out.write(reinterpret_cast<const char*>(f.image.data()), std::streamsize(f.image.size()));
+        if (!out) throw InputError(o.extract, "--extract-photo", "cannot write the file");
+        std::printf("wrote the embedded photo (%s) to %s\n",
+                    f.image_extension.empty() ? "unknown format" : f.image_extension.c_str(),
+                    o.extract.c_str());
+        photo = o.extract;
+    }
+    std::printf("fspy: distance unit %s\n", f.unit.c_str());
+    print_result(f.result, "fSpy project " + o.file);
+    write_camera(o.project, f.result, photo);
+    return 0;
+}
+
+}  // namespace
+
+std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
+    std::vector<Command> out;
+    {
+        auto o = std::make_shared<ChessboardOptions>();
+        CLI::App* sub = calibrate.add_subcommand(
+            "chessboard", "Camera from photos of a chessboard lying on the ground");
+        sub->add_option("project", o->project, "Project file to write or update")->required();
+        sub->add_option("photos", o->photos,
+                        "Photos of the board; the pose is the first one's. One photo: give the "
+                        "focal length or let the board estimate it")
+            ->required();
+        sub->add_option("--board", o->board, "Inner corners COLSxROWS (default 9x6)");
+        sub->add_option("--square", o->square, "Square size in metres")
+            ->required()
+            ->check(kFinite);
+        o->focal.add_to(sub);
+        out.push_back({sub, [o] { return run_chessboard(*o); }});
+    }
+    {
+        auto o = std::make_shared<ExifOptions>();
+        CLI::App* sub = calibrate.add_subcommand(
+            "exif", "Focal length from the photo's EXIF data (keeps the camera's pose)");
+        sub->add_option("project", o->project, "Project file to write or update")->required();
+        sub->add_option("photo", o->photo, "Photo with EXIF data (JPEG, TIFF, raw...)")
+            ->required();
+        sub->add_option("--sensor-width", o->sensor_width, "Sensor width in millimetres")
+            ->check(kFinite);
+        out.push_back({sub, [o] { return run_exif(*o); }});
+    }
+    {
+        auto o = std::make_shared<FspyOptions>();
+        CLI::App* sub = calibrate.add_subcommand("fspy", "Camera from an fSpy project file");
+        sub->add_option("project", o->project, "Project file to write or update")->required();
+        sub->add_option("file", o->file, "fSpy project (.fspy)")->required();
+        sub->add_option("--extract-photo", o->extract,
+                        "Write the embedded photo to this file (and use it for a new project)");
+        out.push_back({sub, [o] { return run_fspy(*o); }});
+    }
+    for (Command& c : add_calibrate_point_commands(calibrate)) out.push_back(std::move(c));
+    return out;
+}
+
+Command add_calibrate_command(CLI::App& app) {
+    CLI::App* sub = app.add_subcommand(
+        "calibrate", "Match the camera (and the scene) to the photograph; see docs/calibration.md");
+    sub->require_subcommand(1);
+    // Each group adds its subcommands to `calibrate`; a new group is one more entry here.
+    using Group = std::vector<Command> (*)(CLI::App&);
+    auto commands = std::make_shared<std::vector<Command>>();
+    for (Group add_group : {&add_calibrate_camera_commands})
+        for (Command& c : add_group(*sub)) commands->push_back(std::move(c));
+    return {sub, [commands] {
+                for (const Command& c : *commands)
+                    if (c.app->parsed()) return c.run();
+                return 2;  // unreachable: a subcommand is required
+            }};
+}
+
+}  // namespace dp::cli

@@ -1,0 +1,69 @@
+#pragma once
+// Camera matching from a photograph: the result every method returns and the conventions shared
+// by all of them.
+//
+// World frame: Y up, the ground (or the calibration target's plane) is y = 0, units are metres.
+// Pose: world-to-camera R, t in the OpenCV convention of camera/camera.h (x_cam = R x_world + t,
+// camera looks along +Z, image +Y down). Lens distortion stays in the camera model (OpenCV's
+// k1 k2 p1 p2 k3): the renderer's rays and every back-projection go through Camera, which
+// applies it, so the photograph is never resampled.
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "camera/camera.h"
+#include "scene/project.h"
+
+namespace dp {
+
+/// A 2D image point in continuous pixel coordinates (pixel (i, j)'s centre at (i, j)).
+using ImagePoint = glm::dvec2;
+
+/// Intrinsics of a W x H photograph.
+struct Intrinsics {
+    int width = 0, height = 0;
+    double fx = 0, fy = 0, cx = 0, cy = 0;
+    Distortion distortion;
+
+    /// fx = fy = `focal_px`, principal point at the image centre ((W - 1)/2, (H - 1)/2).
+    static Intrinsics centred(int width, int height, double focal_px);
+    /// Horizontal field of view in degrees.
+    double hfov_deg() const;
+};
+
+/// World-to-camera pose.
+struct Pose {
+    glm::dmat3 R{1.0};
+    glm::dvec3 t{0.0};
+    /// Camera centre in world space, -R^T t.
+    glm::dvec3 position() const { return -(glm::transpose(R) * t); }
+};
+
+/// What a calibration method found: intrinsics, pose and the RMS reprojection error in pixels
+/// of the points it was fitted to (for vanishing lines: the RMS distance of the segment
+/// end points from the lines through the fitted vanishing points).
+struct CalibrationResult {
+    Intrinsics intrinsics;
+    Pose pose;
+    double rms_px = 0;
+    /// World positions of the points the fit used, where the method defines them (board or
+    /// rectangle corners in the frame it chose, the given points), in input order.
+    std::vector<glm::dvec3> world_points;
+    std::vector<std::string> warnings;
+
+    /// The project's camera (model "opencv").
+    CameraSpec camera_spec() const;
+    Camera camera() const;
+};
+
+/// Throws InputError (`source`, `field`) unless the focal length is finite and > 0.
+void check_focal(double focal_px, const std::string& source, const std::string& field);
+
+/// Throws InputError if the points are fewer than `min_count` or (nearly) collinear.
+/// `what` names them in the message ("rectangle corners").
+void check_image_points(const std::vector<ImagePoint>& points, size_t min_count,
+                        const std::string& source, const std::string& field,
+                        const std::string& what);
+
+}  // namespace dp

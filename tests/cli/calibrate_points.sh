@@ -1,0 +1,55 @@
+# `calibrate rectangle | points | vanishing` with image points of a known camera: 1000x750,
+# f = 800 px, at (1.5, 1.6, 2.5) looking at (0.3, 0, -0.2). The rectangle, the points and the
+# origin put the world origin where the true camera has it, so the position must match.
+source "$(dirname "$0")/testlib.bash" "$@"
+
+# expect_camera WHAT: fx within 1% of 800 and the position within 1% of the 3.4 m distance.
+expect_camera() {
+    local fx pos
+    fx=$(awk '/^intrinsics:/ { print $3 }' stdout.txt)
+    awk -v f="$fx" 'BEGIN { exit !(f > 792 && f < 808) }' || fail "$1: fx $fx, expected 800"
+    pos=$(awk '/^position:/ { print $2, $3, $4 }' stdout.txt)
+    echo "$pos" | awk '{ d = sqrt(($1 - 1.5)^2 + ($2 - 1.6)^2 + ($3 - 2.5)^2); exit !(d < 0.034) }' ||
+        fail "$1: position $pos, expected 1.5 1.6 2.5"
+}
+
+run calibrate rectangle rect.json --size 1000x750 --focal 800 --width 0.6 --height 0.4 \
+    --corners 413.518,381.519 549.410,412.026 508.295,466.634 360.722,428.922
+expect_rc 2 "a new project needs a photo"
+expect_stderr "give the photo to create it with" "a new project needs a photo"
+
+make_inputs
+run make-test-image photo1000.png --size 1000 750 --value 0.5 0.5 0.5
+write_project scene.json "$BALL" "$FLOOR" photo1000.png
+run calibrate rectangle scene.json --size 1000x750 --focal 800 --width 0.6 --height 0.4 \
+    --corners 413.518,381.519 549.410,412.026 508.295,466.634 360.722,428.922
+expect_rc 0 "rectangle with a focal length"
+expect_camera "rectangle"
+run info scene.json
+expect_rc 0 "the project loads after calibration"
+
+cat >points.json <<'JSON'
+{"points": [
+  {"world": [0, 0, 0], "image": [413.518, 381.519]},
+  {"world": [0.6, 0, 0], "image": [549.410, 412.026]},
+  {"world": [0.6, 0, 0.4], "image": [508.295, 466.634]},
+  {"world": [0, 0, 0.4], "image": [360.722, 428.922]},
+  {"world": [0.3, 0.5, 0.2], "image": [453.093, 298.624]},
+  {"world": [0.1, 0.8, -0.3], "image": [463.179, 173.747]},
+  {"world": [0.5, 0.3, -0.4], "image": [563.372, 298.975]}]}
+JSON
+run calibrate points scene.json --photo photo1000.png --file points.json
+expect_rc 0 "seven points, focal length unknown"
+expect_camera "points"
+
+run calibrate vanishing scene.json --photo photo1000.png \
+    --x 313.041,358.962,650.975,434.827 --x 253.016,401.398,620.047,495.192 \
+    --x 374.111,315.787,681.292,375.654 \
+    --z 475.916,325.495,345.697,442.412 --z 597.218,348.529,496.481,482.324 \
+    --z 686.503,365.483,611.095,512.663 \
+    --origin 413.518,381.519 --distance 413.518,381.519,650.975,434.827,1
+expect_rc 0 "vanishing points"
+expect_camera "vanishing"
+RMS=$(field rms_px)
+at_most "$RMS" 0.01 || fail "vanishing: rms_px $RMS for exact lines"
+echo PASS
