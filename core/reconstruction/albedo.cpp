@@ -10,6 +10,7 @@
 
 #include "base/error.h"
 #include "base/rng.h"
+#include "base/sampling.h"
 #include "render/irradiance.h"
 
 namespace dp {
@@ -53,10 +54,88 @@ std::vector<TexelPoint> texel_points(const TriangleMesh& mesh, int W, int H, int
     return out;
 }
 
+/// Per photo pixel, the real proxy it shows alone (its centre and four corners all see it), or
+/// -1: a pixel that mixes two surfaces (or a surface and the background) at a silhouette, a
+/// proxy's edge or a contact line has a radiance that belongs to neither.
+std::vector<int> pure_pixels(const RenderScene& scene) {
+    const Camera& camera = scene.camera();
+    const int W = camera.width(), H = camera.height();
+    auto seen = [&](float x, float y) {
+        Hit h = scene.intersect_real(camera.generate_ray(x, y));
+        return h ? h.surface->index : -1;
+    };
+    std::vector<int> corner(size_t(W + 1) * (H + 1)), out(size_t(W) * H);
+    tbb::parallel_for(0, H + 1, [&](int y) {
+        for (int x = 0; x <= W; ++x) corner[size_t(y) * (W + 1) + x] = seen(x - 0.5f, y - 0.5f);
+    });
+    tbb::parallel_for(0, H, [&](int y) {
+        for (int x = 0; x < W; ++x) {
+            int c = seen(float(x), float(y));
+            for (int k = 0; k < 4; ++k)
+                if (corner[size_t(y + k / 2) * (W + 1) + x + k % 2] != c) c = -1;
+            out[size_t(y) * W + x] = c;
+        }
+    });
+    return out;
+}
+
+/// Radiance the camera photographed leaving real point `y` (facing side `ny`), if the camera
+/// sees it in a pixel that shows its proxy alone.
+bool photographed_radiance(const RenderScene& scene, const std::vector<int>& pure, const Hit& y,
+                           const vec3& ny, vec3& L) {
+    const Camera& camera = scene.camera();
+    const Image& photo = scene.photo();
+    vec3 to_eye = camera.position() - y.p;
+    float dist = glm::length(to_eye);
+    vec2 px;
+    if (!(dist > 0) || glm::dot(ny, to_eye) <= 0 || !camera.project(y.p, px) || !camera.in_image(px)) return false;
+    int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
+    int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
+    if (pure[size_t(iy) * photo.width() + ix] != y.surface->index) return false;
+    Hit hy = y;
+    hy.ng = ny;
+    vec3 dir = to_eye / dist;
+    vec3 org = scene.offset_origin(hy, dir);
+    if (scene.occluded_real(Ray{org, dir}, glm::length(camera.position() - org) * (1 - 1e-4f))) return false;
+    L = photo.at(ix, iy);
+    return true;
+}
+
+/// Irradiance at (p, n) from light the other real surfaces reflect: cosine-distributed rays,
+/// each worth pi times the radiance leaving the real surface it hits. A diffuse surface sends
+/// the same radiance every way, so where the camera sees it that is its photo pixel; where it
+/// does not, its albedo times its own irradiance over pi (probe light plus, `depth` > 0, the
+/// light it gets from photographed surfaces).
+dvec3 bounce_irradiance(const RenderScene& scene, const std::vector<int>& pure, const vec3& p, const vec3& n,
+                        Rng& rng, int samples, int depth) {
+    if (samples <= 0) return dvec3(0.0);
+    const Frame frame(n);
+    Hit at;
+    at.p = p;
+    at.ng = n;
+    dvec3 sum(0.0);
+    for (int k = 0; k < samples; ++k) {
+        float u0 = rng.uniform(), u1 = rng.uniform();
+        vec3 d = frame.to_world(sample_cosine_hemisphere(vec2(u0, u1)));
+        Hit y = scene.intersect_real(Ray{scene.offset_origin(at, d), d});
+        if (!y) continue;
+        vec3 ny = glm::dot(y.ng, d) < 0 ? y.ng : -y.ng;  // the side that faces p
+        vec3 L;
+        if (photographed_radiance(scene, pure, y, ny, L)) {
+            sum += double(kPi) * dvec3(L);
+            continue;
+        }
+        dvec3 Ey = real_irradiance(scene, y.p, ny, rng, 4, 0.5f).E;
+        if (depth > 0) Ey += bounce_irradiance(scene, pure, y.p, ny, rng, 4, depth - 1);
+        sum += dvec3(y.surface->reflectance_at(y.uv)) * Ey;
+    }
+    return sum / double(samples);
+}
+
 /// What one texel gathered from its points.
 struct TexelSum {
-    dvec3 L{0.0}, E{0.0};
-    double E_var = 0;  ///< sum of the points' squared standard errors of luminance(E)
+    dvec3 L{0.0}, E{0.0}, E_bounce{0.0};
+    double E_var = 0;  ///< squared standard error of luminance of the probe part of E
     int seen = 0, clipped = 0;
 };
 
@@ -139,12 +218,15 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
     const Camera& camera = scene.camera();
     const Image& photo = scene.photo();
     const vec3 eye = camera.position();
-    const int per_point = std::max(8, o.probe_samples / (o.subsamples * o.subsamples));
+    const int bounce_per_point =
+        o.bounce_samples > 0 ? std::max(4, o.bounce_samples / (o.subsamples * o.subsamples)) : 0;
+    const std::vector<int> pure = pure_pixels(scene);
     std::vector<TexelSum> sums(size_t(W) * H);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, size_t(W) * H, 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t t = r.begin(); t != r.end(); ++t) {
             TexelSum& s = sums[t];
             Rng rng = Rng::keyed(o.seed, t, 0xa1bed0);
+            std::vector<SurfacePoint> lit_points;
             for (size_t k = first[t]; k < first[t + 1]; ++k) {
                 const TexelPoint& tp = points[k];
                 vec3 to_eye = eye - tp.p;
@@ -162,17 +244,23 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
                 if (scene.occluded_real(Ray{org, to_eye}, glm::length(eye - org) * (1 - 1e-4f))) continue;
                 int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
                 int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
+                if (pure[size_t(iy) * photo.width() + ix] != proxy) continue;
                 vec3 L = photo.at(ix, iy);
                 if (std::max({L.x, L.y, L.z}) >= o.clip_level) {
                     ++s.clipped;
                     continue;
                 }
-                IrradianceEstimate e = real_irradiance(scene, tp.p, n, rng, per_point);
+                dvec3 bounce = bounce_irradiance(scene, pure, tp.p, n, rng, bounce_per_point, 1);
                 s.L += dvec3(L);
-                s.E += e.E;
-                s.E_var += e.luminance_std_error * e.luminance_std_error;
+                s.E_bounce += bounce;
+                lit_points.push_back({tp.p, n});
                 ++s.seen;
             }
+            if (s.seen == 0) continue;
+            // One estimate over all the texel's points: sum(E) = count * mean(E).
+            IrradianceEstimate e = mean_real_irradiance(scene, lit_points, rng, o.probe_samples, 0.5f);
+            s.E = e.E * double(s.seen) + s.E_bounce;
+            s.E_var = std::pow(e.luminance_std_error * s.seen, 2);
         }
     });
 
@@ -189,7 +277,7 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
     AlbedoTexture out;
     out.albedo = Image(W, H);
     out.mask = Image(W, H);
-    double rel_error_sum = 0;
+    double rel_error_sum = 0, E_total = 0, E_bounce = 0;
     dvec3 rho_sum(0.0);
     for (size_t t = 0; t < sums.size(); ++t) {
         const TexelSum& s = sums[t];
@@ -214,6 +302,8 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
         out.albedo[t] = vec3(rho);
         rho_sum += rho;
         rel_error_sum += std::sqrt(s.E_var) / e_lum;
+        E_total += e_lum;
+        E_bounce += luminance(s.E_bounce);
         ++out.valid;
     }
     if (out.valid == 0)
@@ -223,6 +313,7 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
                              " clipped, " + std::to_string(out.unlit) + " unlit)");
     out.mean_albedo = vec3(rho_sum / double(out.valid));
     out.irradiance_rel_error = rel_error_sum / double(out.valid);
+    out.bounce_fraction = E_total > 0 ? E_bounce / E_total : 0;
     fill_flagged_texels(out.albedo, out.mask);
     return out;
 }

@@ -14,9 +14,15 @@ struct AlbedoTextureOptions {
     int max_resolution = 256;
     /// Points per texel side: each texel is sampled at n x n points, each projected into the
     /// photo (nearest pixel) and given its own share of the probe samples.
-    int subsamples = 2;
-    /// Probe samples per texel for the irradiance E (split among the texel's points).
-    int probe_samples = 256;
+    int subsamples = 3;
+    /// Probe samples per texel for the irradiance E (split among the texel's points), half
+    /// drawn by the probe's flux and half cosine-distributed.
+    int probe_samples = 512;
+    /// Cosine-distributed rays per texel for the light other real surfaces reflect onto the
+    /// texel (0: probe light only, the paper's E). A diffuse surface sends the same radiance in
+    /// every direction, so where the camera sees the surface hit, that radiance is the photo's
+    /// pixel; elsewhere it is the proxy's constant albedo times its direct irradiance over pi.
+    int bounce_samples = 64;
     /// Photo value (after the project's exposure) at or above which a channel counts as
     /// clipped; infinity for an HDR photo.
     float clip_level = INFINITY;
@@ -32,12 +38,15 @@ struct AlbedoTexture {
     /// are filled from their valid neighbours.
     Image albedo;
     /// Per texel: red 1 = every photo pixel it projects to is clipped; green 1 = the camera
-    /// does not see it (outside the photo, facing away or hidden by real geometry); blue 1 =
-    /// unlit (E too small). All zero for a texel estimated from the photo.
+    /// does not see it (outside the photo, facing away, hidden by real geometry, or only in
+    /// pixels that also show another surface or the background); blue 1 = unlit (E too small). All zero for a texel estimated from the photo.
     Image mask;
     size_t valid = 0, clipped = 0, unseen = 0, unlit = 0;
-    /// Mean relative Monte Carlo standard error of E over the valid texels.
+    /// Mean relative Monte Carlo standard error of the probe part of E over the valid texels
+    /// (the photo's own noise is not in it).
     double irradiance_rel_error = 0;
+    /// Share of the valid texels' summed E that other real surfaces reflect (0 without bounces).
+    double bounce_fraction = 0;
     /// Luminance-weighted mean rho over the valid texels.
     vec3 mean_albedo{0.0f};
 };
@@ -46,7 +55,8 @@ struct AlbedoTexture {
 /// scene's photo and probe: for every texel centre-region point of the proxy's UV layout (every
 /// face of a box maps onto the whole texture, so a box texel gathers all its faces), the world
 /// point is projected into the photo and rho = pi * sum(L) / sum(E), with E the probe
-/// irradiance under real-geometry visibility. Throws InputError (field "real[i]") for a sphere
+/// irradiance under real-geometry visibility plus (`bounce_samples`) the light reflected by the
+/// other real surfaces. Throws InputError (field "real[i]") for a sphere
 /// proxy, a mesh without UVs, or a proxy the photo never sees lit.
 AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy,
                                       const AlbedoTextureOptions& options = {});

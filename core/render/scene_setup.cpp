@@ -45,7 +45,7 @@ SceneAssets load_assets(const Project& project) {
                              "bright lights are clipped and shadows will be too weak");
     if (project.probe.format == ProbeSpec::Format::MirrorBall) {
         int h = std::max(16, probe.height() / 2);
-        probe = unwrap_mirror_ball(probe, 2 * h, h, 0.0f);
+        probe = unwrap_mirror_ball(probe, 2 * h, h, project.probe.mirror_ball_fov_deg);
     }
     a.probe_latlong = std::move(probe);
 
