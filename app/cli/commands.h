@@ -18,6 +18,10 @@ Command add_info_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_convert_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+/// `calibrate proxy|albedo|probe`: real proxies, albedo textures and probe alignment, added to
+/// the `calibrate` command. Each subcommand runs from its CLI11 callback and throws InputError
+/// for bad input.
+void add_calibrate_scene_commands(CLI::App& calibrate);
 /// Hidden: writes constant images and synthetic probes for the shell tests.
 Command add_make_test_image_command(CLI::App& app);
 

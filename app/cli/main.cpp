@@ -24,6 +24,10 @@ int run(int argc, char** argv) {
         add_render_command(app),    add_info_command(app),    add_reference_command(app),
         add_convert_command(app),   add_compare_command(app), add_make_test_image_command(app),
     };
+    CLI::App* calibrate = app.add_subcommand("calibrate", "Fill in the project from the photograph");
+    calibrate->require_subcommand(1);
+    add_calibrate_scene_commands(*calibrate);
+    commands.push_back({calibrate, [] { return 0; }});  // the subcommands run in their callbacks
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
