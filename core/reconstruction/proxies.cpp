@@ -138,7 +138,7 @@ ProxyFit ground_proxy(const Camera& camera, float max_distance, const std::strin
     fit.proxy.shape.kind = Shape::Kind::Plane;
     fit.proxy.shape.size = vec3(size.x, 1, size.z);
     fit.proxy.transform.translation = vec3(centre.x, 0, centre.z);
-    fit.proxy.transform.rotation_deg = vec3(0, theta * kDegPerRad, 0);
+    fit.proxy.transform.rotation_deg = vec3(0, theta * kDegPerRad + 0.0f, 0);
     for (vec3 c : {vec3(lo.x, 0, hi.z), vec3(hi.x, 0, hi.z), vec3(hi.x, 0, lo.z), vec3(lo.x, 0, lo.z)})
         fit.footprint.push_back(rotate_y(c, theta));
     return fit;
@@ -166,7 +166,7 @@ ProxyFit wall_proxy(const Camera& camera, vec2 a, vec2 b, float height, float th
     fit.proxy.shape.kind = Shape::Kind::Box;
     fit.proxy.shape.size = vec3(len, height, thickness);
     fit.proxy.transform.translation = mid + 0.5f * thickness * n + vec3(0, 0.5f * height, 0);
-    fit.proxy.transform.rotation_deg = vec3(0, yaw_of(e) * kDegPerRad, 0);
+    fit.proxy.transform.rotation_deg = vec3(0, yaw_of(e) * kDegPerRad + 0.0f, 0);
     fit.footprint = {A, B, B + thickness * n, A + thickness * n};
     return fit;
 }
@@ -223,7 +223,7 @@ ProxyFit box_proxy(const Camera& camera, const std::vector<vec2>& corners, float
     fit.proxy.shape.kind = Shape::Kind::Box;
     fit.proxy.shape.size = vec3(2 * hx, height, 2 * hz);
     fit.proxy.transform.translation = vec3(centroid.x, 0.5f * height, centroid.z);
-    fit.proxy.transform.rotation_deg = vec3(0, theta * kDegPerRad, 0);
+    fit.proxy.transform.rotation_deg = vec3(0, theta * kDegPerRad + 0.0f, 0);
     for (vec3 c : {vec3(-hx, 0, hz), vec3(hx, 0, hz), vec3(hx, 0, -hz), vec3(-hx, 0, -hz)})
         fit.footprint.push_back(centroid + rotate_y(c, theta));
     fit.rms_error_px = rms_reprojection(camera, corners, fit.footprint);
