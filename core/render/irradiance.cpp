@@ -64,16 +64,20 @@ IrradianceEstimate mean_real_irradiance(const RenderScene& scene, const std::vec
         float u0 = std::min((stratum + rng.uniform()) / strata, 0x1.fffffep-1f);
         float u1 = rng.uniform(), u2 = rng.uniform();
         vec3 dir, radiance;
+        float probe_pdf;
         if (cosine) {
             dir = Frame(sp.n).to_world(sample_cosine_hemisphere(vec2(u0, u1)));
             radiance = probe.radiance(dir);
+            probe_pdf = probe.pdf(dir);
         } else {
+            // The sample's own pdf: a direction on a pixel's edge may look up its neighbour.
             ProbeSample s = probe.sample(u0, u1, u2);
             dir = s.dir;
             radiance = s.radiance;
+            probe_pdf = s.pdf;
         }
         float cos_t = glm::dot(sp.n, dir);
-        float pdf = c * cosine_hemisphere_pdf(cos_t) + (1 - c) * probe.pdf(dir);
+        float pdf = c * cosine_hemisphere_pdf(cos_t) + (1 - c) * probe_pdf;
         if (cos_t <= 0 || pdf <= 0) continue;
         Hit at;
         at.p = sp.p;
