@@ -1,6 +1,8 @@
 #pragma once
 // Synthetic photographs of small real scenes, rendered by the reference path tracer.
+#include <algorithm>
 #include <memory>
+#include <vector>
 
 #include "common/test_scenes.h"
 #include "probe/synthetic_probe.h"
@@ -44,5 +46,25 @@ inline std::shared_ptr<RenderScene> photographed(Project p, const Image& probe, 
     for (RealProxy& r : p.real) r.albedo = Albedo{};
     return build(p, std::move(photo), probe);
 }
+
+/// A 6 x 6 m two-tone ground and a grey box casting a shadow on it, under a sun and sky.
+struct GroundAndBox {
+    Project project = look_at_project(vec3(0.3f, 3.0f, 5.0f), vec3(0, 0, -0.2f), 50.0f);
+    Image probe = sky_probe(vec3(0.6f, 0.45f, 0.35f));
+    vec3 box_albedo{0.5f, 0.45f, 0.4f};
+    GroundAndBox() {
+        project.real.push_back(ground_plane(vec3(0.5f), 6.0f));
+        RealProxy box;
+        box.name = "box";
+        box.shape.kind = Shape::Kind::Box;
+        box.shape.size = vec3(0.8f);
+        box.transform.translation = vec3(-0.6f, 0.4f, 0.3f);
+        box.albedo.rgb = box_albedo;
+        project.real.push_back(box);
+    }
+    std::shared_ptr<RenderScene> photo(int spp) {
+        return photographed(project, probe, {two_tone_texture(), Image()}, 160, 120, spp);
+    }
+};
 
 }  // namespace dp::test
