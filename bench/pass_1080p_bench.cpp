@@ -109,9 +109,12 @@ void BM_OnePass1080pPhases(benchmark::State& state) {
     tbb::task_arena arena(bench::arena_threads(s, 0));
     const uint64_t seed = s.project().render.seed;
     float radius = 0;
+    int diffuse_samples = 0;
     PixelCache cache;
     arena.execute([&] {
-        radius = ProgressiveRenderer(scene, kPhotonsPerPass, seed).radius_for_pass(kPass);
+        ProgressiveRenderer r(scene, kPhotonsPerPass, seed);
+        radius = r.radius_for_pass(kPass);
+        diffuse_samples = r.camera_diffuse_samples();
         cache = build_pixel_cache(s);
     });
     const int W = s.photo().width(), H = s.photo().height();
@@ -134,7 +137,7 @@ void BM_OnePass1080pPhases(benchmark::State& state) {
             t_build += seconds_since(t0);
 
             std::vector<SampleResult> out(n, SampleResult{});
-            Shader shader(s, maps);
+            Shader shader(s, maps, diffuse_samples);
             // Same sample streams as ProgressiveRenderer::shade_pass for pass 1.
             auto shade = [&](size_t i, int x, int y) {
                 Rng rng = Rng::keyed(seed, uint64_t(kPass) * 2 + 1, i);

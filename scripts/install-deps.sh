@@ -7,6 +7,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   blender-data  # the CC0 light probes the sample project and benchmarks use
 )
+# `--bench`: also what the benchmark plots need.
+[ "${1:-}" = "--bench" ] && packages+=(python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -11,6 +11,7 @@
 #include "commands.h"
 #include "common.h"
 #include "image/image_io.h"
+#include "reference/standard_differential.h"
 #include "render/progressive.h"
 #include "render/session.h"
 #include "render_pixel.h"
@@ -21,7 +22,7 @@ namespace dp::cli {
 namespace {
 
 struct RenderOptions {
-    std::string project, output, pixel;
+    std::string project, output, pixel, method = "differential";
     int passes = 0, pass = 1, threads = 0;
     double time_s = 0;
     int64_t photons = 0;
@@ -72,6 +73,11 @@ int run_render(const RenderOptions& o) {
     int px = 0, py = 0;
     if (debug) parse_pixel(o.pixel, px, py);
     if (debug && !o.output.empty()) warn("--output is ignored with --pixel; nothing is written");
+    const bool standard = o.method != "differential";
+    if (standard && debug)
+        throw InputError("", "--pixel", "the per-pixel debugger is for --method differential");
+    if (standard && o.photons_opt->count())
+        warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
 
     return with_threads(o.threads, [&]() -> int {
         auto scene = load_scene(o.project, [&](Project& p) { apply_overrides(o, p); });
@@ -81,6 +87,13 @@ int run_render(const RenderOptions& o) {
         Progress progress;
         CliSink sink(progress);
         RenderSession session(&sink);
+        if (standard) {
+            const auto sampling = o.method == "standard" ? StandardDifferentialRenderer::Sampling::Independent
+                                                         : StandardDifferentialRenderer::Sampling::Correlated;
+            session.set_renderer_factory([sampling](std::shared_ptr<const RenderScene> s) {
+                return std::make_unique<StandardDifferentialRenderer>(std::move(s), sampling);
+            });
+        }
         session.start(scene);
         while (!sink.wait_stopped(std::chrono::milliseconds(100)))
             if (interrupted()) session.cancel();
@@ -129,6 +142,11 @@ Command add_render_command(CLI::App& app) {
     sub->add_flag("--layers", o->layers, "EXR only: also write layers dL, alpha and shadow");
     sub->add_option("--exposure", o->exposure, "PNG/JPEG only: exposure in stops")
         ->check(kFinite);
+    sub->add_option("--method", o->method,
+                    "differential (photon mapping of the change), standard (two independent "
+                    "path-traced simulations, without and with the objects; one sample per pixel "
+                    "a pass) or standard-correlated (both simulations share each sample's rays)")
+        ->check(CLI::IsMember({"differential", "standard", "standard-correlated"}));
     o->pixel_opt = sub->add_option("--pixel", o->pixel,
                                    "Debug: print one pixel of one pass (X,Y) instead of rendering");
     sub->add_option("--pass", o->pass, "Debug: the pass for --pixel (1-based)")

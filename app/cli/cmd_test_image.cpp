@@ -22,8 +22,29 @@ struct TestImageOptions {
     std::vector<float> sun_dir{0.3f, 0.9f, 0.3f};
     float sun_irradiance = 3.0f;
     bool probe_sun = false;
+    float sun_radius_deg = 0;
+    std::vector<float> sky_zenith;
+    int checker = 0;
+    std::vector<float> value2{0.1f, 0.1f, 0.1f};
     size_t nan_pixels = 0;
 };
+
+/// A sun-and-sky probe: a sun disk of the given angular radius whose radiance makes the given
+/// irradiance at normal incidence, over a sky graded from `horizon` to `zenith`.
+Image sun_disk_probe(int w, int h, vec3 dir, float radius_deg, float irradiance, vec3 zenith,
+                     vec3 horizon) {
+    const double omega = 2.0 * kPi * (1.0 - std::cos(double(radius_deg) * kPi / 180.0));
+    return make_sun_sky_probe(w, h, dir, vec3(float(irradiance / omega)), radius_deg, zenith, horizon);
+}
+
+/// `cells` x `cells` squares alternating between `a` and `b`, starting with `a` at the top left.
+Image checker_image(int w, int h, int cells, vec3 a, vec3 b) {
+    Image img(w, h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            img.at(x, y) = ((x * cells / w + y * cells / h) % 2 == 0) ? a : b;
+    return img;
+}
 
 /// A lat-long sky of constant `sky` radiance with a one-pixel sun whose radiance makes the
 /// given irradiance on a surface facing it.
@@ -42,10 +63,17 @@ int run_make_test_image(const TestImageOptions& o) {
     const ImageKind kind = check_output_path(o.output, "output");
     const int w = o.size[0], h = o.size[1];
     const vec3 value(o.value[0], o.value[1], o.value[2]);
-    Image img = o.probe_sun
-                    ? sun_probe(w, h, vec3(o.sun_dir[0], o.sun_dir[1], o.sun_dir[2]), value,
-                                o.sun_irradiance)
-                    : Image(w, h, value);
+    const vec3 sun_dir(o.sun_dir[0], o.sun_dir[1], o.sun_dir[2]);
+    const vec3 zenith = o.sky_zenith.empty() ? value : vec3(o.sky_zenith[0], o.sky_zenith[1], o.sky_zenith[2]);
+    Image img;
+    if (o.probe_sun && o.sun_radius_deg > 0)
+        img = sun_disk_probe(w, h, sun_dir, o.sun_radius_deg, o.sun_irradiance, zenith, value);
+    else if (o.probe_sun)
+        img = sun_probe(w, h, sun_dir, value, o.sun_irradiance);
+    else if (o.checker > 0)
+        img = checker_image(w, h, o.checker, value, vec3(o.value2[0], o.value2[1], o.value2[2]));
+    else
+        img = Image(w, h, value);
     if (o.nan_pixels > img.size())
         throw InputError(o.output, "--nan", "more NaN pixels than the image has");
     // Deliberately non-finite input: one NaN channel per pixel, spread over the image.
@@ -75,6 +103,15 @@ Command add_make_test_image_command(CLI::App& app) {
     sub->add_flag("--probe-sun", o->probe_sun, "Lat-long probe: constant sky and a one-pixel sun");
     sub->add_option("--sun-dir", o->sun_dir, "Direction towards the sun")->expected(3);
     sub->add_option("--sun-irradiance", o->sun_irradiance, "Sun irradiance")->check(kFinite);
+    sub->add_option("--sun-radius-deg", o->sun_radius_deg,
+                    "With --probe-sun: a sun disk of this angular radius instead of one pixel")
+        ->check(CLI::Range(0.0f, 45.0f));
+    sub->add_option("--sky-zenith", o->sky_zenith, "With --probe-sun: zenith radiance (--value is the horizon)")
+        ->expected(3)
+        ->check(kFinite);
+    sub->add_option("--checker", o->checker, "A checkerboard of this many cells a side (--value, --value2)")
+        ->check(CLI::Range(1, 4096));
+    sub->add_option("--value2", o->value2, "The checkerboard's second colour")->expected(3)->check(kFinite);
     sub->add_option("--nan", o->nan_pixels, "Number of pixels whose red channel is NaN");
     return {sub, [o] { return run_make_test_image(*o); }};
 }

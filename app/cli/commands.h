@@ -18,6 +18,8 @@ Command add_info_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_convert_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+/// Time against error of both methods on benchmark scenes.
+Command add_bench_command(CLI::App& app);
 /// `calibrate proxy|albedo|probe`: real proxies, albedo textures and probe alignment, added to
 /// the `calibrate` command. Each subcommand runs from its CLI11 callback and throws InputError
 /// for bad input.

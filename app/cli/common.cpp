@@ -60,6 +60,12 @@ ImageKind check_output_path(const std::string& path, const std::string& option) 
         throw InputError(path, option,
                          "unknown output format '" + ext + "' (use .exr, .png, .jpg or .jpeg)");
     }
+    check_output_folder(path, option);
+    return kind;
+}
+
+void check_output_folder(const std::string& path, const std::string& option) {
+    if (path.empty()) throw InputError(path, option, "no output file given");
     std::error_code ec;
     if (fs::is_directory(path, ec)) throw InputError(path, option, "is a directory");
     fs::path folder = fs::path(path).parent_path();
@@ -68,7 +74,6 @@ ImageKind check_output_path(const std::string& path, const std::string& option) 
         throw InputError(path, option, "folder '" + folder.string() + "' does not exist");
     if (::access(folder.c_str(), W_OK) != 0)
         throw InputError(path, option, "folder '" + folder.string() + "' is not writable");
-    return kind;
 }
 
 size_t sanitize(Image& image, const std::string& path, const std::string& layer) {

@@ -39,6 +39,8 @@ enum class ImageKind { Exr, Ldr };
 /// extension must be .exr, .png, .jpg or .jpeg and the folder must exist and be writable.
 /// Throws InputError naming the path and `option`.
 ImageKind check_output_path(const std::string& path, const std::string& option);
+/// The folder part of check_output_path, for files of any kind.
+void check_output_folder(const std::string& path, const std::string& option);
 
 /// Replaces NaN/Inf channels by 0 and warns (naming `path` and `layer`) if there were any.
 size_t sanitize(Image& image, const std::string& path, const std::string& layer);

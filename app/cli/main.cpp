@@ -23,6 +23,7 @@ int run(int argc, char** argv) {
     std::vector<Command> commands = {
         add_render_command(app),    add_info_command(app),    add_reference_command(app),
         add_convert_command(app),   add_compare_command(app), add_make_test_image_command(app),
+        add_bench_command(app),
     };
     CLI::App* calibrate = app.add_subcommand("calibrate", "Fill in the project from the photograph");
     calibrate->require_subcommand(1);

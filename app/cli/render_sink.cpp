@@ -8,8 +8,13 @@ void CliSink::on_update(const RenderUpdate& update) {
     s.done = update.stats.passes;
     s.total = update.target_passes;
     s.budget_s = update.time_budget_s;
-    s.rate_name = "photons/s";
-    s.rate = update.stats.photons_per_second;
+    if (update.stats.photons_emitted > 0 || update.stats.samples_per_pixel == 0) {
+        s.rate_name = "photons/s";
+        s.rate = update.stats.photons_per_second;
+    } else {  // path-traced methods: camera samples per pixel and second
+        s.rate_name = "spp/s";
+        s.rate = update.stats.seconds > 0 ? double(update.stats.samples_per_pixel) / update.stats.seconds : 0;
+    }
     progress_.update(s);
     // The update is only valid during this call, so it is copied; keeping the latest lets an
     // interrupted render still write what it has.

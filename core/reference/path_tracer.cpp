@@ -13,8 +13,6 @@ namespace dp {
 
 namespace {
 
-float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
-
 struct PathTracer {
     const RenderScene& scene;
     const ReferenceOptions& opt;

@@ -32,6 +32,8 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
     sum_alpha_.assign(n, 0.0);
     stats_.pixels_total = n;
     cache_ = build_pixel_cache(*scene_);
+    const size_t near = size_t(std::count(cache_.near_virtual.begin(), cache_.near_virtual.end(), uint8_t(1)));
+    diffuse_samples_ = dp::camera_diffuse_samples(photons_per_pass_, near);
 }
 
 float ProgressiveRenderer::radius_for_pass(int pass) const {
@@ -52,7 +54,7 @@ void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector
         gathered = 0;
         return;
     }
-    Shader shader(s, maps);
+    Shader shader(s, maps, diffuse_samples_);
     tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const tbb::blocked_range<int>& rows) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return;
         size_t local = 0;

@@ -5,26 +5,13 @@
 #include <vector>
 
 #include "image/image.h"
+#include "render/pass_renderer.h"
 #include "render/photon_tracer.h"
 #include "render/pixel_cache.h"
 #include "render/render_scene.h"
 #include "render/shading.h"
 
 namespace dp {
-
-/// Figures about the passes done so far.
-struct RenderStats {
-    int passes = 0;
-    double seconds = 0;            ///< wall time of completed passes
-    uint64_t photons_emitted = 0;
-    uint64_t photons_stored = 0;
-    uint64_t rays = 0;             ///< photon rays (Embree queries)
-    double photons_per_second = 0;
-    size_t pixels_gathered = 0;    ///< in the last pass
-    size_t pixels_total = 0;
-    float radius = 0;              ///< gather radius of the last pass
-    size_t non_finite_samples = 0; ///< samples discarded because they were NaN/Inf
-};
 
 /// Shadow-only matte: the fraction of the photo's light the virtual objects remove,
 /// clamp(-lum(dL) / lum(photo), 0, 1), grey RGB; 0 where the photo is black or dL >= 0.
@@ -33,7 +20,7 @@ Image shadow_matte(const Image& photo, const Image& dL);
 /// Progressive differential photon mapping (Knaus & Zwicker 2011): each pass shoots fresh
 /// photons with its own seed and gathers with a shrinking radius; the image is the mean of the
 /// pass images, accumulated in double. A pass depends only on (seed, pass index).
-class ProgressiveRenderer {
+class ProgressiveRenderer final : public PassRenderer {
 public:
     ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, int64_t photons_per_pass, uint64_t seed);
 
@@ -44,22 +31,23 @@ public:
 
     /// Renders and accumulates the next pass; returns false (accumulating nothing) if
     /// `cancel` became true meanwhile.
-    bool render_pass(const std::atomic<bool>* cancel = nullptr);
+    bool render_pass(const std::atomic<bool>* cancel = nullptr) override;
     /// Renders exactly pass `pass` into its own images without accumulating (debugging).
     void render_single_pass(int pass, Image& delta, Image& dL, Image& alpha);
 
-    int passes() const { return stats_.passes; }
-    const RenderStats& stats() const { return stats_; }
+    const RenderStats& stats() const override { return stats_; }
 
     /// Photo plus the mean change: the augmented photograph (linear, may be negative only
     /// where the estimate is; clamp for display).
-    Image image() const;
+    Image image() const override;
     /// Mean signed change of radiance on real surfaces seen directly.
-    Image delta_layer() const;
+    Image delta_layer() const override;
     /// Fraction of samples that saw a virtual object first (grey RGB).
-    Image alpha_layer() const;
+    Image alpha_layer() const override;
     /// Fraction of pixels the last pass left as the photo, with no ray and no gather.
     double skipped_fraction() const;
+    /// Estimates per camera sample on virtual diffuse surfaces (shading.h).
+    int camera_diffuse_samples() const { return diffuse_samples_; }
 
 private:
     /// Traces pass `pass`'s photons and builds its maps with the pass's radius.
@@ -72,6 +60,7 @@ private:
     uint64_t seed_;
     float r1_ = 0, alpha_ = 2.0f / 3.0f;
     PixelCache cache_;  ///< what the centre rays see, once per camera and geometry
+    int diffuse_samples_ = 2;
     // Accumulators (double: shadow and caustic photons cancel).
     std::vector<dvec3> sum_delta_, sum_dL_;
     std::vector<double> sum_alpha_;

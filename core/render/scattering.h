@@ -5,6 +5,13 @@
 
 namespace dp {
 
+/// MIS power heuristic (beta = 2) of a strategy with pdf `a` against one with pdf `b`; 0 when
+/// both are 0 (a direction neither strategy samples) rather than 0/0.
+inline float power_heuristic(float a, float b) {
+    const float a2 = a * a, sum = a2 + b * b;
+    return sum > 0 ? a2 / sum : 0.0f;
+}
+
 /// Mirror reflection of incident direction `d` (travelling towards the surface) about `n`.
 inline vec3 reflect(const vec3& d, const vec3& n) { return d - 2.0f * glm::dot(d, n) * n; }
 

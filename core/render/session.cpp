@@ -6,7 +6,21 @@
 
 namespace dp {
 
-RenderSession::RenderSession(RenderSink* sink) : sink_(sink) {}
+namespace {
+
+std::unique_ptr<PassRenderer> make_differential(std::shared_ptr<const RenderScene> scene) {
+    const RenderSettings& rs = scene->project().render;
+    return std::make_unique<ProgressiveRenderer>(std::move(scene), rs.photons_per_pass, rs.seed);
+}
+
+}  // namespace
+
+RenderSession::RenderSession(RenderSink* sink) : sink_(sink), factory_(make_differential) {}
+
+void RenderSession::set_renderer_factory(RendererFactory factory) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    factory_ = factory ? std::move(factory) : RendererFactory(make_differential);
+}
 
 RenderSession::~RenderSession() {
     cancel();
@@ -26,10 +40,12 @@ void RenderSession::start(std::shared_ptr<const RenderScene> scene) {
     if (thread_.joinable()) thread_.join();
     cancel_.store(false);
     running_.store(true);
-    thread_ = std::thread([this, scene = std::move(scene)]() mutable { run(std::move(scene)); });
+    thread_ = std::thread([this, scene = std::move(scene), factory = factory_]() mutable {
+        run(std::move(scene), factory);
+    });
 }
 
-void RenderSession::run(std::shared_ptr<const RenderScene> scene) {
+void RenderSession::run(std::shared_ptr<const RenderScene> scene, const RendererFactory& factory) {
     const RenderSettings& rs = scene->project().render;
     bool cancelled = false;
     std::string error;
@@ -37,7 +53,8 @@ void RenderSession::run(std::shared_ptr<const RenderScene> scene) {
         int threads = rs.threads > 0 ? rs.threads : tbb::task_arena::automatic;
         tbb::task_arena arena(threads);
         arena.execute([&] {
-            ProgressiveRenderer renderer(scene, rs.photons_per_pass, rs.seed);
+            std::unique_ptr<PassRenderer> owned = factory(scene);
+            PassRenderer& renderer = *owned;
             auto t0 = std::chrono::steady_clock::now();
             for (;;) {
                 if (cancel_.load()) { cancelled = true; break; }

@@ -49,11 +49,15 @@ public:
     /// Restarts refinement from pass zero on a (possibly edited) scene.
     void reset(std::shared_ptr<const RenderScene> scene) { start(std::move(scene)); }
     bool running() const { return running_.load(); }
+    /// Chooses the renderer of later runs (default: differential photon mapping with the
+    /// project's photons per pass and seed). Takes effect at the next start().
+    void set_renderer_factory(RendererFactory factory);
 
 private:
-    void run(std::shared_ptr<const RenderScene> scene);
+    void run(std::shared_ptr<const RenderScene> scene, const RendererFactory& factory);
 
     RenderSink* sink_;
+    RendererFactory factory_;
     std::thread thread_;
     std::atomic<bool> cancel_{false};
     std::atomic<bool> running_{false};

@@ -12,15 +12,17 @@ namespace {
 // itself), then chosen by Russian roulette.
 constexpr int kGlassSplits = 2;
 constexpr int kDiffuseGatherDepth = 3;
-// Virtual diffuse surfaces seen by the camera are few pixels but carry the noisiest estimate
-// (probe and surroundings by Monte Carlo): average two samples there per pass.
-constexpr int kCameraDiffuseSamples = 2;
 
-float power_heuristic(float a, float b) { return a * a / (a * a + b * b); }
 }  // namespace
 
-Shader::Shader(const RenderScene& scene, const PassMaps& maps)
-    : scene_(scene), maps_(maps), max_depth_(std::max(1, scene.project().render.max_depth)) {
+int camera_diffuse_samples(int64_t photons_per_pass, size_t pixels_near_virtual) {
+    const double balanced = double(photons_per_pass) / (4.0 * double(std::max<size_t>(1, pixels_near_virtual)));
+    return int(std::clamp(std::floor(balanced), 2.0, 8.0));
+}
+
+Shader::Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples)
+    : scene_(scene), maps_(maps), camera_diffuse_samples_(std::max(1, camera_diffuse_samples)),
+      max_depth_(std::max(1, scene.project().render.max_depth)) {
     inv_area_ = maps.radius > 0 ? 1.0 / (double(kPi) * maps.radius * maps.radius) : 0.0;
 }
 
@@ -138,7 +140,7 @@ SampleResult Shader::shade_camera(int x, int y, float px, float py, Rng& rng) co
     }
     r.alpha = 1;
     vec3 L = hit.surface->material.kind == Material::Kind::Diffuse
-                 ? virtual_diffuse_radiance(hit, ray.dir, rng, 0, kCameraDiffuseSamples)
+                 ? virtual_diffuse_radiance(hit, ray.dir, rng, 0, camera_diffuse_samples_)
                  : specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
     r.delta = L - photo;
     return r;

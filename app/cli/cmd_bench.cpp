@@ -1,0 +1,187 @@
+// `diffphoton bench`: run time against error for differential photon mapping and standard
+// differential rendering on benchmark scenes with converged ground truths.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "base/error.h"
+#include "commands.h"
+#include "common.h"
+#include "image/image_io.h"
+#include "image/image_metrics.h"
+#include "reference/standard_differential.h"
+#include "render/progressive.h"
+
+namespace dp::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct BenchOptions {
+    std::vector<std::string> scenes;
+    std::vector<std::string> methods{"differential", "standard", "standard-correlated"};
+    std::string output, images;
+    double max_seconds_differential = 30, max_seconds_standard = 120;
+    int threads = 0;
+};
+
+/// A scene folder: scene.json (what both methods render) and two independent halves of the
+/// converged truth, truth-a.exr and truth-b.exr (main layer and alpha).
+struct BenchScene {
+    std::string name;
+    std::shared_ptr<RenderScene> scene;
+    Image truth, alpha;
+    std::vector<bool> changed, on_objects, on_real;  ///< changed pixels; split by what they see
+    nlohmann::json info;
+};
+
+BenchScene load_bench_scene(const std::string& dir) {
+    BenchScene b;
+    b.name = fs::path(dir).filename().string();
+    if (b.name.empty()) b.name = fs::path(dir).parent_path().filename().string();
+    b.scene = load_scene((fs::path(dir) / "scene.json").string());
+    const std::string ta = (fs::path(dir) / "truth-a.exr").string(), tb = (fs::path(dir) / "truth-b.exr").string();
+    for (const std::string& t : {ta, tb})
+        if (!fs::exists(t))
+            throw InputError(t, "", "missing ground truth (make it with bench/scenes/make_scenes.py)");
+    const Image a = load_exr_layer(ta, ""), bb = load_exr_layer(tb, "");
+    b.truth = mean_image(a, bb);
+    b.alpha = mean_image(load_exr_layer(ta, "alpha"), load_exr_layer(tb, "alpha"));
+    const Image& photo = b.scene->photo();
+    if (photo.width() != b.truth.width() || photo.height() != b.truth.height())
+        throw InputError(ta, "", "the truth's size differs from the photograph's");
+    b.changed = changed_pixels(photo, b.truth, b.alpha);
+    b.on_objects.resize(b.changed.size());
+    b.on_real.resize(b.changed.size());
+    for (size_t i = 0; i < b.changed.size(); ++i) {
+        b.on_objects[i] = b.changed[i] && b.alpha[i].x > 0;
+        b.on_real[i] = b.changed[i] && b.alpha[i].x == 0;
+    }
+    // The mean of two independent halves has half the error of their difference.
+    const ImageError whole = image_error(a, bb), changed = image_error(a, bb, b.changed);
+    b.info = {{"scene", b.name},
+              {"width", photo.width()},
+              {"height", photo.height()},
+              {"changed_pixels", changed.pixels},
+              {"truth_rmse", whole.rmse / 2},
+              {"truth_rel_rmse", whole.rel_rmse / 2},
+              {"truth_rmse_changed", changed.rmse / 2},
+              {"truth_rel_rmse_changed", changed.rel_rmse / 2}};
+    return b;
+}
+
+std::unique_ptr<PassRenderer> make_renderer(const std::string& method, std::shared_ptr<const RenderScene> s) {
+    using Sampling = StandardDifferentialRenderer::Sampling;
+    if (method == "standard") return std::make_unique<StandardDifferentialRenderer>(std::move(s), Sampling::Independent);
+    if (method == "standard-correlated")
+        return std::make_unique<StandardDifferentialRenderer>(std::move(s), Sampling::Correlated);
+    const RenderSettings& rs = s->project().render;
+    return std::make_unique<ProgressiveRenderer>(s, rs.photons_per_pass, rs.seed);
+}
+
+/// Runs one method on one scene until its time budget is spent, measuring the error at pass
+/// counts spaced by sqrt(2). Only render_pass() is timed; measuring the error is not.
+nlohmann::json run_method(const BenchOptions& o, const BenchScene& b, const std::string& method,
+                          nlohmann::json& rows) {
+    const double budget = method == "differential" ? o.max_seconds_differential : o.max_seconds_standard;
+    std::unique_ptr<PassRenderer> r = make_renderer(method, b.scene);
+    std::vector<double> pass_seconds;
+    double next_snapshot = 1;
+    for (;;) {
+        const double before = r->stats().seconds;
+        if (!r->render_pass(interrupt_flag())) break;
+        pass_seconds.push_back(r->stats().seconds - before);
+        const bool last = r->stats().seconds >= budget;
+        if (r->passes() + 1e-9 < next_snapshot && !last) continue;
+        while (next_snapshot <= r->passes()) next_snapshot = std::max(next_snapshot + 1, std::round(next_snapshot * std::sqrt(2.0)));
+        const Image img = r->image();
+        const ImageError whole = image_error(img, b.truth), changed = image_error(img, b.truth, b.changed);
+        const ImageError objects = image_error(img, b.truth, b.on_objects);
+        const ImageError real = image_error(img, b.truth, b.on_real);
+        const RenderStats& st = r->stats();
+        rows.push_back({{"scene", b.name},
+                        {"method", method},
+                        {"seconds", st.seconds},
+                        {"passes", st.passes},
+                        {"photons", st.photons_emitted},
+                        {"samples_per_pixel", st.samples_per_pixel},
+                        {"rmse", whole.rmse},
+                        {"rel_rmse", whole.rel_rmse},
+                        {"rmse_changed", changed.rmse},
+                        {"rel_rmse_changed", changed.rel_rmse},
+                        {"rel_rmse_objects", objects.rel_rmse},
+                        {"rel_rmse_real_changed", real.rel_rmse}});
+        std::printf("%-14s %-12s %8.2fs  passes %5d  rel. RMSE %.4f  changed %.4f (objects %.4f, real %.4f)\n",
+                    b.name.c_str(), method.c_str(), st.seconds, st.passes, whole.rel_rmse,
+                    changed.rel_rmse, objects.rel_rmse, real.rel_rmse);
+        std::fflush(stdout);
+        if (last || interrupted()) {
+            if (!o.images.empty()) {
+                Image out = img;
+                save_ldr((fs::path(o.images) / (b.name + "-" + method + ".png")).string(), out);
+            }
+            break;
+        }
+    }
+    std::vector<double> sorted = pass_seconds;
+    std::sort(sorted.begin(), sorted.end());
+    return {{"scene", b.name},
+            {"method", method},
+            {"passes", r->passes()},
+            {"median_pass_seconds", sorted.empty() ? 0.0 : sorted[sorted.size() / 2]}};
+}
+
+int run_bench(const BenchOptions& o) {
+    for (const std::string& m : o.methods)
+        if (m != "differential" && m != "standard" && m != "standard-correlated")
+            throw InputError("", "--methods",
+                             "unknown method '" + m + "' (differential, standard or standard-correlated)");
+    check_output_folder(o.output, "--output");
+    if (!o.images.empty()) fs::create_directories(o.images);
+    return with_threads(o.threads, [&]() -> int {
+        install_interrupt_handler();
+        nlohmann::json doc = {{"scenes", nlohmann::json::array()},
+                              {"runs", nlohmann::json::array()},
+                              {"rows", nlohmann::json::array()}};
+        for (const std::string& dir : o.scenes) {
+            BenchScene b = load_bench_scene(dir);
+            doc["scenes"].push_back(b.info);
+            for (const std::string& m : o.methods) {
+                doc["runs"].push_back(run_method(o, b, m, doc["rows"]));
+                if (interrupted()) break;
+            }
+            if (interrupted()) break;
+        }
+        std::ofstream(o.output) << doc.dump(1) << "\n";
+        std::printf("wrote %s\n", o.output.c_str());
+        return interrupted() ? kInterruptedExit : 0;
+    });
+}
+
+}  // namespace
+
+Command add_bench_command(CLI::App& app) {
+    auto o = std::make_shared<BenchOptions>();
+    CLI::App* sub = app.add_subcommand(
+        "bench", "Run time against error of both methods on benchmark scenes (JSON rows)");
+    sub->add_option("scenes", o->scenes, "Scene folders (scene.json, truth-a.exr, truth-b.exr)")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    sub->add_option("-o,--output", o->output, "Rows as JSON")->required();
+    sub->add_option("--methods", o->methods, "Comma-separated: differential, standard, standard-correlated")->delimiter(',');
+    sub->add_option("--max-seconds-differential", o->max_seconds_differential,
+                    "Render-time budget of differential photon mapping per scene")
+        ->check(CLI::PositiveNumber & kFinite);
+    sub->add_option("--max-seconds-standard", o->max_seconds_standard,
+                    "Render-time budget of standard differential rendering per scene")
+        ->check(CLI::PositiveNumber & kFinite);
+    sub->add_option("--images", o->images, "Folder for each run's last image (PNG)");
+    sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+    return {sub, [o] { return run_bench(*o); }};
+}
+
+}  // namespace dp::cli

@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""Plots run time against error from `diffphoton bench` rows and writes a Markdown summary.
+
+Usage: plot_time_vs_error.py rows.json --out DIR
+Writes DIR/<scene>.png (log-log relative RMSE over changed pixels against seconds, each
+method, the truth's noise floor) and DIR/summary.md.
+"""
+import argparse
+import json
+import math
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+THRESHOLDS = (0.05, 0.02, 0.01)
+STYLE = {"differential": ("tab:blue", "differential photon mapping"),
+         "standard": ("tab:red", "standard (two independent simulations)"),
+         "standard-correlated": ("tab:orange", "standard, correlated sampling")}
+
+
+def error_key(scene):
+    """Changed-pixel error, or the whole image's where nothing changes (the no-op scene)."""
+    return "rel_rmse_changed" if scene["changed_pixels"] > 0 else "rel_rmse"
+
+
+def time_to_reach(rows, key, target):
+    """Seconds at which the error first falls to `target`, interpolated log-log; None if never."""
+    prev = None
+    for r in rows:
+        e = r[key]
+        if e <= target:
+            if prev is None or prev[1] <= 0 or e <= 0:
+                return r["seconds"]
+            (t0, e0), (t1, e1) = prev, (r["seconds"], e)
+            f = (math.log(target) - math.log(e0)) / (math.log(e1) - math.log(e0))
+            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
+        prev = (r["seconds"], e)
+    return None
+
+
+def fmt_time(t):
+    return "not reached" if t is None else (f"{t:.2f} s" if t < 100 else f"{t:.0f} s")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("rows")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--image-prefix", default="", help="prefix of the PNG links in summary.md")
+    ap.add_argument("--note", default="", help="a line about the machine, printed under the table")
+    args = ap.parse_args()
+    doc = json.load(open(args.rows))
+    os.makedirs(args.out, exist_ok=True)
+    methods = [m for m in STYLE if any(r["method"] == m for r in doc["rows"])]
+    lines = ["| scene | changed px | truth noise | method | " +
+             " | ".join(f"time to {int(t * 100)}%" for t in THRESHOLDS) +
+             " | final error | final time | speed-up at 2% |",
+             "|---|---|---|---|" + "---|" * len(THRESHOLDS) + "---|---|---|"]
+    pass_times = {}
+    for scene in doc["scenes"]:
+        name, key = scene["scene"], error_key(scene)
+        floor = scene["truth_rel_rmse_changed" if key == "rel_rmse_changed" else "truth_rel_rmse"]
+        fig, ax = plt.subplots(figsize=(6, 4), dpi=110)
+        reach = {}
+        for m in methods:
+            rows = [r for r in doc["rows"] if r["scene"] == name and r["method"] == m]
+            if not rows:
+                continue
+            color, label = STYLE[m]
+            ax.loglog([r["seconds"] for r in rows], [max(r[key], 1e-6) for r in rows], "o-", ms=3,
+                      color=color, label=label)
+            ax.loglog([r["seconds"] for r in rows], [max(r["rel_rmse"], 1e-6) for r in rows], ":",
+                      color=color, lw=1)
+            reach[m] = [time_to_reach(rows, key, t) for t in THRESHOLDS] + [rows[-1][key], rows[-1]["seconds"]]
+        for run in doc["runs"]:
+            if run["scene"] == name:
+                pass_times[(name, run["method"])] = run["median_pass_seconds"]
+        ax.axhline(floor, color="grey", ls="--", lw=1, label="truth's noise")
+        ax.set_xlabel("render time (s)")
+        ax.set_ylabel("relative RMSE " + ("over changed pixels" if key == "rel_rmse_changed" else "(whole image)"))
+        ax.set_title(f"{name} (dotted: whole image)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out, f"{name}.png"))
+        plt.close(fig)
+        d2 = reach.get("differential", [None] * 5)[1]
+        for m in methods:
+            if m not in reach:
+                continue
+            r = reach[m]
+            speedup = ""
+            if m != "differential":
+                if d2 is not None and r[1] is not None:
+                    speedup = f"{r[1] / d2:.1f}x"
+                elif d2 is not None:
+                    speedup = f"> {r[4] / d2:.1f}x (standard never reached 2%)"
+            lines.append(f"| {name} | {scene['changed_pixels']} | {100 * floor:.2f}% | {m} | " +
+                         " | ".join(fmt_time(t) for t in r[:3]) +
+                         f" | {100 * r[3]:.2f}% | {r[4]:.1f} s | {speedup} |")
+    out = ["Relative RMSE over the pixels the virtual objects change (whole image for the no-op "
+           "scene) against render time; times interpolated log-log between measurements.", ""]
+    out += lines
+    if args.note:
+        out += ["", "Machine: " + args.note]
+    if ("big_proxy", "differential") in pass_times and ("shadow_hard", "differential") in pass_times:
+        a, b = pass_times[("big_proxy", "differential")], pass_times[("shadow_hard", "differential")]
+        out += ["", f"Median differential pass with the 1M-triangle proxy: {a * 1000:.0f} ms; "
+                f"the same scene without it: {b * 1000:.0f} ms; ratio {a / b:.2f} (target 1.3)."]
+    out += ["", "Median time per pass (s):", "", "| scene | " + " | ".join(methods) + " |",
+            "|---|" + "---|" * len(methods)]
+    for scene in doc["scenes"]:
+        n = scene["scene"]
+        out.append(f"| {n} | " + " | ".join(f"{pass_times.get((n, m), float('nan')):.3f}" for m in methods) + " |")
+    out += ["", "Plots (solid: changed pixels; dotted: whole image; dashed: the truth's noise):", ""]
+    out += [" ".join(f"![{s['scene']}]({args.image_prefix}{s['scene']}.png)" for s in doc["scenes"][i:i + 2])
+            for i in range(0, len(doc["scenes"]), 2)]
+    with open(os.path.join(args.out, "summary.md"), "w") as f:
+        f.write("\n".join(out) + "\n")
+    print(f"wrote {args.out}/summary.md and {len(doc['scenes'])} plots")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,239 @@
+#!/usr/bin/env python3
+"""Generates the benchmark scenes: for each, a project (scene.json) that both methods render,
+a synthetic photograph path-traced from a possibly more detailed description of the real world
+(detail.json), and two independent halves of a converged ground truth (truth-a.exr,
+truth-b.exr): standard differential rendering of detail.json at many samples per pixel.
+
+Where detail.json equals scene.json the real proxies are exact and both methods converge to the
+truth; the mirror scene's photograph has a tiled floor its proxy models as one colour, as a
+photograph has detail no proxy captures.
+
+Usage: make_scenes.py --diffphoton build/app/diffphoton --out out/bench/scenes [--only NAME]
+"""
+import argparse
+import copy
+import json
+import math
+import os
+import struct
+import subprocess
+import sys
+import time
+
+WIDTH, HEIGHT = 256, 144
+BLENDER_PROBES = "/usr/share/blender/datafiles/studiolights/world"
+
+
+def run(cmd):
+    print("+", " ".join(cmd), flush=True)
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+
+
+def base_project(probe, photons=100000):
+    return {
+        "schema_version": 1,
+        "photo": {"path": "photo.exr", "exposure": 0},
+        "probe": probe,
+        "camera": {"model": "lookat", "eye": [0, 1.4, 4.2], "target": [0, 0.35, 0],
+                   "up": [0, 1, 0], "vfov_deg": 40},
+        "real": [{"name": "ground", "shape": {"type": "plane", "size": [12, 12]},
+                  "albedo": [0.5, 0.5, 0.5]}],
+        "objects": [],
+        "render": {"photons_per_pass": photons, "passes": 16, "alpha": 0.6667,
+                   "max_depth": 8, "seed": 1, "threads": 0},
+    }
+
+
+def sphere(name, pos, radius, material):
+    return {"name": name, "shape": {"type": "sphere", "radius": radius},
+            "transform": {"translation": pos}, "material": material}
+
+
+def diffuse(rgb):
+    return {"type": "diffuse", "albedo": rgb}
+
+
+def sun_probe_spec(file):
+    return {"path": file, "format": "latlong", "rotation_deg": [0, 0, 0], "intensity": 1}
+
+
+def blender_probe(name, yaw):
+    return {"path": f"{BLENDER_PROBES}/{name}.exr", "format": "latlong",
+            "rotation_deg": [0, yaw, 0], "intensity": 1}
+
+
+def write_torus_knot(path, p=2, q=3, segments=240, sides=24, tube=0.09):
+    """A (p, q) torus knot tube: segments * sides * 2 triangles, as OBJ."""
+    def centre(t):
+        r = 0.35 + 0.15 * math.cos(q * t)
+        return (r * math.cos(p * t), 0.15 * math.sin(q * t), r * math.sin(p * t))
+
+    verts = []
+    for i in range(segments):
+        t = 2 * math.pi * i / segments
+        c, c2 = centre(t), centre(t + 1e-3)
+        tang = [c2[k] - c[k] for k in range(3)]
+        n = math.sqrt(sum(x * x for x in tang))
+        tang = [x / n for x in tang]
+        up = (0.0, 1.0, 0.0)
+        b = [tang[1] * up[2] - tang[2] * up[1], tang[2] * up[0] - tang[0] * up[2], tang[0] * up[1] - tang[1] * up[0]]
+        bn = math.sqrt(sum(x * x for x in b))
+        b = [x / bn for x in b]
+        nrm = [b[1] * tang[2] - b[2] * tang[1], b[2] * tang[0] - b[0] * tang[2], b[0] * tang[1] - b[1] * tang[0]]
+        for j in range(sides):
+            a = 2 * math.pi * j / sides
+            verts.append([c[k] + tube * (math.cos(a) * nrm[k] + math.sin(a) * b[k]) for k in range(3)])
+    with open(path, "w") as f:
+        f.write(f"# ({p},{q}) torus knot, {segments * sides * 2} triangles\n")
+        for v in verts:
+            f.write("v %.6f %.6f %.6f\n" % tuple(v))
+        for i in range(segments):
+            for j in range(sides):
+                a = i * sides + j + 1
+                b = ((i + 1) % segments) * sides + j + 1
+                c = ((i + 1) % segments) * sides + (j + 1) % sides + 1
+                d = i * sides + (j + 1) % sides + 1
+                f.write(f"f {a} {b} {c}\nf {a} {c} {d}\n")
+    return segments * sides * 2
+
+
+def write_terrain_ply(path, n=708, width=40.0, height=8.0):
+    """An n x n grid of gentle hills standing as a backdrop: 2 (n-1)^2 triangles, binary PLY."""
+    with open(path, "wb") as f:
+        tris = 2 * (n - 1) ** 2
+        f.write(("ply\nformat binary_little_endian 1.0\n"
+                 f"element vertex {n * n}\nproperty float x\nproperty float y\nproperty float z\n"
+                 f"element face {tris}\nproperty list uchar int vertex_indices\nend_header\n").encode())
+        rows = []
+        for i in range(n):
+            y = height * i / (n - 1)
+            for j in range(n):
+                x = width * (j / (n - 1) - 0.5)
+                z = 0.6 * math.sin(0.9 * x) * math.cos(1.3 * y)
+                rows.append(struct.pack("<fff", x, y, z))
+        f.write(b"".join(rows))
+        faces = []
+        for i in range(n - 1):
+            for j in range(n - 1):
+                a = i * n + j
+                faces.append(struct.pack("<Biii", 3, a, a + 1, a + n + 1))
+                faces.append(struct.pack("<Biii", 3, a, a + n + 1, a + n))
+        f.write(b"".join(faces))
+    return 2 * (n - 1) ** 2
+
+
+def scenes(out):
+    """name -> (scene project, detail project or None, truth spp, files to make first)."""
+    s = {}
+    hard = base_project(sun_probe_spec("sun-hard.exr"))
+    hard["objects"] = [sphere("ball", [0, 0.5, 0], 0.5, diffuse([0.7, 0.6, 0.5]))]
+    s["shadow_hard"] = (hard, None, 1024)
+
+    soft = copy.deepcopy(hard)
+    soft["probe"] = sun_probe_spec("sun-soft.exr")
+    s["shadow_soft"] = (soft, None, 1024)
+
+    caustic = base_project(sun_probe_spec("sun-caustic.exr"))
+    caustic["objects"] = [sphere("glass", [0, 0.45, 0], 0.45,
+                                 {"type": "glass", "ior": 1.5, "tint": [1, 1, 1]})]
+    s["caustic"] = (caustic, None, 4096)
+
+    mirrors = base_project(blender_probe("city", 35))
+    mirrors["objects"] = [
+        sphere("mirror left", [-0.75, 0.35, 0.1], 0.35, {"type": "mirror", "reflectance": [0.92, 0.92, 0.92]}),
+        sphere("mirror right", [0.8, 0.3, -0.2], 0.3, {"type": "mirror", "reflectance": [0.9, 0.9, 0.9]}),
+        sphere("clay", [0.05, 0.3, 0.45], 0.3, diffuse([0.75, 0.2, 0.12])),
+    ]
+    tiles = [[0.25, 0.25, 0.25], [0.6, 0.55, 0.5]]
+    mirrors["real"][0]["albedo"] = [sum(c) / 2 for c in zip(*tiles)]
+    detail = copy.deepcopy(mirrors)
+    detail["real"][0]["albedo"] = {"texture": "tiles.png"}
+    s["mirrors"] = (mirrors, detail, 1024)
+
+    bleed = base_project(blender_probe("courtyard", 0))
+    bleed["real"].append({"name": "wall", "shape": {"type": "box", "size": [3, 1.6, 0.1]},
+                          "transform": {"translation": [0, 0.8, -0.75]}, "albedo": [0.8, 0.8, 0.8]})
+    bleed["objects"] = [{"name": "knot", "shape": {"type": "mesh", "path": "knot.obj"},
+                         "transform": {"translation": [0, 0.42, -0.2], "scale": [1.3, 1.3, 1.3]},
+                         "material": diffuse([0.85, 0.12, 0.08])}]
+    s["bleeding"] = (bleed, None, 1024)
+
+    five = base_project(blender_probe("city", 35))
+    five["camera"].update({"eye": [0, 3.2, 7.5], "target": [0, 0, 0], "vfov_deg": 55})
+    five["real"][0]["shape"]["size"] = [20, 20]
+    five["objects"] = [sphere(f"ball {i}", [x, 0.15, z], 0.15, diffuse(c)) for i, (x, z, c) in enumerate([
+        (-3.2, 0.5, [0.8, 0.3, 0.2]), (-1.5, -2.0, [0.3, 0.7, 0.3]), (0.2, 1.8, [0.2, 0.3, 0.8]),
+        (1.9, -1.2, [0.8, 0.8, 0.3]), (3.4, 1.0, [0.7, 0.7, 0.7])])]
+    s["five_objects"] = (five, None, 1024)
+
+    big = copy.deepcopy(hard)
+    big["real"].append({"name": "hills", "shape": {"type": "mesh", "path": "hills.ply"},
+                        "transform": {"translation": [0, 0, -9]}, "albedo": [0.35, 0.45, 0.3]})
+    s["big_proxy"] = (big, None, 1024)
+
+    noop = copy.deepcopy(hard)
+    noop["objects"] = []
+    s["noop"] = (noop, None, 256)
+    return s
+
+
+def make_inputs(name, folder, exe):
+    if name in ("shadow_hard", "big_proxy", "noop"):
+        run([exe, "make-test-image", os.path.join(folder, "sun-hard.exr"), "--size", "1024", "512",
+             "--probe-sun", "--sun-dir", "0.45", "0.8", "0.4", "--sun-irradiance", "3",
+             "--sun-radius-deg", "0.5", "--value", "0.35", "0.4", "0.5", "--sky-zenith", "0.12", "0.2", "0.45"])
+    if name == "shadow_soft":
+        run([exe, "make-test-image", os.path.join(folder, "sun-soft.exr"), "--size", "1024", "512",
+             "--probe-sun", "--sun-dir", "0.45", "0.8", "0.4", "--sun-irradiance", "3",
+             "--sun-radius-deg", "6", "--value", "0.35", "0.4", "0.5", "--sky-zenith", "0.12", "0.2", "0.45"])
+    if name == "caustic":
+        run([exe, "make-test-image", os.path.join(folder, "sun-caustic.exr"), "--size", "1024", "512",
+             "--probe-sun", "--sun-dir", "0.5", "0.75", "0.45", "--sun-irradiance", "3",
+             "--sun-radius-deg", "1.5", "--value", "0.35", "0.4", "0.5", "--sky-zenith", "0.12", "0.2", "0.45"])
+    if name == "mirrors":
+        run([exe, "make-test-image", os.path.join(folder, "tiles.png"), "--size", "480", "480",
+             "--checker", "24", "--value", "0.25", "0.25", "0.25", "--value2", "0.6", "0.55", "0.5"])
+    if name == "bleeding":
+        print("knot.obj:", write_torus_knot(os.path.join(folder, "knot.obj")), "triangles", flush=True)
+    if name == "big_proxy":
+        print("hills.ply:", write_terrain_ply(os.path.join(folder, "hills.ply")), "triangles", flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--diffphoton", required=True)
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--only", action="append", help="make only these scenes")
+    ap.add_argument("--force", action="store_true", help="remake scenes that are already complete")
+    ap.add_argument("--spp-scale", type=float, default=1.0, help="scales every truth's samples")
+    args = ap.parse_args()
+    exe = os.path.abspath(args.diffphoton)
+    for name, (scene, detail, spp) in scenes(args.out).items():
+        if args.only and name not in args.only:
+            continue
+        t0 = time.time()
+        folder = os.path.join(args.out, name)
+        if not args.force and os.path.exists(os.path.join(folder, "truth.json")):
+            print(f"{name}: complete (use --force to remake)")
+            continue
+        os.makedirs(folder, exist_ok=True)
+        make_inputs(name, folder, exe)
+        detail = detail or scene
+        for file, project in (("scene.json", scene), ("detail.json", detail)):
+            with open(os.path.join(folder, file), "w") as f:
+                json.dump(project, f, indent=1)
+        detail_path = os.path.join(folder, "detail.json")
+        photo = os.path.join(folder, "photo.exr")
+        run([exe, "make-test-image", photo, "--size", str(WIDTH), str(HEIGHT)])  # sets the size
+        run([exe, "reference", detail_path, "--real-only", "--spp", "256", "--seed", "7", "-o", photo])
+        half = max(1, int(spp * args.spp_scale) // 2)
+        for part, seed in (("a", 101), ("b", 202)):
+            run([exe, "render", detail_path, "--method", "standard-correlated", "--passes", str(half), "--seed",
+                 str(seed), "--layers", "-o", os.path.join(folder, f"truth-{part}.exr")])
+        with open(os.path.join(folder, "truth.json"), "w") as f:
+            json.dump({"samples_per_pixel": 2 * half, "seconds": time.time() - t0}, f)
+        print(f"{name}: {time.time() - t0:.0f} s", flush=True)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

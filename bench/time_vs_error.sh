@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Time against error, one command: builds diffphoton, makes the benchmark scenes and their
+# truths (once; tens of minutes), runs every method on every scene, plots and summarises.
+#   BUILD=build OUT=out/bench/error DIFF_S=30 STD_S=120 bash bench/time_vs_error.sh [--update-docs]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=${BUILD:-build}
+OUT=${OUT:-out/bench/error}
+SCENES=${SCENES:-out/bench/scenes}
+DIFF_S=${DIFF_S:-30}
+STD_S=${STD_S:-120}
+ORDER=(shadow_hard shadow_soft caustic mirrors bleeding five_objects big_proxy noop)
+
+bash scripts/install-deps.sh --bench
+cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
+cmake --build "$BUILD" --target diffphoton
+/usr/bin/python3 bench/scenes/make_scenes.py --diffphoton "$BUILD/app/diffphoton" --out "$SCENES"
+mkdir -p "$OUT"
+load_before=$(cut -d' ' -f1-3 /proc/loadavg)
+"$BUILD/app/diffphoton" bench "${ORDER[@]/#/$SCENES/}" -o "$OUT/rows.json" --images "$OUT/images" \
+  --max-seconds-differential "$DIFF_S" --max-seconds-standard "$STD_S"
+/usr/bin/python3 bench/plot_time_vs_error.py "$OUT/rows.json" --out "$OUT" --image-prefix images/time-vs-error/ \
+  --note "$(nproc) cores; load average (1, 5, 15 min) $load_before before the run, $(cut -d' ' -f1-3 /proc/loadavg) after; commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)."
+if [ "${1:-}" = "--update-docs" ]; then
+  # The summary replaces the marked region of docs/benchmarks.md; plots and last images go
+  # beside it, the rows to docs/time-vs-error-rows.json.
+  mkdir -p docs/images/time-vs-error
+  cp "$OUT"/*.png docs/images/time-vs-error/
+  for f in "$OUT"/images/*.png; do cp "$f" "docs/images/time-vs-error/render-$(basename "$f")"; done
+  cp "$OUT/rows.json" docs/time-vs-error-rows.json
+  /usr/bin/python3 - "$OUT/summary.md" docs/benchmarks.md <<'PY'
+import re, sys
+summary, doc = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+begin, end = "<!-- time-vs-error:begin -->", "<!-- time-vs-error:end -->"
+assert begin in doc and end in doc, "docs/benchmarks.md lacks the time-vs-error markers"
+head, rest = doc.split(begin, 1)
+open(sys.argv[2], "w").write(head + begin + "\n" + summary + end + rest.split(end, 1)[1])
+PY
+  echo "updated docs/benchmarks.md and docs/images/time-vs-error/"
+fi

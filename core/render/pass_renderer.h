@@ -1,0 +1,48 @@
+#pragma once
+#include <atomic>
+#include <functional>
+#include <memory>
+
+#include "image/image.h"
+#include "render/render_scene.h"
+
+namespace dp {
+
+/// Figures about the passes done so far.
+struct RenderStats {
+    int passes = 0;
+    double seconds = 0;            ///< wall time of completed passes
+    uint64_t photons_emitted = 0;
+    uint64_t photons_stored = 0;
+    uint64_t rays = 0;             ///< photon rays (Embree queries)
+    double photons_per_second = 0;
+    size_t pixels_gathered = 0;    ///< in the last pass
+    size_t pixels_total = 0;
+    float radius = 0;              ///< gather radius of the last pass
+    size_t non_finite_samples = 0; ///< samples discarded because they were NaN/Inf
+    uint64_t samples_per_pixel = 0;///< camera samples per pixel so far (path-traced methods)
+};
+
+/// A progressive renderer driven one pass at a time: the differential photon mapper, or the
+/// standard two-simulation method it is measured against. The session and the benchmark
+/// harness use this interface, so either method runs through the same code.
+class PassRenderer {
+public:
+    virtual ~PassRenderer() = default;
+    /// Renders and accumulates the next pass; returns false (accumulating nothing) if
+    /// `cancel` became true meanwhile.
+    virtual bool render_pass(const std::atomic<bool>* cancel = nullptr) = 0;
+    virtual const RenderStats& stats() const = 0;
+    int passes() const { return stats().passes; }
+    /// The augmented photograph (linear).
+    virtual Image image() const = 0;
+    /// Mean signed change of radiance on real surfaces seen directly.
+    virtual Image delta_layer() const = 0;
+    /// Fraction of samples that saw a virtual object first (grey RGB).
+    virtual Image alpha_layer() const = 0;
+};
+
+/// Makes the renderer a session runs on a scene (the project's render settings included).
+using RendererFactory = std::function<std::unique_ptr<PassRenderer>(std::shared_ptr<const RenderScene>)>;
+
+}  // namespace dp
