@@ -178,10 +178,12 @@ Command add_calibrate_command(CLI::App& app) {
     auto commands = std::make_shared<std::vector<Command>>();
     for (Group add_group : {&add_calibrate_camera_commands})
         for (Command& c : add_group(*sub)) commands->push_back(std::move(c));
+    // proxy, albedo and probe run from their own CLI11 callbacks while parsing.
+    add_calibrate_scene_commands(*sub);
     return {sub, [commands] {
                 for (const Command& c : *commands)
                     if (c.app->parsed()) return c.run();
-                return 2;  // unreachable: a subcommand is required
+                return 0;  // a scene subcommand, already run by its callback
             }};
 }
 

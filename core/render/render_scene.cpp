@@ -190,6 +190,25 @@ void RenderScene::build_real() {
     }
     for (const Surface& s : real_surfaces_) attach(real_, s, s.mesh);
     rtcCommitScene(real_);
+    // Without virtual objects the camera alone gave no length (calibration and synthetic photos
+    // of the real scene): take the real geometry's extent, or ray offsets vanish and surfaces
+    // shadow themselves.
+    if (scale_ <= 1e-12f) {
+        vec3 lo = camera_.position(), hi = lo;
+        for (const Surface& s : real_surfaces_) {
+            vec3 a, b;
+            if (s.analytic_sphere) {
+                a = s.sphere_center - s.sphere_radius;
+                b = s.sphere_center + s.sphere_radius;
+            } else if (!s.mesh || !s.mesh->bounds(a, b)) {
+                continue;
+            }
+            lo = glm::min(lo, a);
+            hi = glm::max(hi, b);
+        }
+        scale_ = std::max(glm::length(hi - lo), 1e-12f);
+        epsilon_ = 1e-5f * scale_;
+    }
 }
 
 void RenderScene::update_materials(const Project& project) {

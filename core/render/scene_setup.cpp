@@ -5,6 +5,7 @@
 #include "base/error.h"
 #include "base/rng.h"
 #include "image/image_io.h"
+#include "render/irradiance.h"
 #include "render/render_scene.h"
 
 namespace dp {
@@ -44,7 +45,7 @@ SceneAssets load_assets(const Project& project) {
                              "bright lights are clipped and shadows will be too weak");
     if (project.probe.format == ProbeSpec::Format::MirrorBall) {
         int h = std::max(16, probe.height() / 2);
-        probe = unwrap_mirror_ball(probe, 2 * h, h, 0.0f);
+        probe = unwrap_mirror_ball(probe, 2 * h, h, project.probe.mirror_ball_fov_deg);
     }
     a.probe_latlong = std::move(probe);
 
@@ -152,17 +153,7 @@ void RenderScene::estimate_albedos() {
             Hit hit = intersect_real(camera_.generate_ray(float(x), float(y)));
             if (!hit || project_.real[hit.surface->index].albedo.kind != Albedo::Kind::Estimate) continue;
             vec3 n = glm::dot(hit.ng, camera_.position() - hit.p) >= 0 ? hit.ng : -hit.ng;
-            dvec3 E(0);
-            for (int k = 0; k < kProbeSamples; ++k) {
-                ProbeSample s = probe_.sample(rng.uniform(), rng.uniform(), rng.uniform());
-                float cos_t = glm::dot(n, s.dir);
-                if (cos_t <= 0 || s.pdf <= 0) continue;
-                Hit h2{hit};
-                h2.ng = n;
-                if (occluded_real(Ray{offset_origin(h2, s.dir), s.dir})) continue;
-                E += dvec3(s.radiance * (cos_t / s.pdf));
-            }
-            E /= double(kProbeSamples);
+            dvec3 E = real_irradiance(*this, hit.p, n, rng, kProbeSamples).E;
             if (luminance(E) <= 0) continue;
             dvec3 rho = double(kPi) * dvec3(assets_.photo.at(x, y)) / glm::max(E, dvec3(1e-30));
             estimates[hit.surface->index].push_back(vec3(rho));

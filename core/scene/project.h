@@ -81,6 +81,9 @@ struct ProbeSpec {
     Format format = Format::LatLong;
     vec3 rotation_deg{0.0f};  ///< Euler XYZ applied to the probe in world space
     float intensity = 1.0f;   ///< linear scale on the probe's radiance
+    /// Mirror ball only: vertical field of view (degrees) of the camera that photographed the
+    /// ball, cropped so the ball fills the image; 0 reads it as an orthographic view.
+    float mirror_ball_fov_deg = 0.0f;
     bool operator==(const ProbeSpec&) const = default;
 };
 

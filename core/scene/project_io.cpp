@@ -521,7 +521,8 @@ J write_project(const Project& p) {
                      {"format", p.probe.format == ProbeSpec::Format::LatLong ? "latlong"
                                                                               : "mirrorball"},
                      {"rotation_deg", vec<J>(p.probe.rotation_deg)},
-                     {"intensity", num(p.probe.intensity)}};
+                     {"intensity", num(p.probe.intensity)},
+                     {"mirror_ball_fov_deg", num(p.probe.mirror_ball_fov_deg)}};
     doc["camera"] = write_camera<J>(p.camera);
     doc["real"] = J::array();
     for (const RealProxy& r : p.real) {
@@ -623,7 +624,7 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     if (auto* e = r.optional(photo, "exposure")) p.photo.exposure = r.real(*e, "photo.exposure");
 
     const json& probe = r.required(doc, "", "probe");
-    r.object(probe, "probe", {"path", "format", "rotation_deg", "intensity"});
+    r.object(probe, "probe", {"path", "format", "rotation_deg", "intensity", "mirror_ball_fov_deg"});
     p.probe.path = r.string(r.required(probe, "probe", "path"), "probe.path");
     if (auto* f = r.optional(probe, "format")) {
         p.probe.format =
@@ -637,6 +638,13 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
         p.probe.intensity = r.real(*e, "probe.intensity");
         r.check(p.probe.intensity >= 0, "probe.intensity",
                 "must be >= 0 (got " + shortest(p.probe.intensity) + ")");
+    }
+    if (auto* e = r.optional(probe, "mirror_ball_fov_deg")) {
+        p.probe.mirror_ball_fov_deg = r.real(*e, "probe.mirror_ball_fov_deg");
+        r.check(p.probe.mirror_ball_fov_deg >= 0 && p.probe.mirror_ball_fov_deg < 180,
+                "probe.mirror_ball_fov_deg",
+                "must be in [0, 180) degrees, 0 for an orthographic view (got " +
+                    shortest(p.probe.mirror_ball_fov_deg) + ")");
     }
 
     p.camera = parse_camera(r, r.required(doc, "", "camera"));

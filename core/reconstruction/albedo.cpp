@@ -1,0 +1,321 @@
+#include "reconstruction/albedo.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "base/error.h"
+#include "base/rng.h"
+#include "base/sampling.h"
+#include "render/irradiance.h"
+
+namespace dp {
+
+namespace {
+
+/// A world point of the proxy that a texel's sample maps to.
+struct TexelPoint {
+    size_t texel;
+    vec3 p, n;
+};
+
+/// Every sample point of every texel, found by rasterising each triangle in UV space: texel
+/// (i, j) covers uv in [i, i+1)/W x [j, j+1)/H, as Surface::reflectance_at reads it.
+std::vector<TexelPoint> texel_points(const TriangleMesh& mesh, int W, int H, int n) {
+    std::vector<TexelPoint> out;
+    for (const glm::uvec3& tri : mesh.triangles) {
+        const vec2 a = mesh.uvs[tri.x], b = mesh.uvs[tri.y], c = mesh.uvs[tri.z];
+        const vec3 pa = mesh.positions[tri.x], pb = mesh.positions[tri.y], pc = mesh.positions[tri.z];
+        vec3 ng = glm::cross(pb - pa, pc - pa);
+        float area = glm::length(ng);
+        float det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        if (!(area > 0) || det == 0) continue;
+        ng /= area;
+        vec2 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
+        int i0 = std::max(0, int(std::floor(lo.x * W))), i1 = std::min(W - 1, int(std::floor(hi.x * W)));
+        int j0 = std::max(0, int(std::floor(lo.y * H))), j1 = std::min(H - 1, int(std::floor(hi.y * H)));
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i)
+                for (int sy = 0; sy < n; ++sy)
+                    for (int sx = 0; sx < n; ++sx) {
+                        vec2 uv((i + (sx + 0.5f) / n) / W, (j + (sy + 0.5f) / n) / H);
+                        float wb = ((uv.x - a.x) * (c.y - a.y) - (c.x - a.x) * (uv.y - a.y)) / det;
+                        float wc = ((b.x - a.x) * (uv.y - a.y) - (uv.x - a.x) * (b.y - a.y)) / det;
+                        float wa = 1 - wb - wc;
+                        const float tol = -1e-6f;
+                        if (wa < tol || wb < tol || wc < tol) continue;
+                        out.push_back({size_t(j) * W + i, wa * pa + wb * pb + wc * pc, ng});
+                    }
+    }
+    return out;
+}
+
+/// Per photo pixel, the real proxy it shows alone (its centre and four corners all see it), or
+/// -1: a pixel that mixes two surfaces (or a surface and the background) at a silhouette, a
+/// proxy's edge or a contact line has a radiance that belongs to neither.
+std::vector<int> pure_pixels(const RenderScene& scene) {
+    const Camera& camera = scene.camera();
+    const int W = camera.width(), H = camera.height();
+    auto seen = [&](float x, float y) {
+        Hit h = scene.intersect_real(camera.generate_ray(x, y));
+        return h ? h.surface->index : -1;
+    };
+    std::vector<int> corner(size_t(W + 1) * (H + 1)), out(size_t(W) * H);
+    tbb::parallel_for(0, H + 1, [&](int y) {
+        for (int x = 0; x <= W; ++x) corner[size_t(y) * (W + 1) + x] = seen(x - 0.5f, y - 0.5f);
+    });
+    tbb::parallel_for(0, H, [&](int y) {
+        for (int x = 0; x < W; ++x) {
+            int c = seen(float(x), float(y));
+            for (int k = 0; k < 4; ++k)
+                if (corner[size_t(y + k / 2) * (W + 1) + x + k % 2] != c) c = -1;
+            out[size_t(y) * W + x] = c;
+        }
+    });
+    return out;
+}
+
+/// Radiance the camera photographed leaving real point `y` (facing side `ny`), if the camera
+/// sees it in a pixel that shows its proxy alone.
+bool photographed_radiance(const RenderScene& scene, const std::vector<int>& pure, const Hit& y,
+                           const vec3& ny, vec3& L) {
+    const Camera& camera = scene.camera();
+    const Image& photo = scene.photo();
+    vec3 to_eye = camera.position() - y.p;
+    float dist = glm::length(to_eye);
+    vec2 px;
+    if (!(dist > 0) || glm::dot(ny, to_eye) <= 0 || !camera.project(y.p, px) || !camera.in_image(px)) return false;
+    int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
+    int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
+    if (pure[size_t(iy) * photo.width() + ix] != y.surface->index) return false;
+    Hit hy = y;
+    hy.ng = ny;
+    vec3 dir = to_eye / dist;
+    vec3 org = scene.offset_origin(hy, dir);
+    if (scene.occluded_real(Ray{org, dir}, glm::length(camera.position() - org) * (1 - 1e-4f))) return false;
+    L = photo.at(ix, iy);
+    return true;
+}
+
+/// Irradiance at (p, n) from light the other real surfaces reflect: cosine-distributed rays,
+/// each worth pi times the radiance leaving the real surface it hits. A diffuse surface sends
+/// the same radiance every way, so where the camera sees it that is its photo pixel; where it
+/// does not, its albedo times its own irradiance over pi (probe light plus, `depth` > 0, the
+/// light it gets from photographed surfaces).
+dvec3 bounce_irradiance(const RenderScene& scene, const std::vector<int>& pure, const vec3& p, const vec3& n,
+                        Rng& rng, int samples, int depth) {
+    if (samples <= 0) return dvec3(0.0);
+    const Frame frame(n);
+    Hit at;
+    at.p = p;
+    at.ng = n;
+    dvec3 sum(0.0);
+    for (int k = 0; k < samples; ++k) {
+        float u0 = rng.uniform(), u1 = rng.uniform();
+        vec3 d = frame.to_world(sample_cosine_hemisphere(vec2(u0, u1)));
+        Hit y = scene.intersect_real(Ray{scene.offset_origin(at, d), d});
+        if (!y) continue;
+        vec3 ny = glm::dot(y.ng, d) < 0 ? y.ng : -y.ng;  // the side that faces p
+        vec3 L;
+        if (photographed_radiance(scene, pure, y, ny, L)) {
+            sum += double(kPi) * dvec3(L);
+            continue;
+        }
+        dvec3 Ey = real_irradiance(scene, y.p, ny, rng, 4, 0.5f).E;
+        if (depth > 0) Ey += bounce_irradiance(scene, pure, y.p, ny, rng, 4, depth - 1);
+        sum += dvec3(y.surface->reflectance_at(y.uv)) * Ey;
+    }
+    return sum / double(samples);
+}
+
+/// What one texel gathered from its points.
+struct TexelSum {
+    dvec3 L{0.0}, E{0.0}, E_bounce{0.0};
+    double E_var = 0;  ///< squared standard error of luminance of the probe part of E
+    int seen = 0, clipped = 0;
+};
+
+}  // namespace
+
+bool fill_flagged_texels(Image& image, const Image& mask) {
+    const int W = image.width(), H = image.height();
+    std::vector<uint8_t> valid(image.size());
+    bool any = false;
+    for (size_t i = 0; i < image.size(); ++i) {
+        valid[i] = mask[i] == vec3(0.0f);
+        any = any || valid[i];
+    }
+    if (!any) return false;
+    // Ring by ring: a flagged texel next to valid ones takes their mean, then counts as valid.
+    std::vector<size_t> ring;
+    for (;;) {
+        ring.clear();
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                size_t k = size_t(y) * W + x;
+                if (valid[k]) continue;
+                vec3 sum(0.0f);
+                int count = 0;
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        int xx = x + dx, yy = y + dy;
+                        if (xx < 0 || yy < 0 || xx >= W || yy >= H) continue;
+                        size_t q = size_t(yy) * W + xx;
+                        if (valid[q] == 1) {
+                            sum += image[q];
+                            ++count;
+                        }
+                    }
+                if (count > 0) {
+                    image[k] = sum / float(count);
+                    ring.push_back(k);
+                }
+            }
+        if (ring.empty()) break;
+        for (size_t k : ring) valid[k] = 1;
+    }
+    return true;
+}
+
+AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const AlbedoTextureOptions& o) {
+    const auto& proxies = scene.project().real;
+    if (proxy < 0 || size_t(proxy) >= proxies.size())
+        throw InputError("", "real", "no real proxy number " + std::to_string(proxy));
+    const std::string field = "real[" + std::to_string(proxy) + "]";
+    const Surface& surface = scene.real_surfaces()[size_t(proxy)];
+    if (surface.analytic_sphere || proxies[size_t(proxy)].shape.kind == Shape::Kind::Sphere)
+        throw InputError("", field, "albedo textures are estimated for planes, boxes and meshes with UVs, not spheres");
+    if (!surface.mesh || surface.mesh->uvs.empty())
+        throw InputError("", field, "the proxy's mesh has no texture coordinates (UVs) to estimate a texture on");
+    if (o.subsamples < 1 || o.probe_samples < 1 || o.max_resolution < 1 || o.width < 0 || o.height < 0)
+        throw InputError("", "options", "texture size, subsamples and probe samples must be positive");
+
+    int W = o.width, H = o.height;
+    if (W == 0 || H == 0) {
+        W = H = o.max_resolution;
+        const Shape& shape = proxies[size_t(proxy)].shape;
+        const vec3 s = proxies[size_t(proxy)].transform.scale;
+        if (shape.kind == Shape::Kind::Plane) {
+            float sx = std::abs(shape.size.x * s.x), sz = std::abs(shape.size.z * s.z);
+            if (sx > sz) H = std::max(1, int(std::lround(o.max_resolution * sz / sx)));
+            else W = std::max(1, int(std::lround(o.max_resolution * sx / sz)));
+        }
+    }
+
+    std::vector<TexelPoint> points = texel_points(*surface.mesh, W, H, o.subsamples);
+    std::stable_sort(points.begin(), points.end(),
+                     [](const TexelPoint& a, const TexelPoint& b) { return a.texel < b.texel; });
+    // Ranges of `points` per texel, processed in parallel with one random stream per texel so
+    // that the result does not depend on the thread count.
+    std::vector<size_t> first(size_t(W) * H + 1, points.size());
+    for (size_t k = points.size(); k-- > 0;) first[points[k].texel] = k;
+    for (size_t t = size_t(W) * H; t-- > 0;) first[t] = std::min(first[t], first[t + 1]);
+
+    const Camera& camera = scene.camera();
+    const Image& photo = scene.photo();
+    const vec3 eye = camera.position();
+    const int bounce_per_point =
+        o.bounce_samples > 0 ? std::max(4, o.bounce_samples / (o.subsamples * o.subsamples)) : 0;
+    const std::vector<int> pure = pure_pixels(scene);
+    std::vector<TexelSum> sums(size_t(W) * H);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, size_t(W) * H, 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t t = r.begin(); t != r.end(); ++t) {
+            TexelSum& s = sums[t];
+            Rng rng = Rng::keyed(o.seed, t, 0xa1bed0);
+            std::vector<SurfacePoint> lit_points;
+            for (size_t k = first[t]; k < first[t + 1]; ++k) {
+                const TexelPoint& tp = points[k];
+                vec3 to_eye = eye - tp.p;
+                float dist = glm::length(to_eye);
+                if (!(dist > 0)) continue;
+                to_eye /= dist;
+                vec3 n = tp.n;
+                if (glm::dot(n, to_eye) <= 0) continue;  // the camera sees this face from behind
+                vec2 px;
+                if (!camera.project(tp.p, px) || !camera.in_image(px)) continue;
+                Hit at;
+                at.p = tp.p;
+                at.ng = n;
+                vec3 org = scene.offset_origin(at, to_eye);
+                if (scene.occluded_real(Ray{org, to_eye}, glm::length(eye - org) * (1 - 1e-4f))) continue;
+                int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
+                int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
+                if (pure[size_t(iy) * photo.width() + ix] != proxy) continue;
+                vec3 L = photo.at(ix, iy);
+                if (std::max({L.x, L.y, L.z}) >= o.clip_level) {
+                    ++s.clipped;
+                    continue;
+                }
+                dvec3 bounce = bounce_irradiance(scene, pure, tp.p, n, rng, bounce_per_point, 1);
+                s.L += dvec3(L);
+                s.E_bounce += bounce;
+                lit_points.push_back({tp.p, n});
+                ++s.seen;
+            }
+            if (s.seen == 0) continue;
+            // One estimate over all the texel's points: sum(E) = count * mean(E).
+            IrradianceEstimate e = mean_real_irradiance(scene, lit_points, rng, o.probe_samples, 0.5f);
+            s.E = e.E * double(s.seen) + s.E_bounce;
+            s.E_var = std::pow(e.luminance_std_error * s.seen, 2);
+        }
+    });
+
+    // Unlit: irradiance far below the typical texel's (deep shadow under an opaque probe).
+    std::vector<double> lit;
+    for (const TexelSum& s : sums)
+        if (s.seen > 0) lit.push_back(luminance(s.E) / s.seen);
+    double median_E = 0;
+    if (!lit.empty()) {
+        std::nth_element(lit.begin(), lit.begin() + lit.size() / 2, lit.end());
+        median_E = lit[lit.size() / 2];
+    }
+
+    AlbedoTexture out;
+    out.albedo = Image(W, H);
+    out.mask = Image(W, H);
+    double rel_error_sum = 0, E_total = 0, E_bounce = 0;
+    dvec3 rho_sum(0.0);
+    for (size_t t = 0; t < sums.size(); ++t) {
+        const TexelSum& s = sums[t];
+        if (s.seen == 0) {
+            if (s.clipped > 0) {
+                out.mask[t] = vec3(1, 0, 0);
+                ++out.clipped;
+            } else {
+                out.mask[t] = vec3(0, 1, 0);
+                ++out.unseen;
+            }
+            continue;
+        }
+        double e_lum = luminance(s.E);
+        if (!(e_lum > 0) || e_lum / s.seen < o.min_irradiance_fraction * median_E) {
+            out.mask[t] = vec3(0, 0, 1);
+            ++out.unlit;
+            continue;
+        }
+        dvec3 rho = double(kPi) * s.L / glm::max(s.E, dvec3(1e-30 * e_lum));
+        rho = glm::clamp(rho, dvec3(0.0), dvec3(0.98));
+        out.albedo[t] = vec3(rho);
+        rho_sum += rho;
+        rel_error_sum += std::sqrt(s.E_var) / e_lum;
+        E_total += e_lum;
+        E_bounce += luminance(s.E_bounce);
+        ++out.valid;
+    }
+    if (out.valid == 0)
+        throw InputError("", field,
+                         "the photo never sees this proxy lit and unclipped; no albedo can be estimated (" +
+                             std::to_string(out.unseen) + " texels unseen, " + std::to_string(out.clipped) +
+                             " clipped, " + std::to_string(out.unlit) + " unlit)");
+    out.mean_albedo = vec3(rho_sum / double(out.valid));
+    out.irradiance_rel_error = rel_error_sum / double(out.valid);
+    out.bounce_fraction = E_total > 0 ? E_bounce / E_total : 0;
+    fill_flagged_texels(out.albedo, out.mask);
+    return out;
+}
+
+}  // namespace dp
