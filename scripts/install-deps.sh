@@ -6,6 +6,8 @@ packages=(
   libembree-dev libtbb-dev libglm-dev libopenexr-dev libopencv-dev libassimp-dev
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   blender-data  # the CC0 light probes the sample project and benchmarks use
+  qt6-base-dev  # the studio (Widgets, Test; pulls libqt6gui6 with the offscreen and xcb platforms)
+  xvfb xauth    # xvfb-run for the studio's screenshot test and documentation screenshots
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -2,6 +2,7 @@
 #include <QWidget>
 
 class QComboBox;
+class QFormLayout;
 class QLabel;
 class QPushButton;
 class QSlider;
@@ -30,7 +31,7 @@ Q_SIGNALS:
 
 private:
     void refresh();
-    QSlider* addSlider(class QFormLayout* form, const QString& label, const QString& tip, int lo,
+    QSlider* addSlider(QFormLayout* form, const QString& label, const QString& tip, int lo,
                        int hi, QLabel** value);
     void sliderMoved(QSlider* moved);
     void pickColour(bool tint);

@@ -56,7 +56,7 @@ void FilesTest::savedProjectReopensIdenticalAndUnmodified() {
     MainWindow again(test::test_options(&reporter, dir.filePath("recovery2")));
     QVERIFY(again.openProject(saved));
     QVERIFY(again.document()->project() == w.document()->project());
-    QCOMPARE(to_json(again.document()->project()), to_json(w.document()->project()));
+    QVERIFY(to_json(again.document()->project()) == to_json(w.document()->project()));
     QVERIFY(!again.document()->isModified());
     QVERIFY(reporter.errors.isEmpty());
 }
