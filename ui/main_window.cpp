@@ -44,6 +44,7 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     renderer_ = new RenderController(this);
     renderer_->setRenderSize(options_.renderSize);
     renderer_->setPreviewFraction(options_.previewFraction);
+    renderer_->setPreviewScale(options_.previewScale);
     viewport_ = new Viewport(doc_, this);
     setCentralWidget(viewport_);
     status_ = new QLabel(tr("No project"));

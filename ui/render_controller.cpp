@@ -3,10 +3,19 @@
 #include <QMetaObject>
 
 #include <algorithm>
+#include <cmath>
 
 #include "scene_builder.h"
 
 namespace dp::ui {
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
 
 /// Copies each pass on the render thread and hands it to the UI thread with a queued call.
 class RenderController::Sink : public RenderSink {
@@ -23,7 +32,8 @@ public:
             frame->preview = c_->runPreview_;
             frame->generation = c_->runGeneration_;
             c_->latest_ = std::move(frame);
-            ++c_->runFrames_;
+            if (c_->runFrames_++ == 0 && c_->runPreview_)
+                c_->timings_.firstQuick = ms_since(c_->runStart_);
             post = !c_->posted_;
             c_->posted_ = true;
         }
@@ -74,6 +84,7 @@ void RenderController::request(const Project& project, bool interactive) {
     r.generation = ++requested_;
     r.size = renderSize_;
     r.previewFraction = previewFraction_;
+    r.previewScale = previewScale_;
     finished_ = false;
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -128,8 +139,11 @@ void RenderController::worker() {
 }
 
 void RenderController::handle(const Request& r) {
+    // The run in flight was told to stop by request(); the new quick scene is built while it
+    // winds down, and waited for only before the scenes it reads are touched.
     session_->cancel();
-    session_->wait();
+    auto t0 = std::chrono::steady_clock::now();
+    Timings timings;
     const Project& p = r.project;
     Change change = haveScenes_ ? classify(built_, p) : Change::Assets;
     if (change != Change::None && change != Change::Material) builder_->load(p);
@@ -137,7 +151,11 @@ void RenderController::handle(const Request& r) {
     const Image& photo = *builder_->photo();
     QSize full = r.size.isValid() ? r.size : QSize(photo.width(), photo.height());
     if (full != fullSize_) change = std::max(change, Change::Scene);
-    const QSize quick(std::max(1, full.width() / 2), std::max(1, full.height() / 2));
+    // The quick pass's cost is mostly per pixel: keep it under kQuickPixels whatever the size.
+    constexpr double kQuickPixels = 100000;
+    const double scale = std::min(r.previewScale,
+                                  std::sqrt(kQuickPixels / double(full.width() * full.height())));
+    const QSize quick(std::max(1, int(full.width() * scale)), std::max(1, int(full.height() * scale)));
 
     RenderSettings quickSettings = p.render;
     quickSettings.photons_per_pass =
@@ -148,10 +166,15 @@ void RenderController::handle(const Request& r) {
 
     if (change >= Change::Scene) {
         full_.reset();
+        t0 = std::chrono::steady_clock::now();
         quick_ = builder_->build(p, quick.width(), quick.height(), quickSettings);
+        timings.buildQuick = ms_since(t0);
         ++scenesBuilt_;
         fullSize_ = full;
     } else if (change == Change::Material) {
+        t0 = std::chrono::steady_clock::now();
+        session_->wait();
+        timings.cancel = ms_since(t0);
         quick_->update_materials(p);
         if (full_) full_->update_materials(p);
     }
@@ -160,13 +183,17 @@ void RenderController::handle(const Request& r) {
 
     auto run = [&](std::shared_ptr<RenderScene> scene, bool preview) {
         session_->cancel();
+        t0 = std::chrono::steady_clock::now();
         session_->wait();
+        if (preview) timings.cancel += ms_since(t0);
         {
             std::lock_guard<std::mutex> lock(mutex_);
             runGeneration_ = r.generation;
             runPreview_ = preview;
             runFrames_ = 0;
             photo_ = builder_->photo();
+            if (preview) timings_ = timings;
+            runStart_ = std::chrono::steady_clock::now();
         }
         session_->start(std::move(scene));
     };
@@ -180,8 +207,11 @@ void RenderController::handle(const Request& r) {
     }
     if (superseded()) return;
     if (!full_) {
+        t0 = std::chrono::steady_clock::now();
         full_ = builder_->build(p, full.width(), full.height(), p.render);
         ++scenesBuilt_;
+        std::lock_guard<std::mutex> lock(mutex_);
+        timings_.buildFull = ms_since(t0);
     }
     if (superseded()) return;
     run(full_, false);

@@ -3,6 +3,7 @@
 #include <QSize>
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -30,7 +31,7 @@ struct Frame {
 /// queued call, at most one pending at a time (older ones are dropped). The UI thread never
 /// waits for the renderer: request() only records the latest project and returns.
 ///
-/// Each request first renders one quick pass at half size with fewer photons (so the picture
+/// Each request first renders one quick pass at reduced size with fewer photons (so the picture
 /// answers within a fraction of a second), then refines at full size. While `interactive`
 /// (a drag or a slider stroke), only the quick passes run. A material-only change reuses the
 /// built scenes through update_materials: no BVH is rebuilt.
@@ -40,11 +41,13 @@ public:
     explicit RenderController(QObject* parent = nullptr);
     ~RenderController() override;
 
-    /// Size of the full render (default: the photo's); the quick pass uses half of it.
+    /// Size of the full render (default: the photo's).
     void setRenderSize(QSize size) { renderSize_ = size; }
     QSize renderSize() const { return renderSize_; }
     /// Photons of the quick pass as a fraction of the project's (default 1/8).
     void setPreviewFraction(double f) { previewFraction_ = f; }
+    /// Size of the quick pass relative to the full render (default 1/2, and at most 100k pixels).
+    void setPreviewScale(double s) { previewScale_ = s; }
 
     /// Renders `project` (cancelling what runs). `interactive`: quick passes only.
     void request(const Project& project, bool interactive = false);
@@ -59,6 +62,17 @@ public:
     uint64_t generation() const { return requested_; }
     /// Whether the latest request's full-size refinement reached its budget.
     bool finished() const { return finished_; }
+    /// Where the time of the latest request went (milliseconds), for the benchmark.
+    struct Timings {
+        double cancel = 0;      ///< waiting for the run in flight to stop
+        double buildQuick = 0;  ///< building the quick scene (0 when reused)
+        double firstQuick = 0;  ///< start of the quick run to its first pass
+        double buildFull = 0;   ///< building the full-size scene
+    };
+    Timings timings() const {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return timings_;
+    }
     /// Scenes (BVHs) built so far: material-only edits must not add to it.
     int scenesBuilt() const { return scenesBuilt_.load(); }
 
@@ -76,6 +90,7 @@ private:
         uint64_t generation = 0;
         QSize size;
         double previewFraction = 0.125;
+        double previewScale = 0.5;
     };
     class Sink;
     void worker();
@@ -86,6 +101,7 @@ private:
 
     QSize renderSize_;
     double previewFraction_ = 1.0 / 8.0;
+    double previewScale_ = 0.5;
     // Worker-thread state: the scenes built for `built_` (quick and full size).
     std::unique_ptr<SceneBuilder> builder_;
     Project built_;
@@ -98,6 +114,8 @@ private:
     uint64_t runGeneration_ = 0;
     bool runPreview_ = false;
     int runFrames_ = 0;
+    Timings timings_;
+    std::chrono::steady_clock::time_point runStart_;
     std::shared_ptr<const Image> photo_;
 
     std::unique_ptr<Sink> sink_;

@@ -13,6 +13,7 @@ struct StudioOptions {
     int autosaveMs = 30000;       ///< autosave interval
     QSize renderSize;             ///< full render size (invalid: the photo's size)
     double previewFraction = 0.125;  ///< photons of the quick pass relative to the project's
+    double previewScale = 0.5;       ///< size of the quick pass relative to the full render
     ErrorReporter* reporter = nullptr;  ///< not owned; null: message boxes
     bool checkRecovery = true;    ///< offer to recover autosaved work on start
     bool useSettings = true;      ///< restore and store window state and recent files

@@ -2,6 +2,7 @@
 // and saves a picture of the real window (used for the documentation).
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QDockWidget>
 #include <QElapsedTimer>
 #include <QTimer>
 
@@ -42,8 +43,9 @@ int main(int argc, char** argv) {
     QCommandLineOption view("view", "With --screenshot: photo, augmented or dl.", "mode", "augmented");
     QCommandLineOption select("select", "With --screenshot: select object <index>.", "index", "-1");
     QCommandLineOption size("size", "Window size WxH.", "size", "1400x860");
+    QCommandLineOption raise("raise", "With --screenshot: bring a dock to the front (renderDock, probeDock, cameraDock).", "dock");
     QCommandLineOption wait("wait", "With --screenshot: longest wait for the render (ms).", "ms", "60000");
-    cli.addOptions({shot, view, select, size, wait});
+    cli.addOptions({shot, view, select, size, raise, wait});
     cli.process(app);
 
     StudioOptions options;
@@ -68,6 +70,7 @@ int main(int argc, char** argv) {
                                    : mode == "dl"  ? ViewMode::Delta
                                                    : ViewMode::Augmented);
     window.document()->select(cli.value(select).toInt());
+    if (auto* dock = window.findChild<QDockWidget*>(cli.value(raise))) dock->raise();
     wait_for_render(window, cli.value(wait).toInt());
     QApplication::processEvents();
     const bool ok = window.grab().save(cli.value(shot));

@@ -46,6 +46,16 @@ double time_edit(MainWindow& w, const Project& p, bool interactive) {
     return ms;
 }
 
+struct Phases {
+    std::vector<double> cancel, buildQuick, firstQuick, buildFull;
+    void add(const RenderController::Timings& t) {
+        cancel.push_back(t.cancel);
+        buildQuick.push_back(t.buildQuick);
+        firstQuick.push_back(t.firstQuick);
+        buildFull.push_back(t.buildFull);
+    }
+};
+
 void report(const char* what, const std::vector<double>& v, double target) {
     std::printf("%-44s median %7.1f ms  p90 %7.1f ms  max %7.1f ms  (n=%zu, target %.0f ms: %s)\n",
                 what, percentile(v, 0.5), percentile(v, 0.9), percentile(v, 1.0), v.size(), target,
@@ -61,6 +71,7 @@ int main(int argc, char** argv) {
     RecordingReporter reporter(false);
     StudioOptions o;
     o.renderSize = QSize(1280, 720);
+    if (argc > 2) o.previewScale = std::atof(argv[2]);
     o.reporter = &reporter;
     o.checkRecovery = false;
     o.useSettings = false;
@@ -72,18 +83,23 @@ int main(int argc, char** argv) {
     if (!QTest::qWaitFor([&] { return w.renderer()->lastFullFrame() != nullptr; }, 60000)) return 1;
 
     std::vector<double> move, drag, material;
+    Phases movePhases, materialPhases;
     for (int i = 0; i < repeats; ++i) {
         Project p = w.document()->project();
         p.objects[0].transform.translation.x += (i % 2 ? -0.05f : 0.05f);
         move.push_back(time_edit(w, p, false));
         QTest::qWait(300);
+        movePhases.add(w.renderer()->timings());
         p.objects[0].transform.translation.z += (i % 2 ? -0.05f : 0.05f);
         drag.push_back(time_edit(w, p, true));
+        QTest::qWait(300);
+        w.document()->edit("bench drag released", p);  // as the viewport does on release
         QTest::qWait(300);
         p = w.document()->project();
         p.objects[0].material.albedo.rgb.x = i % 2 ? 0.75f : 0.3f;
         material.push_back(time_edit(w, p, false));
         QTest::qWait(300);
+        materialPhases.add(w.renderer()->timings());
     }
 
     // Event-loop latency: a 5 ms timer while the renderer runs and edits keep restarting it.
@@ -107,10 +123,16 @@ int main(int argc, char** argv) {
     }
     timer.stop();
 
-    std::printf("sample project at 1280x720, %d repeats, %d threads\n", repeats, QThread::idealThreadCount());
+    std::printf("sample project at 1280x720, quick pass at %.2f of that, %d repeats, %d threads\n", o.previewScale, repeats,
+                QThread::idealThreadCount());
     report("first frame after a move (edit)", move, 250);
     report("first frame during a drag (interactive)", drag, 250);
     report("first frame after a material edit", material, 250);
+    for (auto [name, ph] : {std::pair{"move", &movePhases}, std::pair{"material", &materialPhases}})
+        std::printf("  %-8s phases (medians): stop run %.1f ms, build quick scene %.1f ms, quick run "
+                    "to first pass %.1f ms, build full scene %.1f ms\n", name,
+                    percentile(ph->cancel, 0.5), percentile(ph->buildQuick, 0.5),
+                    percentile(ph->firstQuick, 0.5), percentile(ph->buildFull, 0.5));
     std::printf("%-44s p50 %7.1f ms  p99 %7.1f ms  worst %7.1f ms  (%zu ticks, target 50 ms: %s)\n",
                 "UI event-loop lateness while rendering", percentile(late, 0.5), percentile(late, 0.99),
                 percentile(late, 1.0), late.size(), percentile(late, 1.0) < 50 ? "met" : "not met");
