@@ -17,6 +17,8 @@
 #include <QUndoStack>
 #include <QVBoxLayout>
 
+#include <cmath>
+
 #include "autosave.h"
 #include "camera_panel.h"
 #include "document.h"
@@ -318,6 +320,8 @@ void MainWindow::toggleSelectedVisible() {
     p.objects[size_t(sel)].visible = !p.objects[size_t(sel)].visible;
     doc_->edit(p.objects[size_t(sel)].visible ? tr("Show object") : tr("Hide object"), p);
 }
+
+void MainWindow::setDisplayExposure(float stops) { exposure_->setValue(int(std::lround(stops * 10))); }
 
 void MainWindow::error(const QString& title, const QString& text) { reporter_->error(this, title, text); }
 

@@ -46,6 +46,9 @@ public:
     QLabel* statusLabel() const { return status_; }
     QAction* action(const QString& objectName) const;
 
+    /// Display exposure in stops (the toolbar slider; PNG export uses it).
+    void setDisplayExposure(float stops);
+
     /// Offers to recover autosaved work, if any (called once the window is shown).
     void checkRecovery();
 

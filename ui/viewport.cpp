@@ -133,6 +133,7 @@ void Viewport::paintEvent(QPaintEvent*) {
     const QTransform camToWidget = QTransform::fromTranslate(0.5, 0.5) * t;
     OverlayOptions o = overlays_;
     o.selected = doc_->selected();
+    p.setClipRect(imageRect());  // overlays belong to the photo, not the margin around it
     draw_overlays(p, doc_->project(), camera(), camToWidget, o);
 }
 

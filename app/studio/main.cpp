@@ -44,8 +44,9 @@ int main(int argc, char** argv) {
     QCommandLineOption select("select", "With --screenshot: select object <index>.", "index", "-1");
     QCommandLineOption size("size", "Window size WxH.", "size", "1400x860");
     QCommandLineOption raise("raise", "With --screenshot: bring a dock to the front (renderDock, probeDock, cameraDock).", "dock");
+    QCommandLineOption exposure("exposure", "Display exposure in stops.", "stops");
     QCommandLineOption wait("wait", "With --screenshot: longest wait for the render (ms).", "ms", "60000");
-    cli.addOptions({shot, view, select, size, raise, wait});
+    cli.addOptions({shot, view, select, size, raise, exposure, wait});
     cli.process(app);
 
     StudioOptions options;
@@ -60,6 +61,7 @@ int main(int argc, char** argv) {
     const QStringList wh = cli.value(size).split('x');
     if (wh.size() == 2) window.resize(wh[0].toInt(), wh[1].toInt());
     window.show();
+    if (cli.isSet(exposure)) window.setDisplayExposure(cli.value(exposure).toFloat());
     if (!cli.positionalArguments().isEmpty()) window.openProject(cli.positionalArguments().first());
     if (!screenshot) {
         QTimer::singleShot(0, &window, [&window] { window.checkRecovery(); });
