@@ -67,7 +67,7 @@ void Document::edit(const QString& text, const Project& after, int mergeKey) {
 void Document::apply(const Project& project) {
     const Change change = classify(project_, project);
     project_ = project;
-    if (selected_ >= int(project_.objects.size())) select(int(project_.objects.size()) - 1);
+    if (selected_ >= int(project_.objects.size())) select(-1);  // e.g. an "add" undone
     Q_EMIT changed(change);
 }
 
