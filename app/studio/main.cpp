@@ -1,5 +1,6 @@
 // `diffphoton-studio`: the desktop app. Besides the window, `--screenshot` renders a project
 // and saves a picture of the real window (used for the documentation).
+#include <QAction>
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDockWidget>
@@ -68,9 +69,8 @@ int main(int argc, char** argv) {
         return app.exec();
     }
     const QString mode = cli.value(view).toLower();
-    window.viewport()->setViewMode(mode == "photo" ? ViewMode::Photo
-                                   : mode == "dl"  ? ViewMode::Delta
-                                                   : ViewMode::Augmented);
+    // Through the toolbar's actions, so the picture shows the matching button pressed.
+    window.action(mode == "photo" ? "viewPhoto" : mode == "dl" ? "viewdL" : "viewAugmented")->trigger();
     window.document()->select(cli.value(select).toInt());
     if (auto* dock = window.findChild<QDockWidget*>(cli.value(raise))) dock->raise();
     wait_for_render(window, cli.value(wait).toInt());

@@ -41,7 +41,7 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
     QElapsedTimer clock;
     clock.start();
     qint64 last = 0, worst = 0;
-    int ticks = 0, frames = 0;
+    int ticks = 0, frames = 0, busy = 0;
     QTimer timer;
     timer.setTimerType(Qt::PreciseTimer);
     QObject::connect(&timer, &QTimer::timeout, [&] {
@@ -49,6 +49,7 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
         if (last > 0) worst = std::max(worst, now - last - intervalMs * 1000000LL);
         last = now;
         ++ticks;
+        busy += !w.renderer()->idle();
     });
     QObject::connect(w.renderer(), &RenderController::frameReady, [&] { ++frames; });
     timer.start(intervalMs);
@@ -69,10 +70,12 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
         QTest::qWait(100);
     }
     timer.stop();
-    std::printf("UI timer: %d ticks, %d frames shown, worst lateness %.1f ms\n", ticks, frames,
-                double(worst) / 1e6);
-    QVERIFY(frames >= 5);
+    std::printf("UI timer: %d ticks (%d while rendering), %d frames shown, worst lateness %.1f ms\n",
+                ticks, busy, frames, double(worst) / 1e6);
+    // The figure only means something if the renderer worked throughout.
+    QVERIFY(frames >= 1);
     QVERIFY(ticks > 100);
+    QVERIFY(busy >= ticks * 9 / 10);
     QVERIFY2(worst < 50 * 1000000LL, qPrintable(QString("worst %1 ms").arg(worst / 1e6)));
 }
 
