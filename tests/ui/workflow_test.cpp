@@ -1,6 +1,11 @@
 // Drives the studio's real workflow through its widgets: open the sample, add a sphere, move it
 // with the gizmo, recolour it, export; then checks the pixels and undoes back to the start.
 #include <QAction>
+#include <QApplication>
+#include <QDropEvent>
+#include <QFile>
+#include <QMimeData>
+#include <QUrl>
 #include <QLineF>
 #include <QTemporaryDir>
 #include <QTest>
@@ -14,6 +19,7 @@
 #include "image/image_io.h"
 #include "material_panel.h"
 #include "render_controller.h"
+#include "scene_builder.h"
 #include "ui_test_support.h"
 #include "viewport.h"
 
@@ -24,6 +30,8 @@ class WorkflowTest : public QObject {
     Q_OBJECT
 private Q_SLOTS:
     void addMoveRecolourExportChangesOnlyTheSphereAndItsShadowAndUndoRestoresTheStart();
+    void newProjectFromPhotoAndProbeExportsThePhotoUntilAnObjectIsAdded();
+    void droppingAMeshFileOnTheWindowImportsItStandingOnTheGround();
 };
 
 namespace {
@@ -144,6 +152,60 @@ void WorkflowTest::addMoveRecolourExportChangesOnlyTheSphereAndItsShadowAndUndoR
     const double seed_noise_all = test::mean_abs_diff(start, other_seed);
     std::printf("after undo: mean |dLum| %.8f (seed noise over the image %.6f)\n", restored, seed_noise_all);
     QVERIFY(restored <= 0.05 * seed_noise_all);
+    QVERIFY(reporter.errors.isEmpty());
+}
+
+void WorkflowTest::newProjectFromPhotoAndProbeExportsThePhotoUntilAnObjectIsAdded() {
+    QTemporaryDir dir;
+    RecordingReporter reporter;
+    MainWindow w(test::test_options(&reporter, dir.filePath("recovery")));
+    const QString photo = QString(DP_SOURCE_DIR) + "/resources/sample/photo.exr";
+    QVERIFY(w.newProject(photo, "/usr/share/blender/datafiles/studiolights/world/city.exr"));
+    QVERIFY(w.document()->isModified());  // nothing saved yet
+    Project p = w.document()->project();
+    p.render.photons_per_pass = 20000;
+    p.render.passes = 2;
+    w.document()->edit("settings", p);
+    QVERIFY(test::wait_refined(w));
+    const Image empty = export_and_load(w, dir.filePath("empty.exr"));
+    const Image expected = resample(load_image(photo.toStdString()), 256, 128);
+    QCOMPARE(test::mean_abs_diff(empty, expected), 0.0);
+
+    w.addObject(Shape::Kind::Box);
+    QVERIFY(test::wait_refined(w));
+    const Image with_box = export_and_load(w, dir.filePath("box.exr"));
+    QVERIFY(test::mean_abs_diff(with_box, expected) > 1e-3);
+    QVERIFY(reporter.errors.isEmpty());
+}
+
+void WorkflowTest::droppingAMeshFileOnTheWindowImportsItStandingOnTheGround() {
+    QTemporaryDir dir;
+    RecordingReporter reporter;
+    MainWindow w(test::test_options(&reporter, dir.filePath("recovery")));
+    QVERIFY(w.openProject(test::write_small_sample(dir.path())));
+    // A tetrahedron 40 cm across whose lowest vertex is 1 m below its origin.
+    const QString mesh = dir.filePath("tetra.obj");
+    QFile f(mesh);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write("v 0 -1 0\nv 0.4 -1 0\nv 0 -1 0.4\nv 0 -0.6 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+    f.close();
+    const int before = int(w.document()->project().objects.size());
+    QMimeData data;
+    data.setUrls({QUrl::fromLocalFile(mesh)});
+    // What a drag from a file manager delivers: enter (accepted), then drop.
+    QDragEnterEvent enter(QPoint(100, 100), Qt::CopyAction, &data, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&w, &enter);
+    QVERIFY(enter.isAccepted());
+    QDropEvent drop(QPointF(100, 100), Qt::CopyAction, &data, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&w, &drop);
+    QVERIFY2(reporter.errors.isEmpty(), qPrintable(reporter.errors.join("; ")));
+    QCOMPARE(int(w.document()->project().objects.size()), before + 1);
+    const VirtualObject& o = w.document()->project().objects.back();
+    QCOMPARE(o.shape.kind, Shape::Kind::Mesh);
+    QCOMPARE(o.name, std::string("tetra"));
+    QCOMPARE(o.transform.translation.y, 1.0f);  // lifted so its lowest point touches y = 0
+    QCOMPARE(w.document()->selected(), before);
+    QVERIFY(test::wait_refined(w));
     QVERIFY(reporter.errors.isEmpty());
 }
 
