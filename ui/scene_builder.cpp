@@ -51,6 +51,7 @@ void SceneBuilder::load(const Project& p) {
             for (size_t i = 0; i < photo.size(); ++i) photo[i] *= gain;
         photo_ = std::make_shared<const Image>(std::move(photo));
         photo_key_ = photo_key;
+        resampled_.clear();
     }
     const std::string probe_key = p.resolve(p.probe.path).string() + "|" +
                                   std::to_string(int(p.probe.format));
@@ -92,7 +93,11 @@ std::shared_ptr<RenderScene> SceneBuilder::build(const Project& project, int wid
     p.render = render;
     p.camera = scaled_camera(project.camera, photo.width(), photo.height(), width, height);
     SceneAssets a;
-    a.photo = resample(photo, width, height);
+    // Every edit builds at the same two sizes: resample the photo once per size.
+    auto it = resampled_.find({width, height});
+    if (it == resampled_.end())
+        it = resampled_.emplace(std::pair{width, height}, resample(photo, width, height)).first;
+    a.photo = it->second;
     a.probe_latlong = probe_;
     auto fill = [&](const auto& list, std::vector<TriangleMesh>& meshes,
                     std::vector<Image>& textures, auto albedo_of) {

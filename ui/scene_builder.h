@@ -33,6 +33,7 @@ public:
 private:
     std::string photo_key_, probe_key_;
     std::shared_ptr<const Image> photo_;
+    std::map<std::pair<int, int>, Image> resampled_;  ///< the photo at the sizes built so far
     Image probe_;
     std::map<std::string, TriangleMesh> meshes_;
     std::map<std::string, Image> textures_;
