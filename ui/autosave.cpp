@@ -21,7 +21,9 @@ Autosave::Autosave(Document* doc, const QString& dir, int intervalMs, QObject* p
     timer_.start(intervalMs);
 }
 
-QString Autosave::projectFile() const { return QDir(dir_).filePath(QStringLiteral("recovery.json")); }
+QString Autosave::projectFile() const {
+    return QDir(dir_).filePath(QStringLiteral("recovery.json"));
+}
 
 bool Autosave::writeNow() {
     if (!dirty_ || !doc_->isOpen()) return false;

@@ -2,7 +2,6 @@
 #include <QObject>
 #include <QString>
 #include <QTimer>
-
 #include <optional>
 
 #include "scene/project.h"

@@ -40,13 +40,15 @@ CameraPanel::CameraPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_
     fields_[6]->setKeyboardTracking(false);
     fields_[6]->setToolTip(tr("Vertical field of view in degrees"));
     form->addRow(tr("Field of view"), fields_[6]);
-    for (QDoubleSpinBox* f : fields_) connect(f, &QDoubleSpinBox::valueChanged, this, [this] { apply(); });
+    for (QDoubleSpinBox* f : fields_)
+        connect(f, &QDoubleSpinBox::valueChanged, this, [this] { apply(); });
     layout->addLayout(form);
 
     auto* show = new QGroupBox(tr("Show over the photo"));
     auto* showLayout = new QVBoxLayout(show);
     grid_ = new QCheckBox(tr("Ground grid (0.5 m)"));
-    grid_->setToolTip(tr("The y = 0 plane as the camera sees it: it should lie on the photo's floor"));
+    grid_->setToolTip(
+        tr("The y = 0 plane as the camera sees it: it should lie on the photo's floor"));
     proxies_ = new QCheckBox(tr("Real proxies (wireframe)"));
     proxies_->setToolTip(tr("The real geometry standing in for the photo's surfaces"));
     outlines_ = new QCheckBox(tr("Object outlines"));
@@ -61,8 +63,9 @@ CameraPanel::CameraPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_
     calibrate_ = new QGroupBox(tr("Calibrate"));
     calibrate_->setToolTip(tr("Camera calibration from the photo"));
     auto* calLayout = new QVBoxLayout(calibrate_);
-    for (const QString& name : {tr("Chessboard (auto-detect)"), tr("Known rectangle (click corners)"),
-                                tr("Vanishing lines (draw)")}) {
+    for (const QString& name :
+         {tr("Chessboard (auto-detect)"), tr("Known rectangle (click corners)"),
+          tr("Vanishing lines (draw)")}) {
         auto* b = new QPushButton(name);
         b->setEnabled(false);
         b->setToolTip(tr("Calibration tools are not part of this build"));
@@ -83,7 +86,8 @@ void CameraPanel::refresh() {
     const CameraSpec& c = doc_->project().camera;
     const bool lookAt = c.model == CameraSpec::Model::LookAt;
     model_->setText(lookAt ? tr("look-at") : tr("intrinsics + pose (from calibration)"));
-    const float values[7] = {c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z, c.vfov_deg};
+    const float values[7] = {c.eye.x,    c.eye.y,    c.eye.z,   c.target.x,
+                             c.target.y, c.target.z, c.vfov_deg};
     for (int i = 0; i < 7; ++i) {
         fields_[i]->setEnabled(lookAt);
         fields_[i]->setValue(values[i]);

@@ -64,8 +64,7 @@ QImage to_false_colour(const Image& delta, float exposure) {
 
 double estimate_relative_error(const Image& prev, const Image& cur, int passes,
                                const Image& photo) {
-    if (passes < 2 || prev.empty() || prev.width() != cur.width() ||
-        prev.height() != cur.height())
+    if (passes < 2 || prev.empty() || prev.width() != cur.width() || prev.height() != cur.height())
         return -1;
     double sum_sq = 0;
     size_t n = 0;

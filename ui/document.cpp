@@ -10,7 +10,10 @@ namespace {
 class EditCommand : public QUndoCommand {
 public:
     EditCommand(Document* doc, const QString& text, Project before, Project after, int key)
-        : QUndoCommand(text), doc_(doc), before_(std::move(before)), after_(std::move(after)),
+        : QUndoCommand(text),
+          doc_(doc),
+          before_(std::move(before)),
+          after_(std::move(after)),
           key_(key) {}
 
     void undo() override { doc_->apply(before_); }

@@ -41,16 +41,41 @@ bool ground_point(const Camera& camera, float px, float py, float height, vec3& 
     return true;
 }
 
+float support_height(const Project& project, float x, float z) {
+    float best = 0;
+    for (const RealProxy& r : project.real) {
+        const Transform& t = r.transform;
+        if (t.rotation_deg.x != 0 || t.rotation_deg.z != 0) continue;  // not lying flat
+        if (r.shape.kind != Shape::Kind::Box && r.shape.kind != Shape::Kind::Plane) continue;
+        // Into the proxy's frame: undo the translation, then the turn about Y.
+        const float a = glm::radians(t.rotation_deg.y);
+        const float dx = x - t.translation.x, dz = z - t.translation.z;
+        const float lx = std::cos(a) * dx - std::sin(a) * dz;
+        const float lz = std::sin(a) * dx + std::cos(a) * dz;
+        const vec3 half = 0.5f * r.shape.size * glm::abs(t.scale);
+        if (std::abs(lx) > half.x || std::abs(lz) > half.z) continue;
+        const float top = t.translation.y + (r.shape.kind == Shape::Kind::Box ? half.y : 0.0f);
+        best = std::max(best, top);
+    }
+    return best;
+}
+
 Transform drag_transform(GizmoMode mode, const Transform& start, const Camera& camera, vec2 from,
-                         vec2 to) {
+                         vec2 to, const Project* snap) {
     Transform t = start;
     switch (mode) {
         case GizmoMode::Translate: {
             vec3 a, b;
             const float h = start.translation.y;
-            if (ground_point(camera, from.x, from.y, h, a) && ground_point(camera, to.x, to.y, h, b)) {
+            if (ground_point(camera, from.x, from.y, h, a) &&
+                ground_point(camera, to.x, to.y, h, b)) {
                 t.translation.x += b.x - a.x;
                 t.translation.z += b.z - a.z;
+                if (snap) {
+                    const vec3& s0 = start.translation;
+                    t.translation.y += support_height(*snap, t.translation.x, t.translation.z) -
+                                       support_height(*snap, s0.x, s0.z);
+                }
             }
             break;
         }

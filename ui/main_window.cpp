@@ -16,7 +16,6 @@
 #include <QToolBar>
 #include <QUndoStack>
 #include <QVBoxLayout>
-
 #include <cmath>
 
 #include "autosave.h"
@@ -71,9 +70,13 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     updateTitle();
 }
 
-MainWindow::~MainWindow() { renderer_->stop(); }
+MainWindow::~MainWindow() {
+    renderer_->stop();
+}
 
-QAction* MainWindow::action(const QString& name) const { return findChild<QAction*>(name); }
+QAction* MainWindow::action(const QString& name) const {
+    return findChild<QAction*>(name);
+}
 
 void MainWindow::createActions() {
     auto make = [this](const QString& name, const QString& text, const QKeySequence& key,
@@ -87,11 +90,16 @@ void MainWindow::createActions() {
         addAction(a);
         return a;
     };
-    make("new", tr("&New Project..."), QKeySequence::New, tr("Start from a photograph and a light probe"), [this] { newDialog(); });
-    make("open", tr("&Open..."), QKeySequence::Open, tr("Open a project file"), [this] { openDialog(); });
-    make("save", tr("&Save"), QKeySequence::Save, tr("Save the project"), [this] { saveProject(); });
-    make("saveAs", tr("Save &As..."), QKeySequence::SaveAs, tr("Save the project under a new name"), [this] { saveAsDialog(); });
-    make("export", tr("&Export Image..."), QKeySequence(tr("Ctrl+E")), tr("Write the render as PNG, or EXR with layers"), [this] { exportDialog(); });
+    make("new", tr("&New Project..."), QKeySequence::New,
+         tr("Start from a photograph and a light probe"), [this] { newDialog(); });
+    make("open", tr("&Open..."), QKeySequence::Open, tr("Open a project file"),
+         [this] { openDialog(); });
+    make("save", tr("&Save"), QKeySequence::Save, tr("Save the project"),
+         [this] { saveProject(); });
+    make("saveAs", tr("Save &As..."), QKeySequence::SaveAs, tr("Save the project under a new name"),
+         [this] { saveAsDialog(); });
+    make("export", tr("&Export Image..."), QKeySequence(tr("Ctrl+E")),
+         tr("Write the render as PNG, or EXR with layers"), [this] { exportDialog(); });
     make("quit", tr("&Quit"), QKeySequence::Quit, tr("Close the studio"), [this] { close(); });
     QAction* undo = doc_->undoStack()->createUndoAction(this, tr("&Undo"));
     undo->setObjectName("undo");
@@ -103,22 +111,32 @@ void MainWindow::createActions() {
     redo->setToolTip(tr("Redo the edit last undone"));
     addAction(undo);
     addAction(redo);
-    make("addSphere", tr("Sphere"), {}, tr("Add a sphere resting on the ground"), [this] { addObject(Shape::Kind::Sphere); });
-    make("addBox", tr("Box"), {}, tr("Add a box resting on the ground"), [this] { addObject(Shape::Kind::Box); });
-    make("addPlane", tr("Plane"), {}, tr("Add an upright card"), [this] { addObject(Shape::Kind::Plane); });
-    make("import", tr("Import..."), QKeySequence(tr("Ctrl+I")), tr("Import an OBJ, PLY or glTF mesh"), [this] { importDialog(); });
-    make("duplicate", tr("Duplicate"), QKeySequence(tr("Shift+D")), tr("Duplicate the selected object"), [this] { duplicateSelected(); });
-    make("delete", tr("Delete"), {}, tr("Delete the selected object (X)"), [this] { deleteSelected(); });
-    make("hide", tr("Hide/Show"), QKeySequence(tr("H")), tr("Hide or show the selected object"), [this] { toggleSelectedVisible(); });
-    make("fit", tr("Fit View"), QKeySequence(tr("Home")), tr("Fit the render in the window"), [this] { viewport_->fitView(); });
+    make("addSphere", tr("Sphere"), {}, tr("Add a sphere resting on the ground"),
+         [this] { addObject(Shape::Kind::Sphere); });
+    make("addBox", tr("Box"), {}, tr("Add a box resting on the ground"),
+         [this] { addObject(Shape::Kind::Box); });
+    make("addPlane", tr("Plane"), {}, tr("Add an upright card"),
+         [this] { addObject(Shape::Kind::Plane); });
+    make("import", tr("Import..."), QKeySequence(tr("Ctrl+I")),
+         tr("Import an OBJ, PLY or glTF mesh"), [this] { importDialog(); });
+    make("duplicate", tr("Duplicate"), QKeySequence(tr("Shift+D")),
+         tr("Duplicate the selected object"), [this] { duplicateSelected(); });
+    make("delete", tr("Delete"), {}, tr("Delete the selected object (X)"),
+         [this] { deleteSelected(); });
+    make("hide", tr("Hide/Show"), QKeySequence(tr("H")), tr("Hide or show the selected object"),
+         [this] { toggleSelectedVisible(); });
+    make("fit", tr("Fit View"), QKeySequence(tr("Home")), tr("Fit the render in the window"),
+         [this] { viewport_->fitView(); });
 
     viewGroup_ = new QActionGroup(this);
     const char* views[] = {"Photo", "Augmented", "dL"};
-    const char* viewTips[] = {"The photograph as loaded", "The photograph with the objects",
-                              "Change in light on real surfaces: blue removed (shadows), red added (caustics)"};
+    const char* viewTips[] = {
+        "The photograph as loaded", "The photograph with the objects",
+        "Change in light on real surfaces: blue removed (shadows), red added (caustics)"};
     for (int i = 0; i < 3; ++i) {
-        QAction* a = make(QStringLiteral("view%1").arg(views[i]), tr(views[i]), QKeySequence(QString::number(i + 1)),
-                          tr(viewTips[i]), [this, i] { viewport_->setViewMode(ViewMode(i)); });
+        QAction* a = make(QStringLiteral("view%1").arg(views[i]), tr(views[i]),
+                          QKeySequence(QString::number(i + 1)), tr(viewTips[i]),
+                          [this, i] { viewport_->setViewMode(ViewMode(i)); });
         a->setCheckable(true);
         a->setChecked(i == 1);
         viewGroup_->addAction(a);
@@ -127,9 +145,10 @@ void MainWindow::createActions() {
     const char* modes[] = {"Move", "Rotate", "Scale"};
     const char* keys[] = {"G", "R", "S"};
     for (int i = 0; i < 3; ++i) {
-        QAction* a = make(QStringLiteral("gizmo%1").arg(modes[i]), tr(modes[i]), {},
-                          tr("%1 the selected object by dragging it (%2)").arg(tr(modes[i]), keys[i]),
-                          [this, i] { viewport_->setGizmoMode(GizmoMode(i)); });
+        QAction* a =
+            make(QStringLiteral("gizmo%1").arg(modes[i]), tr(modes[i]), {},
+                 tr("%1 the selected object by dragging it (%2)").arg(tr(modes[i]), keys[i]),
+                 [this, i] { viewport_->setGizmoMode(GizmoMode(i)); });
         a->setCheckable(true);
         a->setChecked(i == 0);
         gizmoGroup_->addAction(a);
@@ -166,7 +185,8 @@ void MainWindow::createMenus() {
 }
 
 void MainWindow::createDocks() {
-    auto dock = [this](const QString& name, const QString& title, QWidget* w, Qt::DockWidgetArea area) {
+    auto dock = [this](const QString& name, const QString& title, QWidget* w,
+                       Qt::DockWidgetArea area) {
         auto* scroll = new QScrollArea;
         scroll->setWidget(w);
         scroll->setWidgetResizable(true);
@@ -237,7 +257,8 @@ void MainWindow::connectRenderer() {
         viewport_->setRenderSize(options_.renderSize);
         viewport_->fitView();
     });
-    connect(renderer_, &RenderController::frameReady, this, [this](std::shared_ptr<const Frame> f) { onFrame(f); });
+    connect(renderer_, &RenderController::frameReady, this,
+            [this](std::shared_ptr<const RenderFrame> f) { onFrame(f); });
     connect(renderer_, &RenderController::failed, this, [this](const QString& message) {
         status_->setText(tr("Render failed"));
         error(tr("Render failed"), message);
@@ -246,7 +267,7 @@ void MainWindow::connectRenderer() {
             [this] { status_->setText(status_->text() + tr("  ·  done")); });
 }
 
-void MainWindow::onFrame(const std::shared_ptr<const Frame>& f) {
+void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     viewport_->setFrame(f);
     const RenderStats& s = f->update.stats;
     if (previous_ && previous_->generation == f->generation && previous_->preview == f->preview &&
@@ -257,9 +278,9 @@ void MainWindow::onFrame(const std::shared_ptr<const Frame>& f) {
         lastError_ = -1;
     previous_ = f;
     QString text = f->preview ? tr("Preview pass %1").arg(s.passes)
-                              : f->update.target_passes > 0
-                                    ? tr("Pass %1 / %2").arg(s.passes).arg(f->update.target_passes)
-                                    : tr("Pass %1 (%2 s budget)").arg(s.passes).arg(f->update.time_budget_s);
+                   : f->update.target_passes > 0
+                       ? tr("Pass %1 / %2").arg(s.passes).arg(f->update.target_passes)
+                       : tr("Pass %1 (%2 s budget)").arg(s.passes).arg(f->update.time_budget_s);
     text += tr("  ·  %1 M photons/s").arg(s.photons_per_second / 1e6, 0, 'f', 2);
     text += lastError_ >= 0 ? tr("  ·  est. error %1%").arg(lastError_ * 100, 0, 'f', 1)
                             : tr("  ·  est. error -");
@@ -321,8 +342,12 @@ void MainWindow::toggleSelectedVisible() {
     doc_->edit(p.objects[size_t(sel)].visible ? tr("Show object") : tr("Hide object"), p);
 }
 
-void MainWindow::setDisplayExposure(float stops) { exposure_->setValue(int(std::lround(stops * 10))); }
+void MainWindow::setDisplayExposure(float stops) {
+    exposure_->setValue(int(std::lround(stops * 10)));
+}
 
-void MainWindow::error(const QString& title, const QString& text) { reporter_->error(this, title, text); }
+void MainWindow::error(const QString& title, const QString& text) {
+    reporter_->error(this, title, text);
+}
 
 }  // namespace dp::ui

@@ -1,6 +1,5 @@
 #pragma once
 #include <QMainWindow>
-
 #include <memory>
 
 #include "display.h"
@@ -25,7 +24,7 @@ class RenderController;
 class ScenePanel;
 class SettingsPanel;
 class Viewport;
-struct Frame;
+struct RenderFrame;
 
 /// The studio's main window: viewport in the middle, panels docked around it, menus with the
 /// usual shortcuts. Every operation a menu offers is also a public method, which is what the
@@ -79,7 +78,7 @@ private:
     void createDocks();
     void createToolbar();
     void connectRenderer();
-    void onFrame(const std::shared_ptr<const Frame>& frame);
+    void onFrame(const std::shared_ptr<const RenderFrame>& frame);
     void beginInteraction();
     void endInteraction();
     void updateTitle();
@@ -111,7 +110,7 @@ private:
     QMenu* recentMenu_ = nullptr;
     QActionGroup *viewGroup_ = nullptr, *gizmoGroup_ = nullptr;
     QStringList recent_;
-    std::shared_ptr<const Frame> previous_;
+    std::shared_ptr<const RenderFrame> previous_;
     double lastError_ = -1;
     bool interactive_ = false, editedWhileInteractive_ = false;
 };

@@ -7,7 +7,6 @@
 #include <QMimeData>
 #include <QSettings>
 #include <QSlider>
-
 #include <algorithm>
 #include <cmath>
 
@@ -115,7 +114,7 @@ bool MainWindow::newProject(const QString& photo, const QString& probe, bool mir
 }
 
 bool MainWindow::exportImage(const QString& path) {
-    std::shared_ptr<const Frame> f = renderer_->lastFullFrame();
+    std::shared_ptr<const RenderFrame> f = renderer_->lastFullFrame();
     if (!f) {
         error(tr("Nothing to export"), tr("The render has not finished a full-size pass yet."));
         return false;
@@ -135,7 +134,8 @@ bool MainWindow::exportImage(const QString& path) {
             save_exr(path.toStdString(),
                      {{"", &image}, {"dL", &delta}, {"alpha", &alpha}, {"shadow", &shadow}});
         } else {
-            throw InputError(path.toStdString(), "export", "unknown format (use .png, .jpg or .exr)");
+            throw InputError(path.toStdString(), "export",
+                             "unknown format (use .png, .jpg or .exr)");
         }
     } catch (const std::exception& e) {
         error(tr("Cannot export"), QString::fromUtf8(e.what()));
@@ -194,8 +194,9 @@ void MainWindow::newDialog(const QString& photo, const QString& probe) {
 }
 
 void MainWindow::exportDialog() {
-    const QString f = QFileDialog::getSaveFileName(this, tr("Export image"), QString(),
-                                                   tr("PNG (*.png);;OpenEXR with layers (*.exr);;JPEG (*.jpg)"));
+    const QString f =
+        QFileDialog::getSaveFileName(this, tr("Export image"), QString(),
+                                     tr("PNG (*.png);;OpenEXR with layers (*.exr);;JPEG (*.jpg)"));
     if (!f.isEmpty()) exportImage(f);
 }
 
@@ -214,12 +215,17 @@ void MainWindow::dropEvent(QDropEvent* e) {
     for (const QUrl& url : e->mimeData()->urls()) {
         const QString f = url.toLocalFile();
         const QString suffix = QFileInfo(f).suffix().toLower();
-        if (suffix == "json") openProject(f);
-        else if (kMeshSuffixes.contains(suffix)) importMesh(f);
-        else if (kImageSuffixes.contains(suffix)) images << f;
+        if (suffix == "json")
+            openProject(f);
+        else if (kMeshSuffixes.contains(suffix))
+            importMesh(f);
+        else if (kImageSuffixes.contains(suffix))
+            images << f;
     }
-    if (images.size() >= 2) newProject(images[0], images[1]);
-    else if (images.size() == 1) newDialog(images[0]);
+    if (images.size() >= 2)
+        newProject(images[0], images[1]);
+    else if (images.size() == 1)
+        newDialog(images[0]);
 }
 
 void MainWindow::addRecent(const QString& path) {
@@ -234,7 +240,8 @@ void MainWindow::rebuildRecentMenu() {
     if (!recentMenu_) return;
     recentMenu_->clear();
     for (const QString& f : recent_) {
-        QAction* a = recentMenu_->addAction(QFileInfo(f).fileName(), this, [this, f] { openProject(f); });
+        QAction* a =
+            recentMenu_->addAction(QFileInfo(f).fileName(), this, [this, f] { openProject(f); });
         a->setToolTip(f);
     }
     recentMenu_->setEnabled(!recent_.isEmpty());
@@ -254,9 +261,9 @@ void MainWindow::checkRecovery() {
     std::optional<Autosave::Recovered> r = autosave_->pending();
     if (!r) return;
     const QString where = r->originalPath.isEmpty() ? tr("an unsaved project") : r->originalPath;
-    if (reporter_->ask(this, tr("Recover unsaved work?"),
-                       tr("The studio did not close cleanly. Recover the autosaved copy of %1?")
-                           .arg(where))) {
+    if (reporter_->ask(
+            this, tr("Recover unsaved work?"),
+            tr("The studio did not close cleanly. Recover the autosaved copy of %1?").arg(where))) {
         doc_->reset(r->project, r->originalPath, true);
     } else {
         autosave_->clear();
@@ -264,8 +271,10 @@ void MainWindow::checkRecovery() {
 }
 
 void MainWindow::updateTitle() {
-    const QString name = doc_->path().isEmpty() ? tr("Untitled") : QFileInfo(doc_->path()).fileName();
-    setWindowTitle(doc_->isOpen() ? tr("%1[*] - diffphoton studio").arg(name) : tr("diffphoton studio"));
+    const QString name =
+        doc_->path().isEmpty() ? tr("Untitled") : QFileInfo(doc_->path()).fileName();
+    setWindowTitle(doc_->isOpen() ? tr("%1[*] - diffphoton studio").arg(name)
+                                  : tr("diffphoton studio"));
     setWindowModified(doc_->isModified());
 }
 

@@ -6,7 +6,6 @@
 #include <QLabel>
 #include <QPushButton>
 #include <QSlider>
-
 #include <algorithm>
 #include <cmath>
 
@@ -19,7 +18,9 @@ namespace {
 
 // Colours are linear in the project and sRGB on screen.
 QColor to_qcolor(const vec3& linear) {
-    auto c = [](float v) { return int(std::lround(linear_to_srgb(std::clamp(v, 0.0f, 1.0f)) * 255)); };
+    auto c = [](float v) {
+        return int(std::lround(linear_to_srgb(std::clamp(v, 0.0f, 1.0f)) * 255));
+    };
     return QColor(c(linear.x), c(linear.y), c(linear.z));
 }
 

@@ -31,8 +31,8 @@ Q_SIGNALS:
 
 private:
     void refresh();
-    QSlider* addSlider(QFormLayout* form, const QString& label, const QString& tip, int lo,
-                       int hi, QLabel** value);
+    QSlider* addSlider(QFormLayout* form, const QString& label, const QString& tip, int lo, int hi,
+                       QLabel** value);
     void sliderMoved(QSlider* moved);
     void pickColour(bool tint);
 

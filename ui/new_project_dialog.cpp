@@ -24,7 +24,8 @@ QWidget* with_browse(QLineEdit* edit, const QString& caption, const QString& fil
     b->setToolTip(caption);
     row->addWidget(b);
     QObject::connect(b, &QPushButton::clicked, edit, [edit, caption, filter] {
-        const QString f = QFileDialog::getOpenFileName(edit->window(), caption, edit->text(), filter);
+        const QString f =
+            QFileDialog::getOpenFileName(edit->window(), caption, edit->text(), filter);
         if (!f.isEmpty()) edit->setText(f);
     });
     return w;
@@ -36,14 +37,16 @@ NewProjectDialog::NewProjectDialog(QWidget* parent) : QDialog(parent) {
     setWindowTitle(tr("New Project"));
     setAcceptDrops(true);
     auto* form = new QFormLayout(this);
-    auto* hint = new QLabel(tr("Choose the photograph to augment and a light probe captured where "
-                               "the objects will stand (or drop both files here)."));
+    auto* hint =
+        new QLabel(tr("Choose the photograph to augment and a light probe captured where "
+                      "the objects will stand (or drop both files here)."));
     hint->setWordWrap(true);
     form->addRow(hint);
     photo_ = new QLineEdit;
     photo_->setToolTip(tr("The photograph (EXR, HDR, PNG, JPEG or TIFF)"));
-    form->addRow(tr("Photograph"), with_browse(photo_, tr("Open photograph"),
-                                              tr("Images (*.exr *.hdr *.png *.jpg *.jpeg *.tif *.tiff)")));
+    form->addRow(tr("Photograph"),
+                 with_browse(photo_, tr("Open photograph"),
+                             tr("Images (*.exr *.hdr *.png *.jpg *.jpeg *.tif *.tiff)")));
     probe_ = new QLineEdit;
     probe_->setToolTip(tr("An HDR light probe (EXR or Radiance HDR)"));
     form->addRow(tr("Light probe"),
@@ -58,11 +61,21 @@ NewProjectDialog::NewProjectDialog(QWidget* parent) : QDialog(parent) {
     form->addRow(buttons);
 }
 
-QString NewProjectDialog::photoPath() const { return photo_->text(); }
-QString NewProjectDialog::probePath() const { return probe_->text(); }
-bool NewProjectDialog::mirrorBall() const { return format_->currentIndex() == 1; }
-void NewProjectDialog::setPhotoPath(const QString& path) { photo_->setText(path); }
-void NewProjectDialog::setProbePath(const QString& path) { probe_->setText(path); }
+QString NewProjectDialog::photoPath() const {
+    return photo_->text();
+}
+QString NewProjectDialog::probePath() const {
+    return probe_->text();
+}
+bool NewProjectDialog::mirrorBall() const {
+    return format_->currentIndex() == 1;
+}
+void NewProjectDialog::setPhotoPath(const QString& path) {
+    photo_->setText(path);
+}
+void NewProjectDialog::setProbePath(const QString& path) {
+    probe_->setText(path);
+}
 
 void NewProjectDialog::dragEnterEvent(QDragEnterEvent* e) {
     if (e->mimeData()->hasUrls()) e->acceptProposedAction();
@@ -72,8 +85,10 @@ void NewProjectDialog::dropEvent(QDropEvent* e) {
     for (const QUrl& url : e->mimeData()->urls()) {
         const QString f = url.toLocalFile();
         // The first file dropped is the photo, the next the probe.
-        if (photo_->text().isEmpty()) photo_->setText(f);
-        else probe_->setText(f);
+        if (photo_->text().isEmpty())
+            photo_->setText(f);
+        else
+            probe_->setText(f);
     }
 }
 

@@ -2,7 +2,6 @@
 
 #include <QPainter>
 #include <QPainterPath>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -30,15 +29,18 @@ public:
             vec2 px;
             if (!c_.project(a + (b - a) * (float(i) / float(pieces)), px)) return;
             const QPointF q = t_.map(QPointF(px.x, px.y));
-            if (i == 0) path.moveTo(q);
-            else path.lineTo(q);
+            if (i == 0)
+                path.moveTo(q);
+            else
+                path.lineTo(q);
         }
         p_.drawPath(path);
     }
 
     void circle(const vec3& centre, const vec3& u, const vec3& v, float r, int pieces = 48) {
         for (int i = 0; i < pieces; ++i) {
-            const float a0 = 2 * kPi * float(i) / float(pieces), a1 = 2 * kPi * float(i + 1) / float(pieces);
+            const float a0 = 2 * kPi * float(i) / float(pieces),
+                        a1 = 2 * kPi * float(i + 1) / float(pieces);
             line(centre + r * (std::cos(a0) * u + std::sin(a0) * v),
                  centre + r * (std::cos(a1) * u + std::sin(a1) * v), 1);
         }
@@ -65,7 +67,8 @@ void draw_box(LineDrawer& d, const glm::mat4& m, const vec3& size) {
 void draw_plane(LineDrawer& d, const glm::mat4& m, const vec3& size) {
     std::array<vec3, 4> v;
     const float hx = 0.5f * size.x, hz = 0.5f * size.z;
-    const std::array<vec2, 4> corners = {vec2(-hx, -hz), vec2(hx, -hz), vec2(hx, hz), vec2(-hx, hz)};
+    const std::array<vec2, 4> corners = {vec2(-hx, -hz), vec2(hx, -hz), vec2(hx, hz),
+                                         vec2(-hx, hz)};
     for (int i = 0; i < 4; ++i) v[i] = vec3(m * glm::vec4(corners[i].x, 0, corners[i].y, 1));
     for (int i = 0; i < 4; ++i) d.line(v[i], v[(i + 1) % 4], 8);
 }
@@ -73,15 +76,21 @@ void draw_plane(LineDrawer& d, const glm::mat4& m, const vec3& size) {
 void draw_shape(LineDrawer& d, const Shape& s, const Transform& t) {
     const glm::mat4 m = t.matrix();
     switch (s.kind) {
-        case Shape::Kind::Box: draw_box(d, m, s.size); break;
-        case Shape::Kind::Plane: draw_plane(d, m, s.size); break;
+        case Shape::Kind::Box:
+            draw_box(d, m, s.size);
+            break;
+        case Shape::Kind::Plane:
+            draw_plane(d, m, s.size);
+            break;
         case Shape::Kind::Sphere: {
             const vec3 c = vec3(m * glm::vec4(0, 0, 0, 1));
             const float r = s.radius * std::max({t.scale.x, t.scale.y, t.scale.z});
             d.circle(c, vec3(1, 0, 0), vec3(0, 0, 1), r);
             break;
         }
-        case Shape::Kind::Mesh: draw_box(d, m, vec3(0.2f)); break;  // bounds unknown here
+        case Shape::Kind::Mesh:
+            draw_box(d, m, vec3(0.2f));
+            break;  // bounds unknown here
     }
 }
 
@@ -112,13 +121,15 @@ void draw_overlays(QPainter& painter, const Project& project, const Camera& came
             const bool sel = int(i) == o.selected;
             QColor colour = sel ? QColor(255, 190, 40) : QColor(255, 255, 255, 150);
             if (!obj.visible) colour.setAlpha(60);
-            painter.setPen(QPen(colour, sel ? 2.0 : 1.0, obj.visible ? Qt::SolidLine : Qt::DashLine));
+            painter.setPen(
+                QPen(colour, sel ? 2.0 : 1.0, obj.visible ? Qt::SolidLine : Qt::DashLine));
             vec3 c;
             float r;
             bounding_sphere(obj, c, r);
             // The outline of a sphere is the circle perpendicular to the line of sight.
             const vec3 w = glm::normalize(c - eye);
-            const vec3 u = glm::normalize(glm::cross(w, std::abs(w.y) < 0.99f ? vec3(0, 1, 0) : vec3(1, 0, 0)));
+            const vec3 u = glm::normalize(
+                glm::cross(w, std::abs(w.y) < 0.99f ? vec3(0, 1, 0) : vec3(1, 0, 0)));
             d.circle(c, u, glm::cross(w, u), r);
             if (sel) {
                 const float len = 1.5f * r;

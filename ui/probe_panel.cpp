@@ -5,7 +5,6 @@
 #include <QMouseEvent>
 #include <QPainter>
 #include <QSlider>
-
 #include <cmath>
 
 #include "display.h"
@@ -20,8 +19,9 @@ ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     preview_ = new QLabel;
     preview_->setMinimumSize(256, 128);
     preview_->setAlignment(Qt::AlignCenter);
-    preview_->setToolTip(tr("The light probe (lat-long). Drag across it to turn the probe, e.g. "
-                            "to bring the sun round until the shadows match the photo's."));
+    preview_->setToolTip(
+        tr("The light probe (lat-long). Drag across it to turn the probe, e.g. "
+           "to bring the sun round until the shadows match the photo's."));
     preview_->installEventFilter(this);
     form->addRow(preview_);
     auto slider = [&](const QString& label, const QString& tip, int lo, int hi, QLabel** value) {
@@ -45,10 +45,10 @@ ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
         connect(s, &QSlider::valueChanged, this, [this] { applySliders(); });
         return s;
     };
-    rotation_ = slider(tr("Rotation"), tr("Turn the probe about the vertical axis (degrees)"),
-                       -180, 180, &rotationValue_);
-    exposure_ = slider(tr("Exposure"), tr("Probe brightness in stops (intensity 2^stops)"), -60,
-                       60, &exposureValue_);
+    rotation_ = slider(tr("Rotation"), tr("Turn the probe about the vertical axis (degrees)"), -180,
+                       180, &rotationValue_);
+    exposure_ = slider(tr("Exposure"), tr("Probe brightness in stops (intensity 2^stops)"), -60, 60,
+                       &exposureValue_);
     connect(doc_, &Document::changed, this, [this] { refresh(); });
     refresh();
 }
@@ -83,7 +83,8 @@ void ProbePanel::refresh() {
         QImage shown(previewImage_.size(), previewImage_.format());
         const int shift = int(std::lround(-probe.rotation_deg.y / 360.0 * shown.width()));
         QPainter painter(&shown);
-        for (int k = -1; k <= 1; ++k) painter.drawImage(shift + k * shown.width(), 0, previewImage_);
+        for (int k = -1; k <= 1; ++k)
+            painter.drawImage(shift + k * shown.width(), 0, previewImage_);
         preview_->setPixmap(QPixmap::fromImage(shown));
     } else {
         preview_->setText(tr("(no probe)"));

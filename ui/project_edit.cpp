@@ -77,12 +77,18 @@ void bounding_sphere(const VirtualObject& o, vec3& center, float& radius, float 
     const vec3 s = glm::abs(o.transform.scale);
     const float smax = std::max({s.x, s.y, s.z});
     switch (o.shape.kind) {
-        case Shape::Kind::Sphere: radius = o.shape.radius * smax; break;
-        case Shape::Kind::Box: radius = 0.5f * glm::length(o.shape.size * s); break;
+        case Shape::Kind::Sphere:
+            radius = o.shape.radius * smax;
+            break;
+        case Shape::Kind::Box:
+            radius = 0.5f * glm::length(o.shape.size * s);
+            break;
         case Shape::Kind::Plane:
             radius = 0.5f * std::hypot(o.shape.size.x * s.x, o.shape.size.z * s.z);
             break;
-        case Shape::Kind::Mesh: radius = mesh_radius * smax; break;
+        case Shape::Kind::Mesh:
+            radius = mesh_radius * smax;
+            break;
     }
 }
 

@@ -1,7 +1,6 @@
 #include "render_controller.h"
 
 #include <QMetaObject>
-
 #include <algorithm>
 #include <cmath>
 
@@ -23,7 +22,7 @@ public:
     explicit Sink(RenderController* c) : c_(c) {}
 
     void on_update(const RenderUpdate& update) override {
-        auto frame = std::make_shared<Frame>();
+        auto frame = std::make_shared<RenderFrame>();
         frame->update = update;
         bool post = false;
         {
@@ -50,8 +49,8 @@ public:
             preview = c_->runPreview_;
         }
         if (preview && error.empty()) return;  // quick passes end by being replaced
-        QMetaObject::invokeMethod(c_, "deliverStopped", Qt::QueuedConnection,
-                                  Q_ARG(quint64, gen), Q_ARG(bool, !cancelled && error.empty()),
+        QMetaObject::invokeMethod(c_, "deliverStopped", Qt::QueuedConnection, Q_ARG(quint64, gen),
+                                  Q_ARG(bool, !cancelled && error.empty()),
                                   Q_ARG(QString, QString::fromStdString(error)));
     }
 
@@ -60,7 +59,8 @@ private:
 };
 
 RenderController::RenderController(QObject* parent)
-    : QObject(parent), builder_(std::make_unique<SceneBuilder>()),
+    : QObject(parent),
+      builder_(std::make_unique<SceneBuilder>()),
       sink_(std::make_unique<Sink>(this)) {
     session_ = std::make_unique<RenderSession>(sink_.get());
     thread_ = std::thread([this] { worker(); });
@@ -153,9 +153,10 @@ void RenderController::handle(const Request& r) {
     if (full != fullSize_) change = std::max(change, Change::Scene);
     // The quick pass's cost is mostly per pixel: keep it under kQuickPixels whatever the size.
     constexpr double kQuickPixels = 100000;
-    const double scale = std::min(r.previewScale,
-                                  std::sqrt(kQuickPixels / double(full.width() * full.height())));
-    const QSize quick(std::max(1, int(full.width() * scale)), std::max(1, int(full.height() * scale)));
+    const double scale =
+        std::min(r.previewScale, std::sqrt(kQuickPixels / double(full.width() * full.height())));
+    const QSize quick(std::max(1, int(full.width() * scale)),
+                      std::max(1, int(full.height() * scale)));
 
     RenderSettings quickSettings = p.render;
     quickSettings.photons_per_pass =
@@ -218,7 +219,7 @@ void RenderController::handle(const Request& r) {
 }
 
 void RenderController::deliver() {
-    std::shared_ptr<Frame> frame;
+    std::shared_ptr<RenderFrame> frame;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         frame = std::move(latest_);

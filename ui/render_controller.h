@@ -1,7 +1,6 @@
 #pragma once
 #include <QObject>
 #include <QSize>
-
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -19,7 +18,7 @@ namespace dp::ui {
 class SceneBuilder;
 
 /// One progressive image as the viewport shows it.
-struct Frame {
+struct RenderFrame {
     RenderUpdate update;
     std::shared_ptr<const Image> photo;  ///< full-resolution photo (the "photo" view)
     bool preview = false;                ///< a coarse pass at reduced size (edit in progress)
@@ -56,9 +55,9 @@ public:
     bool idle() const;
 
     /// The latest frame delivered to the UI thread (null before the first).
-    std::shared_ptr<const Frame> lastFrame() const { return last_; }
+    std::shared_ptr<const RenderFrame> lastFrame() const { return last_; }
     /// The latest full-size frame (what export writes).
-    std::shared_ptr<const Frame> lastFullFrame() const { return lastFull_; }
+    std::shared_ptr<const RenderFrame> lastFullFrame() const { return lastFull_; }
     uint64_t generation() const { return requested_; }
     /// Whether the latest request's full-size refinement reached its budget.
     bool finished() const { return finished_; }
@@ -77,7 +76,7 @@ public:
     int scenesBuilt() const { return scenesBuilt_.load(); }
 
 Q_SIGNALS:
-    void frameReady(std::shared_ptr<const dp::ui::Frame> frame);
+    void frameReady(std::shared_ptr<const dp::ui::RenderFrame> frame);
     /// The refinement of the latest request reached its pass or time budget.
     void refinementFinished();
     /// Loading or building failed (message for the user).
@@ -109,7 +108,7 @@ private:
     std::shared_ptr<RenderScene> quick_, full_;
     QSize fullSize_;
     // Shared with the render thread's sink, under mutex_.
-    std::shared_ptr<Frame> latest_;
+    std::shared_ptr<RenderFrame> latest_;
     bool posted_ = false;
     uint64_t runGeneration_ = 0;
     bool runPreview_ = false;
@@ -129,7 +128,7 @@ private:
     std::atomic<int> scenesBuilt_{0};
     uint64_t requested_ = 0;  ///< UI thread
     bool finished_ = false;   ///< UI thread
-    std::shared_ptr<const Frame> last_, lastFull_;
+    std::shared_ptr<const RenderFrame> last_, lastFull_;
 };
 
 }  // namespace dp::ui

@@ -12,7 +12,8 @@ namespace dp::ui {
 Image resample(const Image& image, int width, int height) {
     if (width == image.width() && height == image.height()) return image;
     Image out(width, height);
-    const float sx = float(image.width()) / float(width), sy = float(image.height()) / float(height);
+    const float sx = float(image.width()) / float(width),
+                sy = float(image.height()) / float(height);
     // Averages a small footprint when shrinking so previews do not alias.
     const int taps = std::max(1, int(std::ceil(std::max(sx, sy))));
     for (int y = 0; y < height; ++y)
@@ -53,8 +54,8 @@ void SceneBuilder::load(const Project& p) {
         photo_key_ = photo_key;
         resampled_.clear();
     }
-    const std::string probe_key = p.resolve(p.probe.path).string() + "|" +
-                                  std::to_string(int(p.probe.format));
+    const std::string probe_key =
+        p.resolve(p.probe.path).string() + "|" + std::to_string(int(p.probe.format));
     if (probe_key != probe_key_) {
         Image probe = load_image(p.resolve(p.probe.path).string(), "probe.path");
         if (p.probe.format == ProbeSpec::Format::MirrorBall) {

@@ -14,8 +14,7 @@ Image resample(const Image& image, int width, int height);
 
 /// The project's camera for an image of `width` x `height` when the photo is `photo_w` x
 /// `photo_h`: intrinsics (in pixels) are scaled; a look-at camera follows the size by itself.
-CameraSpec scaled_camera(const CameraSpec& camera, int photo_w, int photo_h, int width,
-                         int height);
+CameraSpec scaled_camera(const CameraSpec& camera, int photo_w, int photo_h, int width, int height);
 
 /// Not thread-safe: one builder per thread.
 class SceneBuilder {

@@ -97,7 +97,8 @@ void ScenePanel::refresh() {
     if (has) {
         const VirtualObject& o = p.objects[size_t(sel)];
         name_->setText(QString::fromStdString(o.name));
-        const vec3* v[3] = {&o.transform.translation, &o.transform.rotation_deg, &o.transform.scale};
+        const vec3* v[3] = {&o.transform.translation, &o.transform.rotation_deg,
+                            &o.transform.scale};
         for (int i = 0; i < 9; ++i) {
             QSignalBlocker block(fields_[i]);
             fields_[i]->setValue((*v[i / 3])[i % 3]);

@@ -14,7 +14,8 @@ SettingsPanel::SettingsPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     photons_->setRange(1000, 100000000);
     photons_->setSingleStep(50000);
     photons_->setGroupSeparatorShown(true);
-    photons_->setToolTip(tr("Photons traced per pass: more means less noise per pass, slower passes"));
+    photons_->setToolTip(
+        tr("Photons traced per pass: more means less noise per pass, slower passes"));
     form->addRow(tr("Photons per pass"), photons_);
     passes_ = new QSpinBox;
     passes_->setRange(1, 100000);
@@ -67,8 +68,10 @@ void SettingsPanel::apply() {
     r.photons_per_pass = photons_->value();
     r.passes = passes_->value();
     r.time_budget_s = budget_->value();
-    if (radius_->value() > 0) r.initial_radius = float(radius_->value());
-    else r.initial_radius.reset();
+    if (radius_->value() > 0)
+        r.initial_radius = float(radius_->value());
+    else
+        r.initial_radius.reset();
     r.seed = uint64_t(seed_->value());
     doc_->edit(tr("Change render settings"), p);
 }

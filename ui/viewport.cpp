@@ -5,7 +5,6 @@
 #include <QMouseEvent>
 #include <QPainter>
 #include <QWheelEvent>
-
 #include <cmath>
 
 #include "document.h"
@@ -16,8 +15,9 @@ Viewport::Viewport(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) 
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(320, 200);
     setAttribute(Qt::WA_OpaquePaintEvent);
-    setToolTip(tr("Click an object to select it; drag to move (G), rotate (R) or scale (S).\n"
-                  "Wheel zooms, middle button pans, X deletes, Esc cancels a drag."));
+    setToolTip(
+        tr("Click an object to select it; drag to move (G), rotate (R) or scale (S).\n"
+           "Wheel zooms, middle button pans, X deletes, Esc cancels a drag."));
     connect(doc_, &Document::changed, this, [this] { update(); });
     connect(doc_, &Document::selectionChanged, this, [this](int index) {
         overlays_.selected = index;
@@ -25,7 +25,7 @@ Viewport::Viewport(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) 
     });
 }
 
-void Viewport::setFrame(std::shared_ptr<const Frame> frame) {
+void Viewport::setFrame(std::shared_ptr<const RenderFrame> frame) {
     frame_ = std::move(frame);
     if (!renderSize_.isValid() && frame_ && frame_->photo)
         renderSize_ = QSize(frame_->photo->width(), frame_->photo->height());
@@ -186,9 +186,12 @@ void Viewport::mouseMoveEvent(QMouseEvent* e) {
     lastPos_ = e->position();
     Project p = projectAtDrag_;
     VirtualObject& obj = p.objects[size_t(sel)];
-    obj.transform = drag_transform(gizmo_, dragStart_, camera(), toImage(pressPos_), toImage(lastPos_));
+    obj.transform =
+        drag_transform(gizmo_, dragStart_, camera(), toImage(pressPos_), toImage(lastPos_),
+                       &projectAtDrag_);
     static const char* verbs[] = {"Move", "Rotate", "Scale"};
-    doc_->edit(tr("%1 %2").arg(tr(verbs[int(gizmo_)]), QString::fromStdString(obj.name)), p, dragKey_);
+    doc_->edit(tr("%1 %2").arg(tr(verbs[int(gizmo_)]), QString::fromStdString(obj.name)), p,
+               dragKey_);
 }
 
 void Viewport::mouseReleaseEvent(QMouseEvent* e) {
@@ -216,7 +219,8 @@ void Viewport::keyPressEvent(QKeyEvent* e) {
             setGizmoMode(e->key() == Qt::Key_G   ? GizmoMode::Translate
                          : e->key() == Qt::Key_R ? GizmoMode::Rotate
                                                  : GizmoMode::Scale);
-            if (!dragging_ && doc_->selected() >= 0 && rect().contains(mapFromGlobal(QCursor::pos()))) {
+            if (!dragging_ && doc_->selected() >= 0 &&
+                rect().contains(mapFromGlobal(QCursor::pos()))) {
                 setMouseTracking(true);  // Blender-style: the object follows until a click
                 beginDrag(mapFromGlobal(QCursor::pos()));
             }
@@ -226,9 +230,14 @@ void Viewport::keyPressEvent(QKeyEvent* e) {
         case Qt::Key_Delete:
             if (!dragging_ && doc_->selected() >= 0) Q_EMIT deleteRequested();
             return;
-        case Qt::Key_Escape: finishDrag(true); return;
-        case Qt::Key_Home: fitView(); return;
-        default: QWidget::keyPressEvent(e);
+        case Qt::Key_Escape:
+            finishDrag(true);
+            return;
+        case Qt::Key_Home:
+            fitView();
+            return;
+        default:
+            QWidget::keyPressEvent(e);
     }
 }
 

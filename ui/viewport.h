@@ -1,7 +1,6 @@
 #pragma once
 #include <QImage>
 #include <QWidget>
-
 #include <memory>
 
 #include "display.h"
@@ -22,7 +21,7 @@ class Viewport : public QWidget {
 public:
     explicit Viewport(Document* doc, QWidget* parent = nullptr);
 
-    void setFrame(std::shared_ptr<const Frame> frame);
+    void setFrame(std::shared_ptr<const RenderFrame> frame);
     /// Size of the full render in pixels (overlays and picking work in it).
     void setRenderSize(QSize size);
     QSize renderSize() const { return renderSize_; }
@@ -68,7 +67,7 @@ private:
     void finishDrag(bool cancel);
 
     Document* doc_;
-    std::shared_ptr<const Frame> frame_;
+    std::shared_ptr<const RenderFrame> frame_;
     QImage shown_;
     QSize renderSize_;
     ViewMode mode_ = ViewMode::Augmented;

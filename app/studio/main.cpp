@@ -6,7 +6,6 @@
 #include <QDockWidget>
 #include <QElapsedTimer>
 #include <QTimer>
-
 #include <cstdio>
 
 #include "document.h"
@@ -36,17 +35,24 @@ int main(int argc, char** argv) {
     QApplication::setApplicationVersion("0.1.0");
 
     QCommandLineParser cli;
-    cli.setApplicationDescription("Place virtual objects into a photograph and watch them settle in.");
+    cli.setApplicationDescription(
+        "Place virtual objects into a photograph and watch them settle in.");
     cli.addHelpOption();
     cli.addVersionOption();
     cli.addPositionalArgument("project", "Project file to open");
-    QCommandLineOption shot("screenshot", "Render, save a picture of the window to <png>, quit.", "png");
-    QCommandLineOption view("view", "With --screenshot: photo, augmented or dl.", "mode", "augmented");
+    QCommandLineOption shot("screenshot", "Render, save a picture of the window to <png>, quit.",
+                            "png");
+    QCommandLineOption view("view", "With --screenshot: photo, augmented or dl.", "mode",
+                            "augmented");
     QCommandLineOption select("select", "With --screenshot: select object <index>.", "index", "-1");
     QCommandLineOption size("size", "Window size WxH.", "size", "1400x860");
-    QCommandLineOption raise("raise", "With --screenshot: bring a dock to the front (renderDock, probeDock, cameraDock).", "dock");
+    QCommandLineOption raise(
+        "raise",
+        "With --screenshot: bring a dock to the front (renderDock, probeDock, cameraDock).",
+        "dock");
     QCommandLineOption exposure("exposure", "Display exposure in stops.", "stops");
-    QCommandLineOption wait("wait", "With --screenshot: longest wait for the render (ms).", "ms", "60000");
+    QCommandLineOption wait("wait", "With --screenshot: longest wait for the render (ms).", "ms",
+                            "60000");
     cli.addOptions({shot, view, select, size, raise, exposure, wait});
     cli.process(app);
 
@@ -70,7 +76,10 @@ int main(int argc, char** argv) {
     }
     const QString mode = cli.value(view).toLower();
     // Through the toolbar's actions, so the picture shows the matching button pressed.
-    window.action(mode == "photo" ? "viewPhoto" : mode == "dl" ? "viewdL" : "viewAugmented")->trigger();
+    window.action(mode == "photo" ? "viewPhoto"
+                  : mode == "dl"  ? "viewdL"
+                                  : "viewAugmented")
+        ->trigger();
     window.document()->select(cli.value(select).toInt());
     if (auto* dock = window.findChild<QDockWidget*>(cli.value(raise))) dock->raise();
     wait_for_render(window, cli.value(wait).toInt());

@@ -4,11 +4,10 @@
 //   event-loop latency: lateness of a 5 ms timer on the UI thread while rendering and editing
 #include <QApplication>
 #include <QDir>
-#include <QThread>
 #include <QElapsedTimer>
 #include <QTest>
+#include <QThread>
 #include <QTimer>
-
 #include <algorithm>
 #include <cstdio>
 #include <vector>
@@ -34,12 +33,15 @@ double time_edit(MainWindow& w, const Project& p, bool interactive) {
     uint64_t generation = 0;
     double ms = -1;
     auto c = QObject::connect(w.renderer(), &RenderController::frameReady,
-                              [&](std::shared_ptr<const dp::ui::Frame> f) {
-                                  if (ms < 0 && f->generation == generation) ms = double(t.nsecsElapsed()) / 1e6;
+                              [&](std::shared_ptr<const dp::ui::RenderFrame> f) {
+                                  if (ms < 0 && f->generation == generation)
+                                      ms = double(t.nsecsElapsed()) / 1e6;
                               });
     t.start();
-    if (interactive) w.renderer()->request(p, true);
-    else w.document()->edit("bench edit", p);
+    if (interactive)
+        w.renderer()->request(p, true);
+    else
+        w.document()->edit("bench edit", p);
     generation = w.renderer()->generation();
     if (!QTest::qWaitFor([&] { return ms >= 0; }, 20000)) return -1;
     QObject::disconnect(c);
@@ -123,19 +125,21 @@ int main(int argc, char** argv) {
     }
     timer.stop();
 
-    std::printf("sample project at 1280x720, quick pass at %.2f of that, %d repeats, %d threads\n", o.previewScale, repeats,
-                QThread::idealThreadCount());
+    std::printf("sample project at 1280x720, quick pass at %.2f of that, %d repeats, %d threads\n",
+                o.previewScale, repeats, QThread::idealThreadCount());
     report("first frame after a move (edit)", move, 250);
     report("first frame during a drag (interactive)", drag, 250);
     report("first frame after a material edit", material, 250);
     for (auto [name, ph] : {std::pair{"move", &movePhases}, std::pair{"material", &materialPhases}})
-        std::printf("  %-8s phases (medians): stop run %.1f ms, build quick scene %.1f ms, quick run "
-                    "to first pass %.1f ms, build full scene %.1f ms\n", name,
-                    percentile(ph->cancel, 0.5), percentile(ph->buildQuick, 0.5),
-                    percentile(ph->firstQuick, 0.5), percentile(ph->buildFull, 0.5));
+        std::printf(
+            "  %-8s phases (medians): stop run %.1f ms, build quick scene %.1f ms, quick run "
+            "to first pass %.1f ms, build full scene %.1f ms\n",
+            name, percentile(ph->cancel, 0.5), percentile(ph->buildQuick, 0.5),
+            percentile(ph->firstQuick, 0.5), percentile(ph->buildFull, 0.5));
     std::printf("%-44s p50 %7.1f ms  p99 %7.1f ms  worst %7.1f ms  (%zu ticks, target 50 ms: %s)\n",
-                "UI event-loop lateness while rendering", percentile(late, 0.5), percentile(late, 0.99),
-                percentile(late, 1.0), late.size(), percentile(late, 1.0) < 50 ? "met" : "not met");
+                "UI event-loop lateness while rendering", percentile(late, 0.5),
+                percentile(late, 0.99), percentile(late, 1.0), late.size(),
+                percentile(late, 1.0) < 50 ? "met" : "not met");
     w.renderer()->stop();
     return 0;
 }

@@ -5,7 +5,6 @@
 #include <QTemporaryDir>
 #include <QTest>
 #include <QUndoStack>
-
 #include <cstdio>
 
 #include "autosave.h"
@@ -81,11 +80,13 @@ void FilesTest::autosaveRecoversTheEditsOfAKilledProcess() {
     child.start(QCoreApplication::applicationFilePath(), {"--child", recovery, project});
     QVERIFY(child.waitForStarted());
     QByteArray out;
-    QVERIFY(QTest::qWaitFor([&] {
-        child.waitForReadyRead(50);
-        out += child.readAllStandardOutput();
-        return out.contains("autosaved");
-    }, 30000));
+    QVERIFY(QTest::qWaitFor(
+        [&] {
+            child.waitForReadyRead(50);
+            out += child.readAllStandardOutput();
+            return out.contains("autosaved");
+        },
+        30000));
     child.kill();  // no clean close: only the autosave is left
     QVERIFY(child.waitForFinished());
 

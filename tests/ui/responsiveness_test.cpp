@@ -6,7 +6,6 @@
 #include <QTemporaryDir>
 #include <QTest>
 #include <QTimer>
-
 #include <algorithm>
 #include <cstdio>
 
@@ -70,8 +69,9 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
         QTest::qWait(100);
     }
     timer.stop();
-    std::printf("UI timer: %d ticks (%d while rendering), %d frames shown, worst lateness %.1f ms\n",
-                ticks, busy, frames, double(worst) / 1e6);
+    std::printf(
+        "UI timer: %d ticks (%d while rendering), %d frames shown, worst lateness %.1f ms\n", ticks,
+        busy, frames, double(worst) / 1e6);
     // The figure only means something if the renderer worked throughout.
     QVERIFY(frames >= 1);
     QVERIFY(ticks > 100);

@@ -4,7 +4,6 @@
 #include <QTemporaryDir>
 #include <QTest>
 #include <QWindow>
-
 #include <cmath>
 #include <cstdio>
 
@@ -39,7 +38,8 @@ void ScreenshotTest::viewportOfTheRealWindowShowsTheRender() {
     std::printf("screenshot: %s\n", qPrintable(path));
 
     const qreal dpr = shot.devicePixelRatio();
-    const QRect area = w.viewport()->imageRect().translated(w.viewport()->mapTo(&w, QPoint(0, 0))).toRect();
+    const QRect area =
+        w.viewport()->imageRect().translated(w.viewport()->mapTo(&w, QPoint(0, 0))).toRect();
     const QImage img = shot.toImage();
     double sum = 0, sum_sq = 0, n = 0, differs = 0;
     const QImage& shown = w.viewport()->shownImage();
@@ -57,8 +57,8 @@ void ScreenshotTest::viewportOfTheRealWindowShowsTheRender() {
         }
     QVERIFY(n > 1000);
     const double mean = sum / n, sd = std::sqrt(std::max(0.0, sum_sq / n - mean * mean));
-    std::printf("viewport %dx%d: mean grey %.1f, sd %.1f, %.1f%% far from the render\n", area.width(),
-                area.height(), mean, sd, 100 * differs / n);
+    std::printf("viewport %dx%d: mean grey %.1f, sd %.1f, %.1f%% far from the render\n",
+                area.width(), area.height(), mean, sd, 100 * differs / n);
     QVERIFY(mean > 20 && mean < 235);  // neither black nor white
     QVERIFY(sd > 10);                  // not a flat area
     QVERIFY(differs / n < 0.1);        // the render, give or take overlays

@@ -3,7 +3,6 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QTest>
-
 #include <cmath>
 
 #include "render_controller.h"
@@ -38,7 +37,8 @@ bool wait_refined(MainWindow& w, int timeoutMs) {
     return QTest::qWaitFor([&] { return w.renderer()->finished(); }, timeoutMs);
 }
 
-double mean_abs_diff(const Image& a, const Image& b, const std::vector<uint8_t>& mask, bool inside) {
+double mean_abs_diff(const Image& a, const Image& b, const std::vector<uint8_t>& mask,
+                     bool inside) {
     double sum = 0;
     size_t n = 0;
     for (size_t i = 0; i < a.size(); ++i) {

@@ -2,7 +2,6 @@
 // Shared set-up for the studio's Qt tests: a small copy of the sample project, window options
 // that keep renders quick, and helpers to wait for the renderer and compare exports.
 #include <QString>
-
 #include <memory>
 
 #include "error_reporter.h"

@@ -4,13 +4,12 @@
 #include <QApplication>
 #include <QDropEvent>
 #include <QFile>
-#include <QMimeData>
-#include <QUrl>
 #include <QLineF>
+#include <QMimeData>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QUndoStack>
-
+#include <QUrl>
 #include <cmath>
 #include <cstdio>
 
@@ -89,8 +88,11 @@ void WorkflowTest::addMoveRecolourExportChangesOnlyTheSphereAndItsShadowAndUndoR
     QVERIFY(w.viewport()->widgetPosition(moved, landed));
     const QPointF expected = QPointF(b.toPoint()) + (a - QPointF(a.toPoint()));
     QVERIFY2(QLineF(landed, expected).length() < 1.0,
-             qPrintable(QString("landed at %1,%2, expected %3,%4").arg(landed.x()).arg(landed.y())
-                            .arg(expected.x()).arg(expected.y())));
+             qPrintable(QString("landed at %1,%2, expected %3,%4")
+                            .arg(landed.x())
+                            .arg(landed.y())
+                            .arg(expected.x())
+                            .arg(expected.y())));
     QVERIFY(glm::length(moved - to) < 0.15f);
     QCOMPARE(moved.y, from.y);  // on the ground plane
     QVERIFY(test::wait_refined(w));
@@ -124,7 +126,8 @@ void WorkflowTest::addMoveRecolourExportChangesOnlyTheSphereAndItsShadowAndUndoR
             // The contact shadow: ground just around the sphere, whatever the sun's direction.
             shadow[i] = ground < 0.5f && d > rpx + 2 && startAlpha[i].x == 0;
             // Other virtual objects may mirror or refract the new sphere: not "elsewhere".
-            elsewhere[i] = !near_ground && d > rpx + 3 && startAlpha[i].x == 0 && editedAlpha[i].x == 0;
+            elsewhere[i] =
+                !near_ground && d > rpx + 3 && startAlpha[i].x == 0 && editedAlpha[i].x == 0;
         }
     const double noise = test::mean_abs_diff(start, other_seed, elsewhere);
     const double in_disk = test::mean_abs_diff(start, edited, disk);
@@ -137,8 +140,10 @@ void WorkflowTest::addMoveRecolourExportChangesOnlyTheSphereAndItsShadowAndUndoR
     const double in_shadow = darkening / std::max(1.0, shadow_pixels);
     const double noise_shadow = test::mean_abs_diff(start, other_seed, shadow);
     const double outside = test::mean_abs_diff(start, edited, elsewhere);
-    std::printf("mean |dLum|: sphere %.5f  darkening around it %.5f (seed noise %.5f)  elsewhere %.6f "
-                "(seed noise %.6f)\n", in_disk, in_shadow, noise_shadow, outside, noise);
+    std::printf(
+        "mean |dLum|: sphere %.5f  darkening around it %.5f (seed noise %.5f)  elsewhere %.6f "
+        "(seed noise %.6f)\n",
+        in_disk, in_shadow, noise_shadow, outside, noise);
     QVERIFY(in_disk > 0.02);
     QVERIFY(in_shadow > 3 * noise_shadow);
     QVERIFY(outside <= 2 * noise + 1e-5);
@@ -150,7 +155,8 @@ void WorkflowTest::addMoveRecolourExportChangesOnlyTheSphereAndItsShadowAndUndoR
     const Image back = export_and_load(w, dir.filePath("undone.exr"));
     const double restored = test::mean_abs_diff(start, back);
     const double seed_noise_all = test::mean_abs_diff(start, other_seed);
-    std::printf("after undo: mean |dLum| %.8f (seed noise over the image %.6f)\n", restored, seed_noise_all);
+    std::printf("after undo: mean |dLum| %.8f (seed noise over the image %.6f)\n", restored,
+                seed_noise_all);
     QVERIFY(restored <= 0.05 * seed_noise_all);
     QVERIFY(reporter.errors.isEmpty());
 }
