@@ -102,13 +102,16 @@ void draw_overlays(QPainter& painter, const Project& project, const Camera& came
     painter.setRenderHint(QPainter::Antialiasing, true);
     painter.setBrush(Qt::NoBrush);
     LineDrawer d(painter, camera, toWidget);
+    // Grid and outlines are drawn as a difference: visible on bright and dark photos alike.
     if (o.grid) {
-        painter.setPen(QPen(QColor(255, 255, 255, 70), 0));
+        painter.setCompositionMode(QPainter::CompositionMode_Difference);
+        painter.setPen(QPen(QColor(255, 255, 255, 90), 0));
         for (int i = -10; i <= 10; ++i) {
             const float k = 0.5f * float(i);
             d.line(vec3(k, 0, -5), vec3(k, 0, 5), 16);
             d.line(vec3(-5, 0, k), vec3(5, 0, k), 16);
         }
+        painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
     }
     if (o.proxies) {
         painter.setPen(QPen(QColor(80, 200, 255, 160), 0));
@@ -119,8 +122,10 @@ void draw_overlays(QPainter& painter, const Project& project, const Camera& came
         for (size_t i = 0; i < project.objects.size(); ++i) {
             const VirtualObject& obj = project.objects[i];
             const bool sel = int(i) == o.selected;
-            QColor colour = sel ? QColor(255, 190, 40) : QColor(255, 255, 255, 150);
-            if (!obj.visible) colour.setAlpha(60);
+            QColor colour = sel ? QColor(255, 190, 40) : QColor(255, 255, 255, 200);
+            if (!obj.visible) colour.setAlpha(90);
+            painter.setCompositionMode(sel ? QPainter::CompositionMode_SourceOver
+                                           : QPainter::CompositionMode_Difference);
             painter.setPen(
                 QPen(colour, sel ? 2.0 : 1.0, obj.visible ? Qt::SolidLine : Qt::DashLine));
             vec3 c;
@@ -131,6 +136,7 @@ void draw_overlays(QPainter& painter, const Project& project, const Camera& came
             const vec3 u = glm::normalize(
                 glm::cross(w, std::abs(w.y) < 0.99f ? vec3(0, 1, 0) : vec3(1, 0, 0)));
             d.circle(c, u, glm::cross(w, u), r);
+            painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
             if (sel) {
                 const float len = 1.5f * r;
                 painter.setPen(QPen(QColor(230, 60, 60), 2));

@@ -105,6 +105,10 @@ void ScenePanel::refresh() {
         }
     } else {
         name_->clear();
+        for (int i = 0; i < 9; ++i) {  // neutral values, not the last selection's
+            QSignalBlocker block(fields_[i]);
+            fields_[i]->setValue(i < 6 ? 0.0 : 1.0);
+        }
     }
     refreshing_ = false;
 }
