@@ -18,7 +18,7 @@ double ms_since(std::chrono::steady_clock::time_point t) {
 
 /// Copies each pass on the render thread and hands it to the UI thread with a queued call.
 class RenderController::Sink : public RenderSink {
-public:
+  public:
     explicit Sink(RenderController* c) : c_(c) {}
 
     void on_update(const RenderUpdate& update) override {
@@ -47,14 +47,16 @@ public:
             std::lock_guard<std::mutex> lock(c_->mutex_);
             gen = c_->runGeneration_;
             preview = c_->runPreview_;
+            c_->runStopped_ = true;
         }
+        c_->cv_.notify_all();  // a worker waiting for a first pass that will not come
         if (preview && error.empty()) return;  // quick passes end by being replaced
         QMetaObject::invokeMethod(c_, "deliverStopped", Qt::QueuedConnection, Q_ARG(quint64, gen),
                                   Q_ARG(bool, !cancelled && error.empty()),
                                   Q_ARG(QString, QString::fromStdString(error)));
     }
 
-private:
+  private:
     RenderController* c_;
 };
 
@@ -192,6 +194,7 @@ void RenderController::handle(const Request& r) {
             runGeneration_ = r.generation;
             runPreview_ = preview;
             runFrames_ = 0;
+            runStopped_ = false;
             photo_ = builder_->photo();
             if (preview) timings_ = timings;
             runStart_ = std::chrono::steady_clock::now();
@@ -204,7 +207,9 @@ void RenderController::handle(const Request& r) {
     {
         // The quick pass shows the edit at once; the full-size scene is built meanwhile.
         std::unique_lock<std::mutex> lock(mutex_);
-        cv_.wait(lock, [&] { return runFrames_ > 0 || pending_.has_value() || quit_; });
+        cv_.wait(lock,
+                 [&] { return runFrames_ > 0 || runStopped_ || pending_.has_value() || quit_; });
+        if (runFrames_ == 0) return;  // superseded, or the quick run failed (already reported)
     }
     if (superseded()) return;
     if (!full_) {

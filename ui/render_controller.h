@@ -113,6 +113,7 @@ private:
     uint64_t runGeneration_ = 0;
     bool runPreview_ = false;
     int runFrames_ = 0;
+    bool runStopped_ = false;
     Timings timings_;
     std::chrono::steady_clock::time_point runStart_;
     std::shared_ptr<const Image> photo_;
