@@ -27,6 +27,8 @@ CameraPanel::CameraPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_
             f->setDecimals(3);
             f->setSingleStep(0.05);
             f->setKeyboardTracking(false);
+            f->setButtonSymbols(QAbstractSpinBox::NoButtons);  // three to a row in a side panel
+            f->setMinimumWidth(50);
             f->setToolTip(r == 0 ? tr("Camera position (world units)")
                                  : tr("Point the camera looks at (world units)"));
             fields_[r * 3 + c] = f;

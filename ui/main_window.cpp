@@ -214,7 +214,7 @@ void MainWindow::createDocks() {
     tabifyDockWidget(probe, camera);
     render->raise();
     // The viewport gets most of the width; the panels only what their fields need.
-    resizeDocks({render, findChild<QDockWidget*>("sceneDock")}, {280, 440}, Qt::Horizontal);
+    resizeDocks({render, findChild<QDockWidget*>("sceneDock")}, {300, 440}, Qt::Horizontal);
     connect(materialPanel_, &MaterialPanel::strokeStarted, this, [this] { beginInteraction(); });
     connect(materialPanel_, &MaterialPanel::strokeFinished, this, [this] { endInteraction(); });
     connect(probePanel_, &ProbePanel::strokeStarted, this, [this] { beginInteraction(); });
