@@ -164,6 +164,8 @@ void MainWindow::createMenus() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     file->addActions({action("new"), action("open")});
     recentMenu_ = file->addMenu(tr("Open &Recent"));
+    recentMenu_->setObjectName("recentMenu");
+    recentMenu_->setToolTipsVisible(true);
     file->addActions({action("save"), action("saveAs")});
     file->addSeparator();
     file->addAction(action("export"));

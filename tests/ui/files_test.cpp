@@ -1,6 +1,10 @@
 // Save / reopen round trips and autosave recovery after the process is killed mid-edit.
 #include <QAction>
+#include <QDir>
+#include <QFileInfo>
+#include <QMenu>
 #include <QProcess>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QTest>
@@ -12,6 +16,7 @@
 #include "material_panel.h"
 #include "scene/project_io.h"
 #include "ui_test_support.h"
+#include "viewport.h"
 
 using namespace dp;
 using namespace dp::ui;
@@ -23,6 +28,7 @@ private Q_SLOTS:
     void saveAsElsewhereKeepsAssetsReachable();
     void autosaveRecoversTheEditsOfAKilledProcess();
     void cleanCloseLeavesNothingToRecover();
+    void recentFilesAndDisplayExposureAreRememberedBetweenRuns();
 };
 
 namespace {
@@ -116,6 +122,35 @@ void FilesTest::cleanCloseLeavesNothingToRecover() {
     QVERIFY(w.autosave()->pending().has_value());
     QVERIFY(w.close());
     QVERIFY(!w.autosave()->pending().has_value());
+}
+
+void FilesTest::recentFilesAndDisplayExposureAreRememberedBetweenRuns() {
+    QTemporaryDir dir;
+    QSettings::setDefaultFormat(QSettings::IniFormat);
+    QSettings::setPath(QSettings::IniFormat, QSettings::UserScope, dir.filePath("settings"));
+    RecordingReporter no(false);
+    StudioOptions o = test::test_options(&no, dir.filePath("recovery"));
+    o.useSettings = true;
+    const QString a = test::write_small_sample(dir.path());
+    QDir().mkpath(dir.filePath("b"));
+    const QString b = test::write_small_sample(dir.filePath("b"));
+    {
+        MainWindow w(o);
+        QVERIFY(w.openProject(a));
+        QVERIFY(w.openProject(b));
+        w.setDisplayExposure(-1.5f);
+        QVERIFY(w.close());  // a clean close stores the settings
+    }
+    MainWindow again(o);
+    QMenu* recent = again.findChild<QMenu*>("recentMenu");
+    QVERIFY(recent);
+    const QList<QAction*> items = recent->actions();
+    QCOMPARE(items.size(), 2);
+    QCOMPARE(items[0]->toolTip(), QFileInfo(b).absoluteFilePath());  // most recent first
+    QCOMPARE(items[1]->toolTip(), QFileInfo(a).absoluteFilePath());
+    items[1]->trigger();  // opens it
+    QCOMPARE(again.document()->path(), QFileInfo(a).absoluteFilePath());
+    QCOMPARE(again.viewport()->exposure(), -1.5f);
 }
 
 namespace {
