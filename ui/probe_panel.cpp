@@ -20,8 +20,8 @@ ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     preview_->setMinimumSize(256, 128);
     preview_->setAlignment(Qt::AlignCenter);
     preview_->setToolTip(
-        tr("The light probe (lat-long). Drag across it to turn the probe, e.g. "
-           "to bring the sun round until the shadows match the photo's."));
+        tr("The light probe (lat-long); the ring marks its brightest point, the sun. Drag "
+           "across it to turn the probe until the shadows fall as in the photo."));
     preview_->installEventFilter(this);
     form->addRow(preview_);
     auto slider = [&](const QString& label, const QString& tip, int lo, int hi, QLabel** value) {
@@ -64,6 +64,12 @@ void ProbePanel::loadPreview() {
         const Image probe = load_image(key.toStdString(), "probe.path");
         const int w = 256, h = std::max(1, w * probe.height() / std::max(1, probe.width()));
         previewImage_ = to_display(resample(probe, w, h), 0.0f);
+        // The brightest pixel stands for the sun: marked so it can be dragged into place.
+        size_t brightest = 0;
+        for (size_t i = 1; i < probe.size(); ++i)
+            if (luminance(probe[i]) > luminance(probe[brightest])) brightest = i;
+        sun_ = QPointF((double(brightest % size_t(probe.width())) + 0.5) / probe.width(),
+                       (double(brightest / size_t(probe.width())) + 0.5) / probe.height());
     } catch (const std::exception&) {
         // The render reports unreadable probes; the preview just stays empty.
     }
@@ -85,6 +91,11 @@ void ProbePanel::refresh() {
         QPainter painter(&shown);
         for (int k = -1; k <= 1; ++k)
             painter.drawImage(shift + k * shown.width(), 0, previewImage_);
+        const double w = shown.width();
+        const double x = std::fmod(sun_.x() * w + shift + 2 * w, w);
+        painter.setRenderHint(QPainter::Antialiasing);
+        painter.setPen(QPen(QColor(255, 200, 0), 2));
+        painter.drawEllipse(QPointF(x, sun_.y() * shown.height()), 6, 6);
         preview_->setPixmap(QPixmap::fromImage(shown));
     } else {
         preview_->setText(tr("(no probe)"));

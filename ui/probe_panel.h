@@ -1,5 +1,6 @@
 #pragma once
 #include <QImage>
+#include <QPointF>
 #include <QWidget>
 
 class QLabel;
@@ -37,6 +38,7 @@ private:
     QLabel *rotationValue_, *exposureValue_;
     QString previewKey_;
     QImage previewImage_;
+    QPointF sun_;  ///< brightest point of the probe, as fractions of its width and height
     int strokeKey_ = -1;
     int dragX_ = 0, dragStartValue_ = 0;
     bool refreshing_ = false;
