@@ -125,8 +125,10 @@ int main(int argc, char** argv) {
     }
     timer.stop();
 
-    std::printf("sample project at 1280x720, quick pass at most %.2f of that and 100k pixels, %d repeats, %d threads\n",
-                o.previewScale, repeats, QThread::idealThreadCount());
+    std::printf(
+        "sample project at 1280x720, quick pass at most %.2f of that and 100k pixels, %d repeats, "
+        "%d threads\n",
+        o.previewScale, repeats, QThread::idealThreadCount());
     report("first frame after a move (edit)", move, 250);
     report("first frame during a drag (interactive)", drag, 250);
     report("first frame after a material edit", material, 250);
