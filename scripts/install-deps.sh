@@ -8,6 +8,8 @@ packages=(
   libexiv2-dev  # EXIF focal length for camera calibration
   opencv-doc    # OpenCV's chessboard photographs, used by the calibration tests
   blender-data  # the CC0 light probes the sample project and benchmarks use
+  qt6-base-dev  # the studio (Widgets, Test; pulls libqt6gui6 with the offscreen and xcb platforms)
+  xvfb xauth    # xvfb-run for the studio's screenshot test and documentation screenshots
 )
 # `--bench`: also what the benchmark plots need.
 [ "${1:-}" = "--bench" ] && packages+=(python3-matplotlib)

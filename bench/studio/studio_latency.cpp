@@ -1,0 +1,147 @@
+// dp_studio_bench: how fast the studio answers an edit, and how responsive its UI thread stays,
+// on the sample project rendered at 1280x720 (the photo resampled; the look-at camera follows).
+//   first frame after an edit: edit() on the UI thread -> the first frame of that edit shown
+//   event-loop latency: lateness of a 5 ms timer on the UI thread while rendering and editing
+#include <QApplication>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QTest>
+#include <QThread>
+#include <QTimer>
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+#include "document.h"
+#include "error_reporter.h"
+#include "main_window.h"
+#include "render_controller.h"
+
+using namespace dp;
+using namespace dp::ui;
+
+namespace {
+
+double percentile(std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0 : v[std::min(v.size() - 1, size_t(q * double(v.size() - 1) + 0.5))];
+}
+
+/// Milliseconds from an edit to the first frame answering it.
+double time_edit(MainWindow& w, const Project& p, bool interactive) {
+    QElapsedTimer t;
+    uint64_t generation = 0;
+    double ms = -1;
+    auto c = QObject::connect(w.renderer(), &RenderController::frameReady,
+                              [&](std::shared_ptr<const dp::ui::RenderFrame> f) {
+                                  if (ms < 0 && f->generation == generation)
+                                      ms = double(t.nsecsElapsed()) / 1e6;
+                              });
+    t.start();
+    if (interactive)
+        w.renderer()->request(p, true);
+    else
+        w.document()->edit("bench edit", p);
+    generation = w.renderer()->generation();
+    if (!QTest::qWaitFor([&] { return ms >= 0; }, 20000)) return -1;
+    QObject::disconnect(c);
+    return ms;
+}
+
+struct Phases {
+    std::vector<double> cancel, buildQuick, firstQuick, buildFull;
+    void add(const RenderController::Timings& t) {
+        cancel.push_back(t.cancel);
+        buildQuick.push_back(t.buildQuick);
+        firstQuick.push_back(t.firstQuick);
+        buildFull.push_back(t.buildFull);
+    }
+};
+
+void report(const char* what, const std::vector<double>& v, double target) {
+    std::printf("%-44s median %7.1f ms  p90 %7.1f ms  max %7.1f ms  (n=%zu, target %.0f ms: %s)\n",
+                what, percentile(v, 0.5), percentile(v, 0.9), percentile(v, 1.0), v.size(), target,
+                percentile(v, 0.5) <= target ? "met" : "not met");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (qgetenv("QT_QPA_PLATFORM").isEmpty()) qputenv("QT_QPA_PLATFORM", "offscreen");
+    QApplication app(argc, argv);
+    const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 10;
+    RecordingReporter reporter(false);
+    StudioOptions o;
+    o.renderSize = QSize(1280, 720);
+    if (argc > 2) o.previewScale = std::atof(argv[2]);
+    o.reporter = &reporter;
+    o.checkRecovery = false;
+    o.useSettings = false;
+    o.recoveryDir = QDir::tempPath() + "/dp_studio_bench_recovery";
+    MainWindow w(o);
+    w.resize(1600, 900);
+    w.show();
+    if (!w.openProject(QString(DP_SOURCE_DIR) + "/resources/sample/sample.json")) return 1;
+    if (!QTest::qWaitFor([&] { return w.renderer()->lastFullFrame() != nullptr; }, 60000)) return 1;
+
+    std::vector<double> move, drag, material;
+    Phases movePhases, materialPhases;
+    for (int i = 0; i < repeats; ++i) {
+        Project p = w.document()->project();
+        p.objects[0].transform.translation.x += (i % 2 ? -0.05f : 0.05f);
+        move.push_back(time_edit(w, p, false));
+        QTest::qWait(300);
+        movePhases.add(w.renderer()->timings());
+        p.objects[0].transform.translation.z += (i % 2 ? -0.05f : 0.05f);
+        drag.push_back(time_edit(w, p, true));
+        QTest::qWait(300);
+        w.document()->edit("bench drag released", p);  // as the viewport does on release
+        QTest::qWait(300);
+        p = w.document()->project();
+        p.objects[0].material.albedo.rgb.x = i % 2 ? 0.75f : 0.3f;
+        material.push_back(time_edit(w, p, false));
+        QTest::qWait(300);
+        materialPhases.add(w.renderer()->timings());
+    }
+
+    // Event-loop latency: a 5 ms timer while the renderer runs and edits keep restarting it.
+    QElapsedTimer clock;
+    clock.start();
+    std::vector<double> late;
+    qint64 last = 0;
+    QTimer timer;
+    timer.setTimerType(Qt::PreciseTimer);
+    QObject::connect(&timer, &QTimer::timeout, [&] {
+        const qint64 now = clock.nsecsElapsed();
+        if (last) late.push_back(std::max(0.0, double(now - last) / 1e6 - 5.0));
+        last = now;
+    });
+    timer.start(5);
+    for (int i = 0; i < 30; ++i) {
+        Project p = w.document()->project();
+        p.objects[1].transform.translation.x += (i % 2 ? -0.03f : 0.03f);
+        w.document()->edit("bench move", p);
+        QTest::qWait(200);
+    }
+    timer.stop();
+
+    std::printf(
+        "sample project at 1280x720, quick pass at most %.2f of that and 100k pixels, %d repeats, "
+        "%d threads\n",
+        o.previewScale, repeats, QThread::idealThreadCount());
+    report("first frame after a move (edit)", move, 250);
+    report("first frame during a drag (interactive)", drag, 250);
+    report("first frame after a material edit", material, 250);
+    for (auto [name, ph] : {std::pair{"move", &movePhases}, std::pair{"material", &materialPhases}})
+        std::printf(
+            "  %-8s phases (medians): stop run %.1f ms, build quick scene %.1f ms, quick run "
+            "to first pass %.1f ms, build full scene %.1f ms\n",
+            name, percentile(ph->cancel, 0.5), percentile(ph->buildQuick, 0.5),
+            percentile(ph->firstQuick, 0.5), percentile(ph->buildFull, 0.5));
+    std::printf("%-44s p50 %7.1f ms  p99 %7.1f ms  worst %7.1f ms  (%zu ticks, target 50 ms: %s)\n",
+                "UI event-loop lateness while rendering", percentile(late, 0.5),
+                percentile(late, 0.99), percentile(late, 1.0), late.size(),
+                percentile(late, 1.0) < 50 ? "met" : "not met");
+    w.renderer()->stop();
+    return 0;
+}

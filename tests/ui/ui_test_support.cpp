@@ -1,0 +1,52 @@
+#include "ui_test_support.h"
+
+#include <QDir>
+#include <QElapsedTimer>
+#include <QTest>
+#include <cmath>
+
+#include "render_controller.h"
+#include "scene/project_io.h"
+
+namespace dp::ui::test {
+
+QString write_small_sample(const QString& dir, int photons, int passes) {
+    Project p = load_project(std::string(DP_SOURCE_DIR) + "/resources/sample/sample.json");
+    p.photo.path = p.resolve(p.photo.path).string();
+    p.render.photons_per_pass = photons;
+    p.render.passes = passes;
+    const QString path = QDir(dir).filePath("sample.json");
+    save_project(p, path.toStdString());
+    return path;
+}
+
+StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, int width,
+                           int height) {
+    StudioOptions o;
+    o.recoveryDir = recoveryDir;
+    o.autosaveMs = 100000;
+    o.renderSize = QSize(width, height);
+    o.previewFraction = 0.25;
+    o.reporter = reporter;
+    o.checkRecovery = false;
+    o.useSettings = false;
+    return o;
+}
+
+bool wait_refined(MainWindow& w, int timeoutMs) {
+    return QTest::qWaitFor([&] { return w.renderer()->finished(); }, timeoutMs);
+}
+
+double mean_abs_diff(const Image& a, const Image& b, const std::vector<uint8_t>& mask,
+                     bool inside) {
+    double sum = 0;
+    size_t n = 0;
+    for (size_t i = 0; i < a.size(); ++i) {
+        if (!mask.empty() && bool(mask[i]) != inside) continue;
+        sum += std::abs(double(luminance(a[i])) - double(luminance(b[i])));
+        ++n;
+    }
+    return n ? sum / double(n) : 0.0;
+}
+
+}  // namespace dp::ui::test

@@ -1,0 +1,90 @@
+#include "display.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "image/image_io.h"
+
+namespace dp::ui {
+
+namespace {
+
+constexpr int kLutSize = 4096;
+
+/// 8-bit sRGB code of a linear value in [0, 1], sampled finely enough that neighbouring
+/// entries differ by at most one code (the curve is steepest near 0, handled by the table's
+/// square-root spacing).
+const std::array<uint8_t, kLutSize + 1>& srgb_lut() {
+    static const std::array<uint8_t, kLutSize + 1> lut = [] {
+        std::array<uint8_t, kLutSize + 1> t{};
+        for (int i = 0; i <= kLutSize; ++i) {
+            const float u = float(i) / kLutSize;
+            t[i] = uint8_t(std::lround(linear_to_srgb(u * u) * 255.0f));
+        }
+        return t;
+    }();
+    return lut;
+}
+
+inline uint8_t encode(float v) {
+    if (!(v > 0)) return 0;  // also NaN
+    if (v >= 1) return 255;
+    return srgb_lut()[size_t(std::sqrt(v) * kLutSize + 0.5f)];
+}
+
+}  // namespace
+
+QImage to_display(const Image& image, float exposure) {
+    QImage out(image.width(), image.height(), QImage::Format_RGB32);
+    const float scale = std::exp2(exposure);
+    for (int y = 0; y < image.height(); ++y) {
+        auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
+        for (int x = 0; x < image.width(); ++x) {
+            const vec3 c = image.at(x, y) * scale;
+            row[x] = qRgb(encode(c.x), encode(c.y), encode(c.z));
+        }
+    }
+    return out;
+}
+
+QImage to_false_colour(const Image& delta, float exposure) {
+    QImage out(delta.width(), delta.height(), QImage::Format_RGB32);
+    const float scale = std::exp2(exposure);
+    for (int y = 0; y < delta.height(); ++y) {
+        auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
+        for (int x = 0; x < delta.width(); ++x) {
+            const float d = luminance(delta.at(x, y)) * scale;
+            const uint8_t m = encode(std::abs(d));
+            row[x] = d >= 0 ? qRgb(m, m / 4, 0) : qRgb(0, m / 2, m);
+        }
+    }
+    return out;
+}
+
+double estimate_relative_error(const Image& prev, const Image& cur, int passes,
+                               const Image& photo) {
+    if (passes < 2 || prev.empty() || prev.width() != cur.width() || prev.height() != cur.height())
+        return -1;
+    double sum_sq = 0;
+    size_t n = 0;
+    // Every 4th pixel on every 4th row: cheap enough for the UI thread at any size.
+    for (int y = 0; y < cur.height(); y += 4)
+        for (int x = 0; x < cur.width(); x += 4) {
+            const double d = luminance(cur.at(x, y)) - luminance(prev.at(x, y));
+            sum_sq += d * d;
+            ++n;
+        }
+    double mean_photo = 0;
+    size_t m = 0;
+    for (int y = 0; y < photo.height(); y += 8)
+        for (int x = 0; x < photo.width(); x += 8) {
+            mean_photo += luminance(photo.at(x, y));
+            ++m;
+        }
+    mean_photo = m ? mean_photo / double(m) : 0;
+    if (n == 0 || mean_photo <= 0) return -1;
+    return std::sqrt(double(passes)) * std::sqrt(sum_sq / double(n)) / mean_photo;
+}
+
+}  // namespace dp::ui

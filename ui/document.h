@@ -1,0 +1,59 @@
+#pragma once
+#include <QObject>
+#include <QString>
+#include <QUndoStack>
+
+#include "project_edit.h"
+#include "scene/project.h"
+
+namespace dp::ui {
+
+/// The open project: its file, its undo history and the selected object. Every edit goes
+/// through edit(), so it can be undone and the renderer hears about it.
+class Document : public QObject {
+    Q_OBJECT
+public:
+    explicit Document(QObject* parent = nullptr);
+
+    const Project& project() const { return project_; }
+    const QString& path() const { return path_; }
+    QUndoStack* undoStack() { return &stack_; }
+    bool isModified() const { return !stack_.isClean(); }
+    bool isOpen() const { return open_; }
+
+    /// Replaces the whole project (open, new, recover): clears the undo history.
+    void reset(const Project& project, const QString& path, bool modified = false);
+    void setPath(const QString& path);
+    void markSaved() { stack_.setClean(); }
+
+    /// Records an edit as one undo step. Consecutive edits with the same non-negative
+    /// `mergeKey` (a drag, a slider stroke) fold into one step.
+    void edit(const QString& text, const Project& after, int mergeKey = -1);
+    /// A merge key no earlier edit used: one per drag or slider stroke.
+    int newMergeKey() { return nextKey_++; }
+
+    int selected() const { return selected_; }
+    void select(int index);
+
+    /// Sets the project without recording (used by the undo commands).
+    void apply(const Project& project);
+
+Q_SIGNALS:
+    /// The project changed; `change` says how much the renderer must redo.
+    void changed(dp::ui::Change change);
+    /// A new project was opened or created (the views reload everything).
+    void reloaded();
+    void pathChanged(const QString& path);
+    void selectionChanged(int index);
+    void modifiedChanged(bool modified);
+
+private:
+    Project project_;
+    QString path_;
+    QUndoStack stack_;
+    int selected_ = -1;
+    int nextKey_ = 1;
+    bool open_ = false;
+};
+
+}  // namespace dp::ui

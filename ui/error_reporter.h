@@ -1,0 +1,43 @@
+#pragma once
+#include <QString>
+#include <QStringList>
+
+class QWidget;
+
+namespace dp::ui {
+
+/// How the studio tells the user about errors and asks yes/no questions. The default shows
+/// message boxes; tests install one that records instead of blocking on a modal dialog.
+class ErrorReporter {
+public:
+    virtual ~ErrorReporter() = default;
+    virtual void error(QWidget* parent, const QString& title, const QString& text) = 0;
+    /// Returns true for "yes".
+    virtual bool ask(QWidget* parent, const QString& title, const QString& text) = 0;
+};
+
+/// QMessageBox::critical / QMessageBox::question.
+class MessageBoxReporter : public ErrorReporter {
+public:
+    void error(QWidget* parent, const QString& title, const QString& text) override;
+    bool ask(QWidget* parent, const QString& title, const QString& text) override;
+};
+
+/// Records messages and answers questions with a fixed reply (tests, headless runs).
+class RecordingReporter : public ErrorReporter {
+public:
+    explicit RecordingReporter(bool answer = true) : answer_(answer) {}
+    void error(QWidget*, const QString& title, const QString& text) override {
+        errors << title + ": " + text;
+    }
+    bool ask(QWidget*, const QString& title, const QString& text) override {
+        questions << title + ": " + text;
+        return answer_;
+    }
+    QStringList errors, questions;
+
+private:
+    bool answer_;
+};
+
+}  // namespace dp::ui

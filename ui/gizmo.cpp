@@ -1,0 +1,103 @@
+#include "gizmo.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "project_edit.h"
+#include "scene_builder.h"
+
+namespace dp::ui {
+
+int pick_object(const Project& project, const Camera& camera, float px, float py) {
+    const Ray ray = camera.generate_ray(px, py);
+    int best = -1;
+    float best_t = INFINITY;
+    for (size_t i = 0; i < project.objects.size(); ++i) {
+        const VirtualObject& o = project.objects[i];
+        if (!o.visible) continue;
+        vec3 c;
+        float r;
+        bounding_sphere(o, c, r);
+        const vec3 oc = ray.org - c;
+        const float b = glm::dot(oc, ray.dir), cc = glm::dot(oc, oc) - r * r;
+        const float disc = b * b - cc;
+        if (disc < 0) continue;
+        float t = -b - std::sqrt(disc);
+        if (t < 0) t = -b + std::sqrt(disc);
+        if (t > 0 && t < best_t) {
+            best_t = t;
+            best = int(i);
+        }
+    }
+    return best;
+}
+
+bool ground_point(const Camera& camera, float px, float py, float height, vec3& out) {
+    const Ray ray = camera.generate_ray(px, py);
+    if (std::abs(ray.dir.y) < 1e-6f) return false;
+    const float t = (height - ray.org.y) / ray.dir.y;
+    if (!(t > 0) || !std::isfinite(t)) return false;
+    out = ray.org + t * ray.dir;
+    return true;
+}
+
+float support_height(const Project& project, float x, float z) {
+    float best = 0;
+    for (const RealProxy& r : project.real) {
+        const Transform& t = r.transform;
+        if (t.rotation_deg.x != 0 || t.rotation_deg.z != 0) continue;  // not lying flat
+        if (r.shape.kind != Shape::Kind::Box && r.shape.kind != Shape::Kind::Plane) continue;
+        // Into the proxy's frame: undo the translation, then the turn about Y.
+        const float a = glm::radians(t.rotation_deg.y);
+        const float dx = x - t.translation.x, dz = z - t.translation.z;
+        const float lx = std::cos(a) * dx - std::sin(a) * dz;
+        const float lz = std::sin(a) * dx + std::cos(a) * dz;
+        const vec3 half = 0.5f * r.shape.size * glm::abs(t.scale);
+        if (std::abs(lx) > half.x || std::abs(lz) > half.z) continue;
+        const float top = t.translation.y + (r.shape.kind == Shape::Kind::Box ? half.y : 0.0f);
+        best = std::max(best, top);
+    }
+    return best;
+}
+
+Transform drag_transform(GizmoMode mode, const Transform& start, const Camera& camera, vec2 from,
+                         vec2 to, const Project* snap) {
+    Transform t = start;
+    switch (mode) {
+        case GizmoMode::Translate: {
+            vec3 a, b;
+            const float h = start.translation.y;
+            if (ground_point(camera, from.x, from.y, h, a) &&
+                ground_point(camera, to.x, to.y, h, b)) {
+                t.translation.x += b.x - a.x;
+                t.translation.z += b.z - a.z;
+                if (snap) {
+                    const vec3& s0 = start.translation;
+                    t.translation.y += support_height(*snap, t.translation.x, t.translation.z) -
+                                       support_height(*snap, s0.x, s0.z);
+                }
+            }
+            break;
+        }
+        case GizmoMode::Rotate:
+            t.rotation_deg.y = start.rotation_deg.y + 0.5f * (to.x - from.x);
+            t.rotation_deg.y = std::remainder(t.rotation_deg.y, 360.0f);
+            break;
+        case GizmoMode::Scale: {
+            vec2 c;
+            if (!camera.project(start.translation, c)) break;
+            const float d0 = glm::length(from - c), d1 = glm::length(to - c);
+            if (d0 < 1.0f) break;
+            const float k = std::clamp(d1 / d0, 0.01f, 100.0f);
+            t.scale = start.scale * k;
+            break;
+        }
+    }
+    return t;
+}
+
+Camera view_camera(const Project& project, int photo_w, int photo_h, int width, int height) {
+    return scaled_camera(project.camera, photo_w, photo_h, width, height).build(width, height);
+}
+
+}  // namespace dp::ui

@@ -1,0 +1,357 @@
+#include "main_window.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QCheckBox>
+#include <QDockWidget>
+#include <QKeySequence>
+#include <QLabel>
+#include <QMenuBar>
+#include <QScrollArea>
+#include <QSlider>
+#include <QStandardPaths>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QToolBar>
+#include <QUndoStack>
+#include <QVBoxLayout>
+#include <cmath>
+
+#include "autosave.h"
+#include "camera_panel.h"
+#include "document.h"
+#include "error_reporter.h"
+#include "material_panel.h"
+#include "probe_panel.h"
+#include "project_edit.h"
+#include "render_controller.h"
+#include "scene_panel.h"
+#include "settings_panel.h"
+#include "viewport.h"
+
+namespace dp::ui {
+
+MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
+    : QMainWindow(parent), options_(options) {
+    if (options_.reporter) {
+        reporter_ = options_.reporter;
+    } else {
+        ownReporter_ = std::make_unique<MessageBoxReporter>();
+        reporter_ = ownReporter_.get();
+    }
+    setAcceptDrops(true);
+    doc_ = new Document(this);
+    renderer_ = new RenderController(this);
+    renderer_->setRenderSize(options_.renderSize);
+    renderer_->setPreviewFraction(options_.previewFraction);
+    renderer_->setPreviewScale(options_.previewScale);
+    viewport_ = new Viewport(doc_, this);
+    setCentralWidget(viewport_);
+    status_ = new QLabel(tr("No project"));
+    status_->setToolTip(tr("Passes done, photon rate and an estimate of the remaining noise"));
+    statusBar()->addWidget(status_, 1);
+
+    createActions();
+    createDocks();
+    createMenus();
+    createToolbar();
+    connectRenderer();
+
+    QString dir = options_.recoveryDir;
+    if (dir.isEmpty())
+        dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/recovery";
+    autosave_ = new Autosave(doc_, dir, options_.autosaveMs, this);
+
+    connect(doc_, &Document::pathChanged, this, [this] { updateTitle(); });
+    connect(doc_, &Document::modifiedChanged, this, [this] { updateTitle(); });
+    resize(1400, 860);
+    if (options_.useSettings) restoreSettings();
+    updateTitle();
+}
+
+MainWindow::~MainWindow() {
+    renderer_->stop();
+}
+
+QAction* MainWindow::action(const QString& name) const {
+    return findChild<QAction*>(name);
+}
+
+void MainWindow::createActions() {
+    auto make = [this](const QString& name, const QString& text, const QKeySequence& key,
+                       const QString& tip, auto slot) {
+        auto* a = new QAction(text, this);
+        a->setObjectName(name);
+        if (!key.isEmpty()) a->setShortcut(key);
+        a->setToolTip(tip);
+        a->setStatusTip(tip);
+        connect(a, &QAction::triggered, this, slot);
+        addAction(a);
+        return a;
+    };
+    make("new", tr("&New Project..."), QKeySequence::New,
+         tr("Start from a photograph and a light probe"), [this] { newDialog(); });
+    make("open", tr("&Open..."), QKeySequence::Open, tr("Open a project file"),
+         [this] { openDialog(); });
+    make("save", tr("&Save"), QKeySequence::Save, tr("Save the project"),
+         [this] { saveProject(); });
+    make("saveAs", tr("Save &As..."), QKeySequence::SaveAs, tr("Save the project under a new name"),
+         [this] { saveAsDialog(); });
+    make("export", tr("&Export Image..."), QKeySequence(tr("Ctrl+E")),
+         tr("Write the render as PNG, or EXR with layers"), [this] { exportDialog(); });
+    make("quit", tr("&Quit"), QKeySequence::Quit, tr("Close the studio"), [this] { close(); });
+    QAction* undo = doc_->undoStack()->createUndoAction(this, tr("&Undo"));
+    undo->setObjectName("undo");
+    undo->setShortcut(QKeySequence(tr("Ctrl+Z")));
+    undo->setToolTip(tr("Undo the last edit"));
+    QAction* redo = doc_->undoStack()->createRedoAction(this, tr("&Redo"));
+    redo->setObjectName("redo");
+    redo->setShortcuts({QKeySequence(tr("Ctrl+Shift+Z")), QKeySequence(tr("Ctrl+Y"))});
+    redo->setToolTip(tr("Redo the edit last undone"));
+    addAction(undo);
+    addAction(redo);
+    make("addSphere", tr("Sphere"), {}, tr("Add a sphere resting on the ground"),
+         [this] { addObject(Shape::Kind::Sphere); });
+    make("addBox", tr("Box"), {}, tr("Add a box resting on the ground"),
+         [this] { addObject(Shape::Kind::Box); });
+    make("addPlane", tr("Plane"), {}, tr("Add an upright card"),
+         [this] { addObject(Shape::Kind::Plane); });
+    make("import", tr("Import..."), QKeySequence(tr("Ctrl+I")),
+         tr("Import an OBJ, PLY or glTF mesh"), [this] { importDialog(); });
+    make("duplicate", tr("Duplicate"), QKeySequence(tr("Shift+D")),
+         tr("Duplicate the selected object"), [this] { duplicateSelected(); });
+    make("delete", tr("Delete"), {}, tr("Delete the selected object (X)"),
+         [this] { deleteSelected(); });
+    make("hide", tr("Hide/Show"), QKeySequence(tr("H")), tr("Hide or show the selected object"),
+         [this] { toggleSelectedVisible(); });
+    make("fit", tr("Fit View"), QKeySequence(tr("Home")), tr("Fit the render in the window"),
+         [this] { viewport_->fitView(); });
+
+    viewGroup_ = new QActionGroup(this);
+    const char* views[] = {"Photo", "Augmented", "dL"};
+    const char* viewTips[] = {
+        "The photograph as loaded", "The photograph with the objects",
+        "Change in light on real surfaces: blue removed (shadows), red added (caustics)"};
+    for (int i = 0; i < 3; ++i) {
+        QAction* a = make(QStringLiteral("view%1").arg(views[i]), tr(views[i]),
+                          QKeySequence(QString::number(i + 1)), tr(viewTips[i]),
+                          [this, i] { viewport_->setViewMode(ViewMode(i)); });
+        a->setCheckable(true);
+        a->setChecked(i == 1);
+        viewGroup_->addAction(a);
+    }
+    gizmoGroup_ = new QActionGroup(this);
+    const char* modes[] = {"Move", "Rotate", "Scale"};
+    const char* keys[] = {"G", "R", "S"};
+    for (int i = 0; i < 3; ++i) {
+        QAction* a =
+            make(QStringLiteral("gizmo%1").arg(modes[i]), tr(modes[i]), {},
+                 tr("%1 the selected object by dragging it (%2)").arg(tr(modes[i]), keys[i]),
+                 [this, i] { viewport_->setGizmoMode(GizmoMode(i)); });
+        a->setCheckable(true);
+        a->setChecked(i == 0);
+        gizmoGroup_->addAction(a);
+    }
+    connect(viewport_, &Viewport::gizmoModeChanged, this,
+            [this](GizmoMode m) { gizmoGroup_->actions()[int(m)]->setChecked(true); });
+    connect(viewport_, &Viewport::deleteRequested, this, [this] { deleteSelected(); });
+    connect(viewport_, &Viewport::dragStarted, this, [this] { beginInteraction(); });
+    connect(viewport_, &Viewport::dragFinished, this, [this] { endInteraction(); });
+}
+
+void MainWindow::createMenus() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    file->addActions({action("new"), action("open")});
+    recentMenu_ = file->addMenu(tr("Open &Recent"));
+    recentMenu_->setObjectName("recentMenu");
+    recentMenu_->setToolTipsVisible(true);
+    file->addActions({action("save"), action("saveAs")});
+    file->addSeparator();
+    file->addAction(action("export"));
+    file->addSeparator();
+    file->addAction(action("quit"));
+    QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+    edit->addActions({action("undo"), action("redo")});
+    edit->addSeparator();
+    QMenu* add = edit->addMenu(tr("&Add"));
+    add->addActions({action("addSphere"), action("addBox"), action("addPlane")});
+    edit->addActions({action("import"), action("duplicate"), action("delete"), action("hide")});
+    QMenu* view = menuBar()->addMenu(tr("&View"));
+    view->addActions(viewGroup_->actions());
+    view->addSeparator();
+    view->addAction(action("fit"));
+    view->addSeparator();
+    for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
+    rebuildRecentMenu();
+}
+
+void MainWindow::createDocks() {
+    auto dock = [this](const QString& name, const QString& title, QWidget* w,
+                       Qt::DockWidgetArea area) {
+        auto* scroll = new QScrollArea;
+        scroll->setWidget(w);
+        scroll->setWidgetResizable(true);
+        auto* d = new QDockWidget(title, this);
+        d->setObjectName(name);
+        d->setWidget(scroll);
+        addDockWidget(area, d);
+        return d;
+    };
+    scenePanel_ = new ScenePanel(doc_, {action("addSphere"), action("addBox"), action("addPlane"),
+                                        action("import"), action("duplicate"), action("delete")});
+    materialPanel_ = new MaterialPanel(doc_);
+    auto* objects = new QWidget;
+    auto* col = new QVBoxLayout(objects);
+    col->addWidget(scenePanel_, 1);
+    col->addWidget(materialPanel_);
+    dock("sceneDock", tr("Scene"), objects, Qt::RightDockWidgetArea);
+    settingsPanel_ = new SettingsPanel(doc_);
+    probePanel_ = new ProbePanel(doc_);
+    cameraPanel_ = new CameraPanel(doc_);
+    QDockWidget* render = dock("renderDock", tr("Render"), settingsPanel_, Qt::LeftDockWidgetArea);
+    QDockWidget* probe = dock("probeDock", tr("Light Probe"), probePanel_, Qt::LeftDockWidgetArea);
+    QDockWidget* camera = dock("cameraDock", tr("Camera"), cameraPanel_, Qt::LeftDockWidgetArea);
+    tabifyDockWidget(render, probe);
+    tabifyDockWidget(probe, camera);
+    render->raise();
+    // The viewport gets most of the width; the panels only what their fields need.
+    resizeDocks({render, findChild<QDockWidget*>("sceneDock")}, {300, 440}, Qt::Horizontal);
+    connect(materialPanel_, &MaterialPanel::strokeStarted, this, [this] { beginInteraction(); });
+    connect(materialPanel_, &MaterialPanel::strokeFinished, this, [this] { endInteraction(); });
+    connect(probePanel_, &ProbePanel::strokeStarted, this, [this] { beginInteraction(); });
+    connect(probePanel_, &ProbePanel::strokeFinished, this, [this] { endInteraction(); });
+    connect(cameraPanel_, &CameraPanel::overlaysChanged, this, [this] {
+        OverlayOptions o;
+        o.grid = cameraPanel_->gridBox()->isChecked();
+        o.proxies = cameraPanel_->proxiesBox()->isChecked();
+        o.outlines = cameraPanel_->outlinesBox()->isChecked();
+        viewport_->setOverlays(o);
+    });
+}
+
+void MainWindow::createToolbar() {
+    QToolBar* bar = addToolBar(tr("Tools"));
+    bar->setObjectName("toolbar");
+    bar->addActions({action("undo"), action("redo")});
+    bar->addSeparator();
+    bar->addActions(viewGroup_->actions());
+    bar->addSeparator();
+    bar->addActions(gizmoGroup_->actions());
+    bar->addSeparator();
+    bar->addWidget(new QLabel(tr(" Exposure ")));
+    exposure_ = new QSlider(Qt::Horizontal);
+    exposure_->setRange(-80, 80);
+    exposure_->setMaximumWidth(180);
+    exposure_->setToolTip(tr("Display exposure in stops (PNG export uses it too)"));
+    connect(exposure_, &QSlider::valueChanged, this,
+            [this](int v) { viewport_->setExposure(float(v) / 10.0f); });
+    bar->addWidget(exposure_);
+}
+
+void MainWindow::connectRenderer() {
+    connect(doc_, &Document::changed, this, [this](Change change) {
+        if (change == Change::None || !doc_->isOpen()) return;
+        if (interactive_) editedWhileInteractive_ = true;
+        renderer_->request(doc_->project(), interactive_);
+    });
+    connect(doc_, &Document::reloaded, this, [this] {
+        previous_.reset();
+        viewport_->setFrame(nullptr);
+        viewport_->setRenderSize(options_.renderSize);
+        viewport_->fitView();
+    });
+    connect(renderer_, &RenderController::frameReady, this,
+            [this](std::shared_ptr<const RenderFrame> f) { onFrame(f); });
+    connect(renderer_, &RenderController::failed, this, [this](const QString& message) {
+        status_->setText(tr("Render failed"));
+        error(tr("Render failed"), message);
+    });
+    connect(renderer_, &RenderController::refinementFinished, this,
+            [this] { status_->setText(status_->text() + tr("  ·  done")); });
+}
+
+void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
+    viewport_->setFrame(f);
+    const RenderStats& s = f->update.stats;
+    if (previous_ && previous_->generation == f->generation && previous_->preview == f->preview &&
+        previous_->update.stats.passes + 1 == s.passes)
+        lastError_ = estimate_relative_error(previous_->update.delta, f->update.delta, s.passes,
+                                             f->update.image);
+    else if (s.passes <= 1)
+        lastError_ = -1;
+    previous_ = f;
+    QString text = f->preview ? tr("Preview pass %1").arg(s.passes)
+                   : f->update.target_passes > 0
+                       ? tr("Pass %1 / %2").arg(s.passes).arg(f->update.target_passes)
+                       : tr("Pass %1 (%2 s budget)").arg(s.passes).arg(f->update.time_budget_s);
+    text += tr("  ·  %1 M photons/s").arg(s.photons_per_second / 1e6, 0, 'f', 2);
+    text += lastError_ >= 0 ? tr("  ·  est. error %1%").arg(lastError_ * 100, 0, 'f', 1)
+                            : tr("  ·  est. error -");
+    status_->setText(text);
+}
+
+void MainWindow::beginInteraction() {
+    interactive_ = true;
+    editedWhileInteractive_ = false;
+}
+
+void MainWindow::endInteraction() {
+    interactive_ = false;
+    // The quick passes stop; refinement of the final state starts.
+    if (editedWhileInteractive_) renderer_->request(doc_->project(), false);
+    editedWhileInteractive_ = false;
+}
+
+void MainWindow::addObject(Shape::Kind kind) {
+    if (!doc_->isOpen()) return;
+    Project p = doc_->project();
+    static const char* names[] = {"plane", "box", "sphere", "mesh"};
+    // New objects appear where the camera looks, on the ground.
+    vec3 at = p.camera.model == CameraSpec::Model::LookAt ? p.camera.target : vec3(0);
+    p.objects.push_back(make_object(kind, at, unique_name(p, names[int(kind)])));
+    doc_->edit(tr("Add %1").arg(names[int(kind)]), p);
+    doc_->select(int(p.objects.size()) - 1);
+}
+
+void MainWindow::duplicateSelected() {
+    const int sel = doc_->selected();
+    if (sel < 0) return;
+    Project p = doc_->project();
+    VirtualObject copy = p.objects[size_t(sel)];
+    copy.name = unique_name(p, copy.name);
+    vec3 c;
+    float r;
+    bounding_sphere(copy, c, r);
+    copy.transform.translation.x += 2.2f * r;  // beside the original, not inside it
+    p.objects.push_back(copy);
+    doc_->edit(tr("Duplicate object"), p);
+    doc_->select(int(p.objects.size()) - 1);
+}
+
+void MainWindow::deleteSelected() {
+    const int sel = doc_->selected();
+    if (sel < 0) return;
+    Project p = doc_->project();
+    p.objects.erase(p.objects.begin() + sel);
+    doc_->select(-1);
+    doc_->edit(tr("Delete object"), p);
+}
+
+void MainWindow::toggleSelectedVisible() {
+    const int sel = doc_->selected();
+    if (sel < 0) return;
+    Project p = doc_->project();
+    p.objects[size_t(sel)].visible = !p.objects[size_t(sel)].visible;
+    doc_->edit(p.objects[size_t(sel)].visible ? tr("Show object") : tr("Hide object"), p);
+}
+
+void MainWindow::setDisplayExposure(float stops) {
+    exposure_->setValue(int(std::lround(stops * 10)));
+}
+
+void MainWindow::error(const QString& title, const QString& text) {
+    reporter_->error(this, title, text);
+}
+
+}  // namespace dp::ui

@@ -1,0 +1,299 @@
+// MainWindow: files (new, open, save, export, import), recent files, settings, drops, close.
+#include <QCloseEvent>
+#include <QDragEnterEvent>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenu>
+#include <QMimeData>
+#include <QSettings>
+#include <QSlider>
+#include <algorithm>
+#include <cmath>
+
+#include "autosave.h"
+#include "base/error.h"
+#include "document.h"
+#include "error_reporter.h"
+#include "geometry/mesh.h"
+#include "image/image_io.h"
+#include "main_window.h"
+#include "new_project_dialog.h"
+#include "project_edit.h"
+#include "render/progressive.h"
+#include "render_controller.h"
+#include "scene/project_io.h"
+#include "scene_builder.h"
+#include "viewport.h"
+
+namespace dp::ui {
+
+namespace {
+
+const QStringList kMeshSuffixes = {"obj", "ply", "gltf", "glb"};
+const QStringList kImageSuffixes = {"exr", "hdr", "png", "jpg", "jpeg", "tif", "tiff"};
+
+void sanitize(Image& image) {
+    for (size_t i = 0; i < image.size(); ++i)
+        if (!is_finite(image[i])) image[i] = vec3(0);
+}
+
+}  // namespace
+
+bool MainWindow::openProject(const QString& path) {
+    Project p;
+    try {
+        p = load_project(path.toStdString());
+    } catch (const std::exception& e) {
+        error(tr("Cannot open project"), QString::fromUtf8(e.what()));
+        return false;
+    }
+    doc_->reset(p, QFileInfo(path).absoluteFilePath());
+    addRecent(QFileInfo(path).absoluteFilePath());
+    return true;
+}
+
+bool MainWindow::saveProject() {
+    if (doc_->path().isEmpty()) {
+        saveAsDialog();
+        return !doc_->isModified();
+    }
+    return saveProjectAs(doc_->path());
+}
+
+bool MainWindow::saveProjectAs(const QString& path) {
+    if (!doc_->isOpen()) return false;
+    const QString abs = QFileInfo(path).absoluteFilePath();
+    Project p = doc_->project();
+    const auto newBase = std::filesystem::path(abs.toStdString()).parent_path();
+    // Paths stay as written when the folder does not change; elsewhere they become absolute.
+    if (p.base_dir != newBase) p = with_absolute_paths(p);
+    p.base_dir = newBase;
+    try {
+        save_project(p, abs.toStdString());
+    } catch (const std::exception& e) {
+        error(tr("Cannot save project"), QString::fromUtf8(e.what()));
+        return false;
+    }
+    if (!(p == doc_->project()) || p.base_dir != doc_->project().base_dir) doc_->apply(p);
+    doc_->setPath(abs);
+    doc_->markSaved();
+    autosave_->clear();
+    addRecent(abs);
+    return true;
+}
+
+bool MainWindow::newProject(const QString& photo, const QString& probe, bool mirrorBall) {
+    try {
+        load_image(photo.toStdString(), "photograph");
+        ImageLoadReport report;
+        load_image(probe.toStdString(), "light probe", &report);
+        if (!report.linear_source)
+            throw InputError(probe.toStdString(), "light probe",
+                             "not an HDR image: a light probe must be EXR or Radiance HDR, or "
+                             "the sun and sky are clipped and shadows come out too weak");
+    } catch (const std::exception& e) {
+        error(tr("Cannot create project"), QString::fromUtf8(e.what()));
+        return false;
+    }
+    Project p;
+    p.base_dir = QFileInfo(photo).absolutePath().toStdString();
+    p.photo.path = QFileInfo(photo).absoluteFilePath().toStdString();
+    p.probe.path = QFileInfo(probe).absoluteFilePath().toStdString();
+    p.probe.format = mirrorBall ? ProbeSpec::Format::MirrorBall : ProbeSpec::Format::LatLong;
+    p.camera.eye = vec3(0, 1.5f, 4.5f);
+    p.camera.target = vec3(0, 0.3f, 0);
+    p.camera.vfov_deg = 40;
+    RealProxy ground;
+    ground.name = "ground";
+    ground.shape.kind = Shape::Kind::Plane;
+    ground.shape.size = vec3(30, 1, 30);
+    ground.albedo.kind = Albedo::Kind::Estimate;  // from the photo, until the user says otherwise
+    p.real.push_back(ground);
+    doc_->reset(p, QString(), true);
+    return true;
+}
+
+bool MainWindow::exportImage(const QString& path) {
+    std::shared_ptr<const RenderFrame> f = renderer_->lastFullFrame();
+    if (!f) {
+        error(tr("Nothing to export"), tr("The render has not finished a full-size pass yet."));
+        return false;
+    }
+    const QString suffix = QFileInfo(path).suffix().toLower();
+    try {
+        Image image = f->update.image;
+        sanitize(image);
+        if (suffix == "png" || suffix == "jpg" || suffix == "jpeg") {
+            save_ldr(path.toStdString(), image, viewport_->exposure());
+        } else if (suffix == "exr") {
+            Image delta = f->update.delta, alpha = f->update.alpha;
+            sanitize(delta);
+            sanitize(alpha);
+            const Image photo = resample(*f->photo, image.width(), image.height());
+            const Image shadow = shadow_matte(photo, delta);
+            save_exr(path.toStdString(),
+                     {{"", &image}, {"dL", &delta}, {"alpha", &alpha}, {"shadow", &shadow}});
+        } else {
+            throw InputError(path.toStdString(), "export",
+                             "unknown format (use .png, .jpg or .exr)");
+        }
+    } catch (const std::exception& e) {
+        error(tr("Cannot export"), QString::fromUtf8(e.what()));
+        return false;
+    }
+    return true;
+}
+
+bool MainWindow::importMesh(const QString& path) {
+    if (!doc_->isOpen()) return false;
+    LoadedMesh mesh;
+    try {
+        mesh = load_mesh(path.toStdString(), "import");
+    } catch (const std::exception& e) {
+        error(tr("Cannot import mesh"), QString::fromUtf8(e.what()));
+        return false;
+    }
+    vec3 lo, hi;
+    mesh.mesh.bounds(lo, hi);
+    const float radius = 0.5f * glm::length(hi - lo);
+    // Huge or tiny models are brought to about the size of the objects already there.
+    const float scale = radius > 2.0f || radius < 0.05f ? 0.4f / std::max(radius, 1e-6f) : 1.0f;
+    Project p = doc_->project();
+    VirtualObject o;
+    o.name = unique_name(p, QFileInfo(path).baseName().toStdString());
+    o.shape.kind = Shape::Kind::Mesh;
+    o.shape.mesh_path = QFileInfo(path).absoluteFilePath().toStdString();
+    o.transform.scale = vec3(scale);
+    const vec3 at = p.camera.model == CameraSpec::Model::LookAt ? p.camera.target : vec3(0);
+    const vec3 centre = 0.5f * (lo + hi);
+    o.transform.translation = vec3(at.x - centre.x * scale, -lo.y * scale, at.z - centre.z * scale);
+    p.objects.push_back(o);
+    doc_->edit(tr("Import %1").arg(QFileInfo(path).fileName()), p);
+    doc_->select(int(p.objects.size()) - 1);
+    return true;
+}
+
+void MainWindow::openDialog() {
+    const QString f = QFileDialog::getOpenFileName(this, tr("Open project"), QString(),
+                                                   tr("diffphoton projects (*.json)"));
+    if (!f.isEmpty()) openProject(f);
+}
+
+void MainWindow::saveAsDialog() {
+    const QString f = QFileDialog::getSaveFileName(this, tr("Save project"), doc_->path(),
+                                                   tr("diffphoton projects (*.json)"));
+    if (!f.isEmpty()) saveProjectAs(f.endsWith(".json") ? f : f + ".json");
+}
+
+void MainWindow::newDialog(const QString& photo, const QString& probe) {
+    NewProjectDialog dialog(this);
+    dialog.setPhotoPath(photo);
+    dialog.setProbePath(probe);
+    if (dialog.exec() == QDialog::Accepted)
+        newProject(dialog.photoPath(), dialog.probePath(), dialog.mirrorBall());
+}
+
+void MainWindow::exportDialog() {
+    const QString f =
+        QFileDialog::getSaveFileName(this, tr("Export image"), QString(),
+                                     tr("PNG (*.png);;OpenEXR with layers (*.exr);;JPEG (*.jpg)"));
+    if (!f.isEmpty()) exportImage(f);
+}
+
+void MainWindow::importDialog() {
+    const QString f = QFileDialog::getOpenFileName(this, tr("Import mesh"), QString(),
+                                                   tr("Meshes (*.obj *.ply *.gltf *.glb)"));
+    if (!f.isEmpty()) importMesh(f);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* e) {
+    if (e->mimeData()->hasUrls()) e->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* e) {
+    QStringList images;
+    for (const QUrl& url : e->mimeData()->urls()) {
+        const QString f = url.toLocalFile();
+        const QString suffix = QFileInfo(f).suffix().toLower();
+        if (suffix == "json")
+            openProject(f);
+        else if (kMeshSuffixes.contains(suffix))
+            importMesh(f);
+        else if (kImageSuffixes.contains(suffix))
+            images << f;
+    }
+    if (images.size() >= 2)
+        newProject(images[0], images[1]);
+    else if (images.size() == 1)
+        newDialog(images[0]);
+}
+
+void MainWindow::addRecent(const QString& path) {
+    recent_.removeAll(path);
+    recent_.prepend(path);
+    while (recent_.size() > 8) recent_.removeLast();
+    if (options_.useSettings) QSettings().setValue("recentFiles", recent_);
+    rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+    if (!recentMenu_) return;
+    recentMenu_->clear();
+    for (const QString& f : recent_) {
+        QAction* a =
+            recentMenu_->addAction(QFileInfo(f).fileName(), this, [this, f] { openProject(f); });
+        a->setToolTip(f);
+    }
+    recentMenu_->setEnabled(!recent_.isEmpty());
+}
+
+void MainWindow::restoreSettings() {
+    QSettings s;
+    restoreGeometry(s.value("geometry").toByteArray());
+    restoreState(s.value("windowState").toByteArray());
+    recent_ = s.value("recentFiles").toStringList();
+    exposure_->setValue(s.value("exposure", 0).toInt());
+    rebuildRecentMenu();
+}
+
+void MainWindow::checkRecovery() {
+    if (!options_.checkRecovery) return;
+    std::optional<Autosave::Recovered> r = autosave_->pending();
+    if (!r) return;
+    const QString where = r->originalPath.isEmpty() ? tr("an unsaved project") : r->originalPath;
+    if (reporter_->ask(
+            this, tr("Recover unsaved work?"),
+            tr("The studio did not close cleanly. Recover the autosaved copy of %1?").arg(where))) {
+        doc_->reset(r->project, r->originalPath, true);
+    } else {
+        autosave_->clear();
+    }
+}
+
+void MainWindow::updateTitle() {
+    const QString name =
+        doc_->path().isEmpty() ? tr("Untitled") : QFileInfo(doc_->path()).fileName();
+    setWindowTitle(doc_->isOpen() ? tr("%1[*] - diffphoton studio").arg(name)
+                                  : tr("diffphoton studio"));
+    setWindowModified(doc_->isModified());
+}
+
+void MainWindow::closeEvent(QCloseEvent* e) {
+    if (doc_->isModified() &&
+        reporter_->ask(this, tr("Unsaved changes"), tr("Save the project before closing?")) &&
+        !saveProject()) {
+        e->ignore();
+        return;
+    }
+    if (options_.useSettings) {
+        QSettings s;
+        s.setValue("geometry", saveGeometry());
+        s.setValue("windowState", saveState());
+        s.setValue("exposure", exposure_->value());
+    }
+    renderer_->stop();
+    autosave_->clear();  // a clean close leaves nothing to recover
+    e->accept();
+}
+
+}  // namespace dp::ui

@@ -1,0 +1,151 @@
+#include "material_panel.h"
+
+#include <QColorDialog>
+#include <QComboBox>
+#include <QFormLayout>
+#include <QLabel>
+#include <QPushButton>
+#include <QSlider>
+#include <algorithm>
+#include <cmath>
+
+#include "document.h"
+#include "image/image_io.h"
+
+namespace dp::ui {
+
+namespace {
+
+// Colours are linear in the project and sRGB on screen.
+QColor to_qcolor(const vec3& linear) {
+    auto c = [](float v) {
+        return int(std::lround(linear_to_srgb(std::clamp(v, 0.0f, 1.0f)) * 255));
+    };
+    return QColor(c(linear.x), c(linear.y), c(linear.z));
+}
+
+vec3 to_linear(const QColor& c) {
+    return vec3(srgb_to_linear(float(c.redF())), srgb_to_linear(float(c.greenF())),
+                srgb_to_linear(float(c.blueF())));
+}
+
+void paint_swatch(QPushButton* b, const QColor& c) {
+    b->setStyleSheet(QStringLiteral("background-color: %1; min-height: 1.4em;").arg(c.name()));
+}
+
+}  // namespace
+
+MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
+    auto* form = new QFormLayout(this);
+    kind_ = new QComboBox;
+    kind_->addItems({tr("Diffuse"), tr("Mirror"), tr("Glass")});
+    kind_->setToolTip(tr("Kind of material of the selected object"));
+    form->addRow(tr("Material"), kind_);
+    colour_ = new QPushButton;
+    colour_->setToolTip(tr("Diffuse colour (albedo): click to pick"));
+    form->addRow(tr("Colour"), colour_);
+    reflectance_ = addSlider(form, tr("Reflectance"), tr("Mirror reflectance (grey), 0 to 1"), 0,
+                             100, &reflectanceValue_);
+    ior_ = addSlider(form, tr("IOR"), tr("Glass index of refraction, 1.0 to 2.5"), 100, 250,
+                     &iorValue_);
+    tint_ = new QPushButton;
+    tint_->setToolTip(tr("Glass tint: transmittance per crossing; click to pick"));
+    form->addRow(tr("Tint"), tint_);
+
+    connect(kind_, &QComboBox::currentIndexChanged, this, [this](int k) {
+        const int sel = doc_->selected();
+        if (refreshing_ || sel < 0) return;
+        Project p = doc_->project();
+        p.objects[size_t(sel)].material.kind = Material::Kind(k);
+        doc_->edit(tr("Change material"), p);
+    });
+    connect(colour_, &QPushButton::clicked, this, [this] { pickColour(false); });
+    connect(tint_, &QPushButton::clicked, this, [this] { pickColour(true); });
+    connect(doc_, &Document::changed, this, [this] { refresh(); });
+    connect(doc_, &Document::selectionChanged, this, [this] { refresh(); });
+    refresh();
+}
+
+QSlider* MaterialPanel::addSlider(QFormLayout* form, const QString& label, const QString& tip,
+                                  int lo, int hi, QLabel** value) {
+    auto* s = new QSlider(Qt::Horizontal);
+    s->setRange(lo, hi);
+    s->setToolTip(tip);
+    *value = new QLabel;
+    (*value)->setMinimumWidth(40);
+    auto* row = new QHBoxLayout;
+    row->addWidget(s, 1);
+    row->addWidget(*value);
+    form->addRow(label, row);
+    connect(s, &QSlider::sliderPressed, this, [this] {
+        strokeKey_ = doc_->newMergeKey();
+        Q_EMIT strokeStarted();
+    });
+    connect(s, &QSlider::sliderReleased, this, [this] {
+        strokeKey_ = -1;
+        Q_EMIT strokeFinished();
+    });
+    connect(s, &QSlider::valueChanged, this, [this, s] { sliderMoved(s); });
+    return s;
+}
+
+void MaterialPanel::sliderMoved(QSlider* moved) {
+    const int sel = doc_->selected();
+    if (refreshing_ || sel < 0) return;
+    Project p = doc_->project();
+    Material& m = p.objects[size_t(sel)].material;
+    if (moved == reflectance_) m.reflectance = vec3(float(reflectance_->value()) / 100.0f);
+    if (moved == ior_) m.ior = float(ior_->value()) / 100.0f;
+    reflectanceValue_->setText(QString::number(reflectance_->value() / 100.0, 'f', 2));
+    iorValue_->setText(QString::number(ior_->value() / 100.0, 'f', 2));
+    // While the slider is held all moves fold into one undo step (a new step otherwise).
+    doc_->edit(tr("Adjust material"), p, strokeKey_);
+}
+
+void MaterialPanel::setDiffuseColour(const QColor& colour) {
+    const int sel = doc_->selected();
+    if (sel < 0 || !colour.isValid()) return;
+    Project p = doc_->project();
+    p.objects[size_t(sel)].material.albedo.rgb = to_linear(colour);
+    doc_->edit(tr("Change colour"), p);
+}
+
+void MaterialPanel::pickColour(bool tint) {
+    const int sel = doc_->selected();
+    if (sel < 0) return;
+    const Material& m = doc_->project().objects[size_t(sel)].material;
+    const QColor c = QColorDialog::getColor(to_qcolor(tint ? m.tint : m.albedo.rgb), this,
+                                            tint ? tr("Glass tint") : tr("Diffuse colour"));
+    if (!c.isValid()) return;
+    if (!tint) {
+        setDiffuseColour(c);
+        return;
+    }
+    Project p = doc_->project();
+    p.objects[size_t(sel)].material.tint = to_linear(c);
+    doc_->edit(tr("Change tint"), p);
+}
+
+void MaterialPanel::refresh() {
+    refreshing_ = true;
+    const int sel = doc_->selected();
+    setEnabled(sel >= 0);
+    if (sel >= 0) {
+        const Material& m = doc_->project().objects[size_t(sel)].material;
+        kind_->setCurrentIndex(int(m.kind));
+        paint_swatch(colour_, to_qcolor(m.albedo.rgb));
+        paint_swatch(tint_, to_qcolor(m.tint));
+        reflectance_->setValue(int(std::lround(luminance(m.reflectance) * 100)));
+        ior_->setValue(int(std::lround(m.ior * 100)));
+        reflectanceValue_->setText(QString::number(reflectance_->value() / 100.0, 'f', 2));
+        iorValue_->setText(QString::number(ior_->value() / 100.0, 'f', 2));
+        const bool diffuse = m.kind == Material::Kind::Diffuse;
+        colour_->setEnabled(diffuse);
+        reflectance_->setEnabled(m.kind == Material::Kind::Mirror);
+        ior_->setEnabled(m.kind == Material::Kind::Glass);
+        tint_->setEnabled(m.kind == Material::Kind::Glass);
+    }
+    refreshing_ = false;
+}
+
+}  // namespace dp::ui

@@ -1,0 +1,48 @@
+#pragma once
+#include <QWidget>
+
+class QComboBox;
+class QFormLayout;
+class QLabel;
+class QPushButton;
+class QSlider;
+
+namespace dp::ui {
+
+class Document;
+
+/// The selected object's material: kind, diffuse colour (colour picker), mirror reflectance,
+/// glass index of refraction and tint. Sliders are live: a stroke is one undo step and renders
+/// quick passes until released.
+class MaterialPanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit MaterialPanel(Document* doc, QWidget* parent = nullptr);
+
+    QComboBox* kindBox() const { return kind_; }
+    QSlider* reflectanceSlider() const { return reflectance_; }
+    QSlider* iorSlider() const { return ior_; }
+    /// Sets the diffuse colour as the colour dialog would (sRGB).
+    void setDiffuseColour(const QColor& colour);
+
+Q_SIGNALS:
+    void strokeStarted();
+    void strokeFinished();
+
+private:
+    void refresh();
+    QSlider* addSlider(QFormLayout* form, const QString& label, const QString& tip, int lo, int hi,
+                       QLabel** value);
+    void sliderMoved(QSlider* moved);
+    void pickColour(bool tint);
+
+    Document* doc_;
+    QComboBox* kind_;
+    QPushButton *colour_, *tint_;
+    QSlider *reflectance_, *ior_;
+    QLabel *reflectanceValue_, *iorValue_;
+    int strokeKey_ = -1;
+    bool refreshing_ = false;
+};
+
+}  // namespace dp::ui

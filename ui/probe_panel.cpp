@@ -1,0 +1,138 @@
+#include "probe_panel.h"
+
+#include <QFormLayout>
+#include <QLabel>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QSlider>
+#include <cmath>
+
+#include "display.h"
+#include "document.h"
+#include "image/image_io.h"
+#include "scene_builder.h"
+
+namespace dp::ui {
+
+ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
+    auto* form = new QFormLayout(this);
+    preview_ = new QLabel;
+    preview_->setMinimumSize(256, 128);
+    preview_->setAlignment(Qt::AlignCenter);
+    preview_->setToolTip(
+        tr("The light probe (lat-long); the ring marks its brightest point, the sun. Drag "
+           "across it to turn the probe until the shadows fall as in the photo."));
+    preview_->installEventFilter(this);
+    form->addRow(preview_);
+    auto slider = [&](const QString& label, const QString& tip, int lo, int hi, QLabel** value) {
+        auto* s = new QSlider(Qt::Horizontal);
+        s->setRange(lo, hi);
+        s->setToolTip(tip);
+        *value = new QLabel;
+        (*value)->setMinimumWidth(48);
+        auto* row = new QHBoxLayout;
+        row->addWidget(s, 1);
+        row->addWidget(*value);
+        form->addRow(label, row);
+        connect(s, &QSlider::sliderPressed, this, [this] {
+            strokeKey_ = doc_->newMergeKey();
+            Q_EMIT strokeStarted();
+        });
+        connect(s, &QSlider::sliderReleased, this, [this] {
+            strokeKey_ = -1;
+            Q_EMIT strokeFinished();
+        });
+        connect(s, &QSlider::valueChanged, this, [this] { applySliders(); });
+        return s;
+    };
+    rotation_ = slider(tr("Rotation"), tr("Turn the probe about the vertical axis (degrees)"), -180,
+                       180, &rotationValue_);
+    exposure_ = slider(tr("Exposure"), tr("Probe brightness in stops (intensity 2^stops)"), -60, 60,
+                       &exposureValue_);
+    connect(doc_, &Document::changed, this, [this] { refresh(); });
+    refresh();
+}
+
+void ProbePanel::loadPreview() {
+    const Project& p = doc_->project();
+    const QString key = QString::fromStdString(p.resolve(p.probe.path).string());
+    if (key == previewKey_) return;
+    previewKey_ = key;
+    previewImage_ = QImage();
+    if (p.probe.path.empty()) return;
+    try {
+        const Image probe = load_image(key.toStdString(), "probe.path");
+        const int w = 256, h = std::max(1, w * probe.height() / std::max(1, probe.width()));
+        previewImage_ = to_display(resample(probe, w, h), 0.0f);
+        // The brightest pixel stands for the sun: marked so it can be dragged into place.
+        size_t brightest = 0;
+        for (size_t i = 1; i < probe.size(); ++i)
+            if (luminance(probe[i]) > luminance(probe[brightest])) brightest = i;
+        sun_ = QPointF((double(brightest % size_t(probe.width())) + 0.5) / probe.width(),
+                       (double(brightest / size_t(probe.width())) + 0.5) / probe.height());
+    } catch (const std::exception&) {
+        // The render reports unreadable probes; the preview just stays empty.
+    }
+}
+
+void ProbePanel::refresh() {
+    refreshing_ = true;
+    loadPreview();
+    const ProbeSpec& probe = doc_->project().probe;
+    rotation_->setValue(int(std::lround(probe.rotation_deg.y)));
+    const float stops = probe.intensity > 0 ? std::log2(probe.intensity) : -6.0f;
+    exposure_->setValue(int(std::lround(stops * 10)));
+    rotationValue_->setText(QString::fromUtf8("%1\u00b0").arg(rotation_->value()));
+    exposureValue_->setText(QString::number(exposure_->value() / 10.0, 'f', 1));
+    if (!previewImage_.isNull()) {
+        // The probe's rotation turns the map: show it shifted by the same angle.
+        QImage shown(previewImage_.size(), previewImage_.format());
+        const int shift = int(std::lround(-probe.rotation_deg.y / 360.0 * shown.width()));
+        QPainter painter(&shown);
+        for (int k = -1; k <= 1; ++k)
+            painter.drawImage(shift + k * shown.width(), 0, previewImage_);
+        const double w = shown.width();
+        const double x = std::fmod(sun_.x() * w + shift + 2 * w, w);
+        painter.setRenderHint(QPainter::Antialiasing);
+        painter.setPen(QPen(QColor(255, 200, 0), 2));
+        painter.drawEllipse(QPointF(x, sun_.y() * shown.height()), 6, 6);
+        preview_->setPixmap(QPixmap::fromImage(shown));
+    } else {
+        preview_->setText(tr("(no probe)"));
+    }
+    refreshing_ = false;
+}
+
+void ProbePanel::applySliders() {
+    if (refreshing_) return;
+    Project p = doc_->project();
+    p.probe.rotation_deg.y = float(rotation_->value());
+    p.probe.intensity = std::exp2(float(exposure_->value()) / 10.0f);
+    doc_->edit(tr("Adjust probe"), p, strokeKey_);
+}
+
+bool ProbePanel::eventFilter(QObject* watched, QEvent* event) {
+    if (watched != preview_) return false;
+    if (event->type() == QEvent::MouseButtonPress) {
+        dragX_ = int(static_cast<QMouseEvent*>(event)->position().x());
+        dragStartValue_ = rotation_->value();
+        strokeKey_ = doc_->newMergeKey();
+        Q_EMIT strokeStarted();
+        return true;
+    }
+    if (event->type() == QEvent::MouseMove && strokeKey_ >= 0) {
+        const int dx = int(static_cast<QMouseEvent*>(event)->position().x()) - dragX_;
+        int v = dragStartValue_ - dx * 360 / std::max(1, preview_->width());
+        v = ((v + 180) % 360 + 360) % 360 - 180;
+        rotation_->setValue(v);
+        return true;
+    }
+    if (event->type() == QEvent::MouseButtonRelease && strokeKey_ >= 0) {
+        strokeKey_ = -1;
+        Q_EMIT strokeFinished();
+        return true;
+    }
+    return false;
+}
+
+}  // namespace dp::ui

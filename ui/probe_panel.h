@@ -1,0 +1,47 @@
+#pragma once
+#include <QImage>
+#include <QPointF>
+#include <QWidget>
+
+class QLabel;
+class QSlider;
+
+namespace dp::ui {
+
+class Document;
+
+/// The light probe: a preview of the lat-long map (drag across it to turn the probe), rotation
+/// about the vertical axis and exposure (the probe's intensity in stops).
+class ProbePanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit ProbePanel(Document* doc, QWidget* parent = nullptr);
+
+    QSlider* rotationSlider() const { return rotation_; }
+    QSlider* exposureSlider() const { return exposure_; }
+
+Q_SIGNALS:
+    void strokeStarted();
+    void strokeFinished();
+
+protected:
+    bool eventFilter(QObject* watched, QEvent* event) override;
+
+private:
+    void refresh();
+    void loadPreview();
+    void applySliders();
+
+    Document* doc_;
+    QLabel* preview_;
+    QSlider *rotation_, *exposure_;
+    QLabel *rotationValue_, *exposureValue_;
+    QString previewKey_;
+    QImage previewImage_;
+    QPointF sun_;  ///< brightest point of the probe, as fractions of its width and height
+    int strokeKey_ = -1;
+    int dragX_ = 0, dragStartValue_ = 0;
+    bool refreshing_ = false;
+};
+
+}  // namespace dp::ui

@@ -1,0 +1,35 @@
+#pragma once
+// Pure helpers over dp::Project used by the studio: what an edit changed, new objects, bounds.
+#include <string>
+
+#include "scene/project.h"
+
+namespace dp::ui {
+
+/// What an edit changed, from cheapest to dearest for the renderer.
+enum class Change {
+    None,      ///< names only: nothing to render
+    Material,  ///< virtual materials only: RenderScene::update_materials, no BVH rebuild
+    Scene,     ///< geometry, transforms, camera, probe pose or render settings: rebuild the scene
+    Assets,    ///< photo or probe file: reload images, then rebuild
+};
+
+/// Classifies the difference between two projects (symmetric, so undo classifies as the edit).
+Change classify(const Project& before, const Project& after);
+
+/// A new object of the given kind resting on the ground (y = 0) at `position` (x, z used).
+VirtualObject make_object(Shape::Kind kind, const vec3& position, const std::string& name);
+
+/// A name not yet used by the project's objects ("sphere", "sphere 2", ...).
+std::string unique_name(const Project& project, const std::string& base);
+
+/// Bounding sphere of an object in world space (mesh objects use `mesh_radius` in local units,
+/// the radius of the loaded mesh's bounds; 1 if unknown).
+void bounding_sphere(const VirtualObject& object, vec3& center, float& radius,
+                     float mesh_radius = 1.0f);
+
+/// Copy of `project` whose file paths are absolute, for a project written away from its folder
+/// (the autosave file).
+Project with_absolute_paths(const Project& project);
+
+}  // namespace dp::ui

@@ -1,0 +1,135 @@
+#pragma once
+#include <QObject>
+#include <QSize>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "project_edit.h"
+#include "render/session.h"
+
+namespace dp::ui {
+
+class SceneBuilder;
+
+/// One progressive image as the viewport shows it.
+struct RenderFrame {
+    RenderUpdate update;
+    std::shared_ptr<const Image> photo;  ///< full-resolution photo (the "photo" view)
+    bool preview = false;                ///< a coarse pass at reduced size (edit in progress)
+    uint64_t generation = 0;             ///< which request it answers
+};
+
+/// Runs the renderer for the studio. Requests are handled on a worker thread that loads files,
+/// builds scenes and drives the RenderSession; passes come back to the UI thread through a
+/// queued call, at most one pending at a time (older ones are dropped). The UI thread never
+/// waits for the renderer: request() only records the latest project and returns.
+///
+/// Each request first renders one quick pass at reduced size with fewer photons (so the picture
+/// answers within a fraction of a second), then refines at full size. While `interactive`
+/// (a drag or a slider stroke), only the quick passes run. A material-only change reuses the
+/// built scenes through update_materials: no BVH is rebuilt.
+class RenderController : public QObject {
+    Q_OBJECT
+public:
+    explicit RenderController(QObject* parent = nullptr);
+    ~RenderController() override;
+
+    /// Size of the full render (default: the photo's).
+    void setRenderSize(QSize size) { renderSize_ = size; }
+    QSize renderSize() const { return renderSize_; }
+    /// Photons of the quick pass as a fraction of the project's (default 1/8).
+    void setPreviewFraction(double f) { previewFraction_ = f; }
+    /// Size of the quick pass relative to the full render (default 1/2, and at most 100k pixels).
+    void setPreviewScale(double s) { previewScale_ = s; }
+
+    /// Renders `project` (cancelling what runs). `interactive`: quick passes only.
+    void request(const Project& project, bool interactive = false);
+    /// Stops rendering (e.g. before closing); returns at once.
+    void stop();
+    bool idle() const;
+
+    /// The latest frame delivered to the UI thread (null before the first).
+    std::shared_ptr<const RenderFrame> lastFrame() const { return last_; }
+    /// The latest full-size frame (what export writes).
+    std::shared_ptr<const RenderFrame> lastFullFrame() const { return lastFull_; }
+    uint64_t generation() const { return requested_; }
+    /// Whether the latest request's full-size refinement reached its budget.
+    bool finished() const { return finished_; }
+    /// Where the time of the latest request went (milliseconds), for the benchmark.
+    struct Timings {
+        double cancel = 0;      ///< waiting for the run in flight to stop
+        double buildQuick = 0;  ///< building the quick scene (0 when reused)
+        double firstQuick = 0;  ///< start of the quick run to its first pass
+        double buildFull = 0;   ///< building the full-size scene
+    };
+    Timings timings() const {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return timings_;
+    }
+    /// Scenes (BVHs) built so far: material-only edits must not add to it.
+    int scenesBuilt() const { return scenesBuilt_.load(); }
+
+Q_SIGNALS:
+    void frameReady(std::shared_ptr<const dp::ui::RenderFrame> frame);
+    /// The refinement of the latest request reached its pass or time budget.
+    void refinementFinished();
+    /// Loading or building failed (message for the user).
+    void failed(const QString& message);
+
+private:
+    struct Request {
+        Project project;
+        bool interactive = false;
+        uint64_t generation = 0;
+        QSize size;
+        double previewFraction = 0.125;
+        double previewScale = 0.5;
+    };
+    class Sink;
+    void worker();
+    void handle(const Request& r);
+    bool superseded();
+    Q_INVOKABLE void deliver();
+    Q_INVOKABLE void deliverStopped(quint64 generation, bool finished, const QString& error);
+
+    QSize renderSize_;
+    double previewFraction_ = 1.0 / 8.0;
+    double previewScale_ = 0.5;
+    // Worker-thread state: the scenes built for `built_` (quick and full size).
+    std::unique_ptr<SceneBuilder> builder_;
+    Project built_;
+    bool haveScenes_ = false;
+    std::shared_ptr<RenderScene> quick_, full_;
+    QSize fullSize_;
+    // Shared with the render thread's sink, under mutex_.
+    std::shared_ptr<RenderFrame> latest_;
+    bool posted_ = false;
+    uint64_t runGeneration_ = 0;
+    bool runPreview_ = false;
+    int runFrames_ = 0;
+    bool runStopped_ = false;
+    Timings timings_;
+    std::chrono::steady_clock::time_point runStart_;
+    std::shared_ptr<const Image> photo_;
+
+    std::unique_ptr<Sink> sink_;
+    std::unique_ptr<RenderSession> session_;
+    std::thread thread_;
+    mutable std::mutex mutex_;
+    std::condition_variable cv_;
+    std::optional<Request> pending_;
+    bool quit_ = false;
+    bool busy_ = false;
+    std::atomic<int> scenesBuilt_{0};
+    uint64_t requested_ = 0;  ///< UI thread
+    bool finished_ = false;   ///< UI thread
+    std::shared_ptr<const RenderFrame> last_, lastFull_;
+};
+
+}  // namespace dp::ui

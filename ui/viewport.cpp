@@ -1,0 +1,244 @@
+#include "viewport.h"
+
+#include <QCursor>
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QPainter>
+#include <QWheelEvent>
+#include <cmath>
+
+#include "document.h"
+
+namespace dp::ui {
+
+Viewport::Viewport(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
+    setFocusPolicy(Qt::StrongFocus);
+    setMinimumSize(320, 200);
+    setAttribute(Qt::WA_OpaquePaintEvent);
+    setToolTip(
+        tr("Click an object to select it; drag to move (G), rotate (R) or scale (S).\n"
+           "Wheel zooms, middle button pans, X deletes, Esc cancels a drag."));
+    connect(doc_, &Document::changed, this, [this] { update(); });
+    connect(doc_, &Document::selectionChanged, this, [this](int index) {
+        overlays_.selected = index;
+        update();
+    });
+}
+
+void Viewport::setFrame(std::shared_ptr<const RenderFrame> frame) {
+    frame_ = std::move(frame);
+    if (!renderSize_.isValid() && frame_ && frame_->photo)
+        renderSize_ = QSize(frame_->photo->width(), frame_->photo->height());
+    rebuildImage();
+}
+
+void Viewport::setRenderSize(QSize size) {
+    renderSize_ = size;
+    update();
+}
+
+void Viewport::setViewMode(ViewMode mode) {
+    mode_ = mode;
+    rebuildImage();
+}
+
+void Viewport::setExposure(float stops) {
+    exposure_ = stops;
+    rebuildImage();
+}
+
+void Viewport::setOverlays(const OverlayOptions& o) {
+    overlays_ = o;
+    overlays_.selected = doc_->selected();
+    update();
+}
+
+void Viewport::setGizmoMode(GizmoMode mode) {
+    if (mode == gizmo_) return;
+    gizmo_ = mode;
+    Q_EMIT gizmoModeChanged(mode);
+}
+
+void Viewport::fitView() {
+    zoom_ = 1;
+    pan_ = QPointF();
+    update();
+}
+
+void Viewport::rebuildImage() {
+    if (!frame_) {
+        shown_ = QImage();
+    } else if (mode_ == ViewMode::Photo && frame_->photo) {
+        shown_ = to_display(*frame_->photo, exposure_);
+    } else if (mode_ == ViewMode::Delta) {
+        shown_ = to_false_colour(frame_->update.delta, exposure_);
+    } else {
+        shown_ = to_display(frame_->update.image, exposure_);
+    }
+    update();
+}
+
+QTransform Viewport::imageToWidget() const {
+    const QSize s = renderSize_.isValid() ? renderSize_ : QSize(16, 9);
+    const double fit = std::min(width() / double(s.width()), height() / double(s.height()));
+    const double k = fit * zoom_;
+    QTransform t;
+    t.translate(width() / 2.0 + pan_.x(), height() / 2.0 + pan_.y());
+    t.scale(k, k);
+    t.translate(-s.width() / 2.0, -s.height() / 2.0);
+    return t;
+}
+
+QRectF Viewport::imageRect() const {
+    const QSize s = renderSize_.isValid() ? renderSize_ : QSize(16, 9);
+    return imageToWidget().mapRect(QRectF(0, 0, s.width(), s.height()));
+}
+
+vec2 Viewport::toImage(QPointF widget) const {
+    const QPointF p = imageToWidget().inverted().map(widget);
+    return vec2(float(p.x() - 0.5), float(p.y() - 0.5));  // pixel centres at integers
+}
+
+Camera Viewport::camera() const {
+    const int pw = frame_ && frame_->photo ? frame_->photo->width() : renderSize_.width();
+    const int ph = frame_ && frame_->photo ? frame_->photo->height() : renderSize_.height();
+    return view_camera(doc_->project(), pw, ph, renderSize_.width(), renderSize_.height());
+}
+
+bool Viewport::widgetPosition(const vec3& world, QPointF& out) const {
+    if (!renderSize_.isValid()) return false;
+    vec2 px;
+    if (!camera().project(world, px)) return false;
+    out = imageToWidget().map(QPointF(px.x + 0.5, px.y + 0.5));
+    return true;
+}
+
+void Viewport::paintEvent(QPaintEvent*) {
+    QPainter p(this);
+    p.fillRect(rect(), QColor(38, 38, 40));
+    if (!doc_->isOpen() || !renderSize_.isValid()) {
+        p.setPen(QColor(190, 190, 190));
+        p.drawText(rect(), Qt::AlignCenter,
+                   tr("Open a project, or drop a photograph and a light probe here."));
+        return;
+    }
+    const QTransform t = imageToWidget();
+    if (!shown_.isNull()) {
+        p.save();
+        p.setTransform(t);
+        p.setRenderHint(QPainter::SmoothPixmapTransform, zoom_ < 2.0);
+        p.drawImage(QRectF(0, 0, renderSize_.width(), renderSize_.height()), shown_);
+        p.restore();
+    }
+    const QTransform camToWidget = QTransform::fromTranslate(0.5, 0.5) * t;
+    OverlayOptions o = overlays_;
+    o.selected = doc_->selected();
+    p.setClipRect(imageRect());  // overlays belong to the photo, not the margin around it
+    draw_overlays(p, doc_->project(), camera(), camToWidget, o);
+}
+
+void Viewport::beginDrag(QPointF pos) {
+    const int sel = doc_->selected();
+    if (sel < 0) return;
+    dragging_ = true;
+    pressPos_ = lastPos_ = pos;
+    projectAtDrag_ = doc_->project();
+    dragStart_ = projectAtDrag_.objects[size_t(sel)].transform;
+    dragKey_ = doc_->newMergeKey();
+    Q_EMIT dragStarted();
+}
+
+void Viewport::finishDrag(bool cancel) {
+    if (!dragging_) return;
+    dragging_ = false;
+    setMouseTracking(false);
+    if (cancel) doc_->edit(tr("Cancel transform"), projectAtDrag_, dragKey_);
+    Q_EMIT dragFinished();
+}
+
+void Viewport::mousePressEvent(QMouseEvent* e) {
+    setFocus();
+    if (e->button() == Qt::MiddleButton) {
+        panning_ = true;
+        lastPos_ = e->position();
+        return;
+    }
+    if (dragging_) {  // a modal G/R/S drag: left confirms, right cancels
+        finishDrag(e->button() != Qt::LeftButton);
+        return;
+    }
+    if (e->button() != Qt::LeftButton || !renderSize_.isValid()) return;
+    const vec2 px = toImage(e->position());
+    const int hit = pick_object(doc_->project(), camera(), px.x, px.y);
+    doc_->select(hit);
+    if (hit >= 0) beginDrag(e->position());
+}
+
+void Viewport::mouseMoveEvent(QMouseEvent* e) {
+    if (panning_) {
+        pan_ += e->position() - lastPos_;
+        lastPos_ = e->position();
+        update();
+        return;
+    }
+    const int sel = doc_->selected();
+    if (!dragging_ || sel < 0) return;
+    lastPos_ = e->position();
+    Project p = projectAtDrag_;
+    VirtualObject& obj = p.objects[size_t(sel)];
+    obj.transform =
+        drag_transform(gizmo_, dragStart_, camera(), toImage(pressPos_), toImage(lastPos_),
+                       &projectAtDrag_);
+    static const char* verbs[] = {"Move", "Rotate", "Scale"};
+    doc_->edit(tr("%1 %2").arg(tr(verbs[int(gizmo_)]), QString::fromStdString(obj.name)), p,
+               dragKey_);
+}
+
+void Viewport::mouseReleaseEvent(QMouseEvent* e) {
+    if (e->button() == Qt::MiddleButton) {
+        panning_ = false;
+        return;
+    }
+    if (e->button() == Qt::LeftButton && dragging_ && !hasMouseTracking()) finishDrag(false);
+}
+
+void Viewport::wheelEvent(QWheelEvent* e) {
+    const QPointF cursor = e->position();
+    const QPointF before = imageToWidget().inverted().map(cursor);
+    zoom_ = std::clamp(zoom_ * std::pow(1.15, e->angleDelta().y() / 120.0), 0.1, 32.0);
+    const QPointF after = imageToWidget().map(before);
+    pan_ += cursor - after;  // keeps the image point under the cursor
+    update();
+}
+
+void Viewport::keyPressEvent(QKeyEvent* e) {
+    switch (e->key()) {
+        case Qt::Key_G:
+        case Qt::Key_R:
+        case Qt::Key_S: {
+            setGizmoMode(e->key() == Qt::Key_G   ? GizmoMode::Translate
+                         : e->key() == Qt::Key_R ? GizmoMode::Rotate
+                                                 : GizmoMode::Scale);
+            if (!dragging_ && doc_->selected() >= 0 &&
+                rect().contains(mapFromGlobal(QCursor::pos()))) {
+                setMouseTracking(true);  // Blender-style: the object follows until a click
+                beginDrag(mapFromGlobal(QCursor::pos()));
+            }
+            return;
+        }
+        case Qt::Key_X:
+        case Qt::Key_Delete:
+            if (!dragging_ && doc_->selected() >= 0) Q_EMIT deleteRequested();
+            return;
+        case Qt::Key_Escape:
+            finishDrag(true);
+            return;
+        case Qt::Key_Home:
+            fitView();
+            return;
+        default:
+            QWidget::keyPressEvent(e);
+    }
+}
+
+}  // namespace dp::ui

@@ -1,0 +1,87 @@
+#pragma once
+#include <QImage>
+#include <QWidget>
+#include <memory>
+
+#include "display.h"
+#include "gizmo.h"
+#include "overlays.h"
+#include "render_controller.h"
+
+namespace dp::ui {
+
+class Document;
+
+/// Shows the progressive render (photo / augmented / dL), zooms (wheel) and pans (middle
+/// mouse), draws the overlays, and moves the selected object with the gizmo: click selects,
+/// left-drag applies the current mode (G translate, R rotate, S scale), X deletes, Esc or the
+/// right button cancels a drag.
+class Viewport : public QWidget {
+    Q_OBJECT
+public:
+    explicit Viewport(Document* doc, QWidget* parent = nullptr);
+
+    void setFrame(std::shared_ptr<const RenderFrame> frame);
+    /// Size of the full render in pixels (overlays and picking work in it).
+    void setRenderSize(QSize size);
+    QSize renderSize() const { return renderSize_; }
+
+    void setViewMode(ViewMode mode);
+    ViewMode viewMode() const { return mode_; }
+    void setExposure(float stops);
+    float exposure() const { return exposure_; }
+    void setOverlays(const OverlayOptions& o);
+    OverlayOptions overlays() const { return overlays_; }
+    void setGizmoMode(GizmoMode mode);
+    GizmoMode gizmoMode() const { return gizmo_; }
+    /// Fits the render into the widget (zoom 1, no pan).
+    void fitView();
+
+    /// Widget position of a world point (for tests and tools); false if not visible.
+    bool widgetPosition(const vec3& world, QPointF& out) const;
+    /// The image currently shown (display-transformed), empty before the first frame.
+    const QImage& shownImage() const { return shown_; }
+    /// Rectangle of the widget covered by the render.
+    QRectF imageRect() const;
+
+Q_SIGNALS:
+    void dragStarted();
+    void dragFinished();
+    void deleteRequested();
+    void gizmoModeChanged(dp::ui::GizmoMode mode);
+
+protected:
+    void paintEvent(QPaintEvent*) override;
+    void mousePressEvent(QMouseEvent*) override;
+    void mouseMoveEvent(QMouseEvent*) override;
+    void mouseReleaseEvent(QMouseEvent*) override;
+    void wheelEvent(QWheelEvent*) override;
+    void keyPressEvent(QKeyEvent*) override;
+
+private:
+    void rebuildImage();
+    QTransform imageToWidget() const;
+    vec2 toImage(QPointF widget) const;
+    Camera camera() const;
+    void beginDrag(QPointF pos);
+    void finishDrag(bool cancel);
+
+    Document* doc_;
+    std::shared_ptr<const RenderFrame> frame_;
+    QImage shown_;
+    QSize renderSize_;
+    ViewMode mode_ = ViewMode::Augmented;
+    float exposure_ = 0;
+    OverlayOptions overlays_;
+    GizmoMode gizmo_ = GizmoMode::Translate;
+    double zoom_ = 1;
+    QPointF pan_;
+    // Interaction state.
+    bool dragging_ = false, panning_ = false;
+    QPointF pressPos_, lastPos_;
+    Transform dragStart_;
+    Project projectAtDrag_;
+    int dragKey_ = -1;
+};
+
+}  // namespace dp::ui
