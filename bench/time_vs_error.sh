@@ -19,7 +19,11 @@ mkdir -p "$OUT"
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 "$BUILD/app/diffphoton" bench "${ORDER[@]/#/$SCENES/}" -o "$OUT/rows.json" --images "$OUT/images" \
   --max-seconds-differential "$DIFF_S" --max-seconds-standard "$STD_S"
+pairs=()
+for i in 1 2 3 4 5; do pairs+=("$SCENES/shadow_hard" "$SCENES/big_proxy"); done
+"$BUILD/app/diffphoton" bench "${pairs[@]}" -o "$OUT/pairs.json" --methods differential --max-seconds-differential 3
 /usr/bin/python3 bench/plot_time_vs_error.py "$OUT/rows.json" --out "$OUT" --image-prefix images/time-vs-error/ \
+  --pairs "$OUT/pairs.json" \
   --note "$(nproc) cores; load average (1, 5, 15 min) $load_before before the run, $(cut -d' ' -f1-3 /proc/loadavg) after; commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)."
 if [ "${1:-}" = "--update-docs" ]; then
   # The summary replaces the marked region of docs/benchmarks.md; plots and last images go

@@ -134,7 +134,7 @@ struct Tracer {
         const vec3 L = photographed_radiance(scene, x, line.w, rng) - shadowed_radiance(x, line.w, rng, out);
         if (L == vec3(0) || !is_finite(L)) return;
         const vec3 flux = vec3(dvec3(L) * line.flux_per_radiance);
-        ++out.stats.hit_virtual;
+        ++out.stats.surround_hit_virtual;
         if (hr) follow(hr, down, -flux, true, rng, out);
         follow(hv, down, flux, false, rng, out, false);
     }
@@ -239,6 +239,7 @@ PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass,
         caustic_at[b + 1] = caustic_at[b] + out[b].caustic.size();
         result.stats.emitted += out[b].stats.emitted;
         result.stats.hit_virtual += out[b].stats.hit_virtual;
+        result.stats.surround_hit_virtual += out[b].stats.surround_hit_virtual;
         result.stats.stored_real += out[b].stats.stored_real;
         result.stats.stored_caustic += out[b].stats.stored_caustic;
         result.stats.rays += out[b].stats.rays;

@@ -12,7 +12,8 @@ namespace dp {
 /// Counters of one photon pass, for progress reports and benchmarks.
 struct PhotonStats {
     uint64_t emitted = 0;        ///< photons shot at the clusters' disks
-    uint64_t hit_virtual = 0;    ///< photons whose first hit is a virtual object
+    uint64_t hit_virtual = 0;    ///< probe photons whose first hit is a virtual object
+    uint64_t surround_hit_virtual = 0;  ///< photons from the real surroundings that meet one
     uint64_t stored_real = 0;    ///< signed photons stored on real surfaces
     uint64_t stored_caustic = 0; ///< caustic photons stored on virtual diffuse surfaces
     uint64_t rays = 0;           ///< Embree queries issued (intersect and occlusion)
