@@ -212,10 +212,10 @@ PhotonEmitter::SurroundLine PhotonEmitter::emit_surround_line(Rng& rng) const {
 }
 
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
-                         const std::atomic<bool>* cancel) {
+                         const std::atomic<bool>* cancel, bool from_surroundings) {
     PhotonPass result;
     if (!scene.has_virtual() || count <= 0 || scene.probe().total_luminance_power() <= 0) return result;
-    const int64_t surround = count / kSurroundPhotonDivisor, total = count + surround;
+    const int64_t surround = from_surroundings ? count / kSurroundPhotonDivisor : 0, total = count + surround;
     Tracer tracer(scene, count, surround);
     const int64_t blocks = (total + kBlock - 1) / kBlock;
     std::vector<Block> out(blocks);

@@ -73,7 +73,8 @@ inline constexpr int64_t kSurroundPhotonDivisor = 4;
 /// the light (method.md, "Photon distribution"), then count / kSurroundPhotonDivisor photons
 /// of light from the real surroundings (their photographed radiance) at the same clusters. The result depends only on (seed, pass), not
 /// on the number of threads. Checks `cancel` between blocks of photons.
+/// `from_surroundings` false leaves the surroundings' photons out (tests of the probe photons).
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
-                         const std::atomic<bool>* cancel = nullptr);
+                         const std::atomic<bool>* cancel = nullptr, bool from_surroundings = true);
 
 }  // namespace dp
