@@ -101,7 +101,7 @@ Image render_reference(const RenderScene& scene, const ReferenceOptions& options
                 dvec3 sum(0);
                 for (int s = 0; s < options.samples_per_pixel; ++s) {
                     Rng rng = Rng::keyed(options.seed ^ 0x7265665f7074ull, pixel, uint64_t(s) * 2);
-                    Ray ray = scene.camera().generate_ray(x + rng.uniform() - 0.5f, y + rng.uniform() - 0.5f);
+                    Ray ray = scene.camera_ray(x + rng.uniform() - 0.5f, y + rng.uniform() - 0.5f);
                     vec3 L = pt.radiance(ray, rng);
                     if (is_finite(L)) sum += dvec3(L);
                 }
