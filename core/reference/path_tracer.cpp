@@ -51,6 +51,9 @@ struct PathTracer {
                 vec3 rho = s.reflectance_at(hit.uv);
                 vec3 n = facing_normal(hit.ns, ray.dir);
                 vec3 ng = facing_normal(hit.ng, ray.dir);
+                // At the depth limit no bounce ray follows to pick up its MIS share of the
+                // probe: next-event estimation then takes all of it.
+                const bool last = depth + 1 >= opt.max_depth;
                 ProbeSample ls = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
                 float cos_l = glm::dot(n, ls.dir);
                 if (ls.pdf > 0 && cos_l > 0 && glm::dot(ng, ls.dir) > 0) {
@@ -58,8 +61,9 @@ struct PathTracer {
                     h.ng = ng;
                     if (!occluded(Ray{scene.offset_origin(h, ls.dir), ls.dir}))
                         L += beta * rho * kInvPi * ls.radiance * (cos_l / ls.pdf) *
-                             power_heuristic(ls.pdf, cos_l * kInvPi);
+                             (last ? 1.0f : power_heuristic(ls.pdf, cos_l * kInvPi));
                 }
+                if (last) break;
                 Hit h = hit;
                 h.ng = ng;
                 h.ns = n;
