@@ -7,8 +7,9 @@ dielectric BSDFs), renders it with Mitsuba's path tracer and with `diffphoton re
 virtual objects included, full global illumination), each as two independent half-spp images,
 and reports the relative RMSE between the two truths next to each one's own noise.
 
-A developer tool: it needs `pip install mitsuba numpy` (the scalar_rgb variant needs no LLVM)
-and is not part of the build or of CI. See docs/crosscheck.md.
+A developer tool: it needs `pip install mitsuba numpy OpenEXR` (the scalar_rgb variant needs no
+LLVM; OpenEXR reads the probes, see read_exr_openexr) and is not part of the build or of CI.
+See docs/crosscheck.md.
 
     python3 bench/crosscheck/mitsuba_crosscheck.py resources/sample/sample.json \\
         --diffphoton build/app/diffphoton --width 160 --spp 1024 --out /tmp/crosscheck
@@ -101,8 +102,29 @@ def luminance(img):
 # Images
 
 
+def read_exr_openexr(path):
+    """RGB of an EXR through the OpenEXR Python bindings, or None when they are missing.
+
+    Mitsuba 3.9.1's bundled OpenEXR decodes DWAB-compressed float EXRs (Blender's studio-light
+    probes) with wrong chroma: same luminance, colour shifted (see docs/crosscheck.md). Debian's
+    OpenEXR 3.1, which diffphoton uses, and OpenEXR 3.5 agree with each other."""
+    try:
+        import OpenEXR
+    except ImportError:
+        return None
+    with OpenEXR.File(path) as f:
+        ch = f.channels()
+        if "RGB" in ch:
+            return np.asarray(ch["RGB"].pixels, dtype=np.float32)
+        if all(c in ch for c in "RGB"):
+            return np.dstack([np.asarray(ch[c].pixels, dtype=np.float32) for c in "RGB"])
+    return None
+
+
 def read_rgb(path):
-    a = np.array(mi.Bitmap(path), dtype=np.float32)
+    a = read_exr_openexr(path) if path.lower().endswith(".exr") else None
+    if a is None:
+        a = np.array(mi.Bitmap(path), dtype=np.float32)
     if a.ndim == 2:
         a = a[..., None]
     if a.shape[2] == 1:
