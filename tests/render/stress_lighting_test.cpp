@@ -11,8 +11,8 @@ using namespace dp;
 using namespace dp::test;
 
 TEST(ExtremeLight, ASunAMillionTimesTheSkyGivesAFiniteImageThatMatchesThePathTracer) {
-    // One-pixel sun of radiance 1e6 over a uniform sky of radiance 1: the sun carries ~97% of
-    // the flux, the sky the soft part of the shadow. Sampling by flux must find both.
+    // One-pixel sun of radiance 1e6 over a uniform sky of radiance 1: the sun gives ~99% of the
+    // ground's irradiance, the sky the soft part of the shadow. Sampling by flux must find both.
     Image probe = make_sun_sky_probe(256, 128, glm::normalize(vec3(1, 1.2f, 0.5f)), vec3(1e6f), 0.1f,
                                      vec3(1.0f), vec3(1.0f));
     Project p = look_at_project(vec3(0, 2.0f, 3.2f), vec3(-0.3f, 0.3f, 0), 40);
@@ -33,8 +33,8 @@ TEST(ExtremeLight, ASunAMillionTimesTheSkyGivesAFiniteImageThatMatchesThePathTra
     // Check 3 (energy bound): in the umbra only the sky's ~1% remains, and the photon noise of
     // the removed sunlight is larger than that per pixel, so the bound is on the mean: the
     // shadow removes no more light than there is (mean >= 0) and adds none (mean <= truth).
-    // The render sits below the truth there by the light the real ground bounces onto the
-    // sphere and on into the shadow: the method leaves out paths whose first hit is real.
+    // The render may sit below the truth there: light that reaches the sphere after a real
+    // bounce is not traced (photons whose first hit is real are dropped, method.md).
     double sum_render = 0, sum_truth = 0, sum_photo = 0;
     size_t umbra = 0;
     for (size_t i = 0; i < t.render.size(); ++i) {
