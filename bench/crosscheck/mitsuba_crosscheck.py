@@ -92,6 +92,7 @@ def latlong_direction(u, v):
 # (verified by --check-orientation): its u is diffphoton's u - 1/2, a half turn about +Y. So the
 # emitter's to_world is the probe rotation followed by... preceded by a 180 degree turn about Y.
 MITSUBA_ENVMAP_FROM_PROBE = rot_y(180.0)
+# Rows differ too: Mitsuba's v is a bitmap row index over (H - 1), ours over H (see emitter_dict).
 
 
 def luminance(img):
@@ -211,10 +212,20 @@ def emitter_dict(probe, base_dir, upsample):
     # Mitsuba rejects negative radiance samples; diffphoton never samples such pixels either
     # (their largest magnitude in the Blender probes is ~1e-3).
     img = np.maximum(read_rgb(resolve(base_dir, probe["path"])), 0.0)
-    # diffphoton's probe is piecewise constant per pixel; Mitsuba interpolates bilinearly.
-    # Repeating each pixel keeps the interpolation to a thin band at pixel edges.
-    if upsample > 1:
-        img = np.repeat(np.repeat(img, upsample, axis=0), upsample, axis=1)
+    # diffphoton's probe is piecewise constant per pixel, row j covering theta in
+    # [j, j + 1) pi / H. Mitsuba interpolates bilinearly and puts row k of its bitmap at
+    # theta = k pi / (H' - 1), columns at pixel centres. With H' = m H + 1 rows, row m j lies
+    # on our boundary between rows j - 1 and j (it gets their mean) and the m - 1 rows between
+    # boundaries inside pixel j (its value): the interpolation ramps are symmetric about our
+    # edges, so each pixel keeps its direction and flux. (Repeating rows m times instead would
+    # lift a one-pixel sun at 43 degrees by 0.09 degrees: 0.15% more light on the ground.)
+    h, w = img.shape[:2]
+    m = max(1, upsample)
+    k = np.arange(m * h + 1)
+    inside = img[np.minimum(k // m, h - 1)]
+    below = img[np.maximum(k // m - 1, 0)]
+    rows = np.where((k % m == 0)[:, None, None], 0.5 * (inside + below), inside)
+    img = np.repeat(rows, m, axis=1).astype(np.float32)
     to_world = np.eye(4)
     to_world[:3, :3] = euler_xyz_deg(probe.get("rotation_deg", [0, 0, 0])) @ MITSUBA_ENVMAP_FROM_PROBE
     return {
