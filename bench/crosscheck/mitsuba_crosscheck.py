@@ -220,7 +220,9 @@ def emitter_dict(probe, base_dir, upsample):
     # edges, so each pixel keeps its direction and flux. (Repeating rows m times instead would
     # lift a one-pixel sun at 43 degrees by 0.09 degrees: 0.15% more light on the ground.)
     h, w = img.shape[:2]
-    m = max(1, upsample)
+    # The ramps are 1/m of a pixel wide: visible where the camera sees a sharp probe edge
+    # (a horizon) directly, so small probes get a larger m (about 2048 rows in all).
+    m = max(1, upsample) if upsample > 0 else max(1, 2048 // h)
     k = np.arange(m * h + 1)
     inside = img[np.minimum(k // m, h - 1)]
     below = img[np.maximum(k // m - 1, 0)]
@@ -508,7 +510,8 @@ def main():
     ap.add_argument("--out", default="crosscheck-out", help="folder for images and crosscheck.json")
     ap.add_argument("--spp", type=int, default=1024, help="samples per pixel of each full truth")
     ap.add_argument("--width", type=int, default=0, help="render at this width (height scaled); 0: the photo's")
-    ap.add_argument("--upsample", type=int, default=4, help="repeat each probe pixel NxN for Mitsuba")
+    ap.add_argument("--upsample", type=int, default=0,
+                    help="probe rows and columns per diffphoton pixel for Mitsuba (0: about 2048 rows)")
     ap.add_argument("--variant", default="scalar_rgb", help="Mitsuba variant")
     ap.add_argument("--check-orientation", action="store_true", help="verify the probe/camera conventions")
     args = ap.parse_args()
