@@ -50,6 +50,9 @@ struct PathTracer {
                 vec3 rho = s.reflectance_at(hit.uv);
                 vec3 n = facing_normal(hit.ns, ray.dir);
                 vec3 ng = facing_normal(hit.ng, ray.dir);
+                // At the depth limit no bounce ray follows to pick up its MIS share of the
+                // probe: next-event estimation then takes all of it.
+                const bool last = depth + 1 >= opt.max_depth;
                 ProbeSample ls = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
                 float cos_l = glm::dot(n, ls.dir);
                 if (ls.pdf > 0 && cos_l > 0 && glm::dot(ng, ls.dir) > 0) {
@@ -57,8 +60,9 @@ struct PathTracer {
                     h.ng = ng;
                     if (!occluded(Ray{scene.offset_origin(h, ls.dir), ls.dir}))
                         L += beta * rho * kInvPi * ls.radiance * (cos_l / ls.pdf) *
-                             power_heuristic(ls.pdf, cos_l * kInvPi);
+                             (last ? 1.0f : power_heuristic(ls.pdf, cos_l * kInvPi));
                 }
+                if (last) break;
                 Hit h = hit;
                 h.ng = ng;
                 h.ns = n;
@@ -85,7 +89,7 @@ Ray reference_camera_ray(const RenderScene& scene, uint64_t seed, int x, int y, 
     Rng shift_rng = Rng::keyed(seed ^ 0x7265665f7074ull, pixel, ~uint64_t(0));
     const vec2 shift(shift_rng.uniform(), shift_rng.uniform());
     const vec2 j = r2_point(sample, shift) - vec2(0.5f);
-    return scene.camera().generate_ray(float(x) + j.x, float(y) + j.y);
+    return scene.camera_ray(float(x) + j.x, float(y) + j.y);
 }
 
 vec3 reference_radiance(const RenderScene& scene, const ReferenceOptions& options, const Ray& ray,

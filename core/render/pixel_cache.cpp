@@ -16,7 +16,7 @@ PixelCache build_pixel_cache(const RenderScene& s) {
     tbb::parallel_for(0, H, [&](int y) {
         for (int x = 0; x < W; ++x) {
             size_t i = size_t(y) * W + x;
-            Hit hit = s.intersect(s.camera().generate_ray(float(x), float(y)));
+            Hit hit = s.intersect(s.camera_ray(float(x), float(y)));
             if (!hit) continue;
             if (hit.surface->is_virtual) {
                 sees_virtual[i] = 1;

@@ -28,9 +28,7 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
         r1_ = rmax * std::clamp(std::sqrt(100.0f / float(photons_per_pass_)), 0.004f, 0.2f);
     }
     const size_t n = size_t(scene_->photo().width()) * scene_->photo().height();
-    sum_delta_.assign(n, dvec3(0));
-    sum_dL_.assign(n, dvec3(0));
-    sum_alpha_.assign(n, 0.0);
+    sums_ = PassAccumulator(n);
     stats_.pixels_total = n;
     cache_ = build_pixel_cache(*scene_);
     const size_t near = size_t(std::count(cache_.near_virtual.begin(), cache_.near_virtual.end(), uint8_t(1)));
@@ -106,17 +104,7 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     size_t gathered = 0;
     shade_pass(pass, maps, samples, cancel, gathered);
     if (cancel && cancel->load()) return false;
-    size_t bad = 0;
-    for (size_t i = 0; i < samples.size(); ++i) {
-        const SampleResult& r = samples[i];
-        if (!is_finite(r.delta) || !is_finite(r.dL) || !std::isfinite(r.alpha)) {
-            ++bad;  // never let a NaN/Inf sample reach the image
-            continue;
-        }
-        sum_delta_[i] += dvec3(r.delta);
-        sum_dL_[i] += dvec3(r.dL);
-        sum_alpha_[i] += r.alpha;
-    }
+    const size_t bad = sums_.add(samples);
     double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats_.passes = pass;
     stats_.seconds += dt;
@@ -150,10 +138,9 @@ void ProgressiveRenderer::render_single_pass(int pass, Image& delta, Image& dL, 
 Image ProgressiveRenderer::image() const {
     Image out = scene_->photo();
     if (stats_.passes == 0) return out;
-    const double inv = 1.0 / stats_.passes;
     for (size_t i = 0; i < out.size(); ++i) {
-        if (sum_delta_[i] == dvec3(0)) continue;  // untouched pixels stay bit-exact
-        vec3 v = out[i] + vec3(sum_delta_[i] * inv);
+        if (sums_.untouched(i)) continue;  // untouched pixels stay bit-exact
+        vec3 v = out[i] + vec3(sums_.mean_delta(i));
         out[i] = is_finite(v) ? v : out[i];
     }
     return out;
@@ -162,14 +149,14 @@ Image ProgressiveRenderer::image() const {
 Image ProgressiveRenderer::delta_layer() const {
     Image out(scene_->photo().width(), scene_->photo().height());
     if (stats_.passes == 0) return out;
-    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(sum_dL_[i] / double(stats_.passes));
+    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(sums_.mean_dL(i));
     return out;
 }
 
 Image ProgressiveRenderer::alpha_layer() const {
     Image out(scene_->photo().width(), scene_->photo().height());
     if (stats_.passes == 0) return out;
-    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(float(sum_alpha_[i] / stats_.passes));
+    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(float(sums_.mean_alpha(i)));
     return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include "image/image.h"
 #include "render/pass_renderer.h"
+#include "render/pass_accumulator.h"
 #include "render/photon_tracer.h"
 #include "render/pixel_cache.h"
 #include "render/render_scene.h"
@@ -65,9 +66,7 @@ private:
     float r1_ = 0, alpha_ = 2.0f / 3.0f;
     PixelCache cache_;  ///< what the centre rays see, once per camera and geometry
     int diffuse_samples_ = 2;
-    // Accumulators (double: shadow and caustic photons cancel).
-    std::vector<dvec3> sum_delta_, sum_dL_;
-    std::vector<double> sum_alpha_;
+    PassAccumulator sums_;
     std::vector<SampleResult> samples_;  ///< the current pass's samples, reused
     RenderStats stats_;
 };

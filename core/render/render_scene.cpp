@@ -78,12 +78,14 @@ vec3 Surface::reflectance_at(const vec2& uv) const {
 RenderScene::RenderScene(const Project& project, SceneAssets assets)
     : project_(project), assets_(std::move(assets)) {
     if (assets_.photo.empty()) throw std::invalid_argument("RenderScene: empty photograph");
+    sanitize_images();
     camera_ = project_.camera.build(assets_.photo.width(), assets_.photo.height());
     probe_ = Probe(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg), project_.probe.intensity);
     device_ = rtcNewDevice("");
     if (!device_) throw std::runtime_error("Embree: cannot create device");
-    build_virtual();  // sets scale_, used for epsilons by everything after
+    build_virtual();
     build_real();
+    compute_scale();  // epsilons for everything after
     build_top_level();
     compute_clusters();
     estimate_albedos();
@@ -125,10 +127,6 @@ void RenderScene::build_virtual() {
     const auto& objs = project_.objects;
     virtual_world_meshes_.resize(objs.size());
     virtual_surfaces_.clear();
-    // Scene scale: virtual objects' extent and their distance to the camera.
-    vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
-    auto grow = [&](vec3 a, vec3 b) { lo = glm::min(lo, a); hi = glm::max(hi, b); };
-    grow(camera_.position(), camera_.position());
     for (size_t i = 0; i < objs.size(); ++i) {
         const VirtualObject& o = objs[i];
         Surface s;
@@ -142,18 +140,8 @@ void RenderScene::build_virtual() {
         place_shape(o.shape, o.transform, loaded, s, virtual_world_meshes_[i]);
         virtual_surfaces_.push_back(s);
     }
-    for (size_t i = 0; i < objs.size(); ++i) {
-        Surface& s = virtual_surfaces_[i];
-        if (s.analytic_sphere) {
-            grow(s.sphere_center - s.sphere_radius, s.sphere_center + s.sphere_radius);
-        } else {
-            vec3 a, b;
-            if (s.mesh->bounds(a, b)) grow(a, b);
-        }
+    for (const Surface& s : virtual_surfaces_)
         if (s.material.kind != Material::Kind::Diffuse) has_specular_ = true;
-    }
-    scale_ = std::max(glm::length(hi - lo), 1e-12f);
-    epsilon_ = 1e-5f * scale_;
     // Hidden objects keep their slot (geomID == index) but get no geometry.
     for (size_t i = 0; i < objs.size(); ++i) {
         const Surface& s = virtual_surfaces_[i];
@@ -170,6 +158,35 @@ void RenderScene::build_virtual() {
         }
     }
     rtcCommitScene(virtual_);
+}
+
+void RenderScene::compute_scale() {
+    // The virtual objects' extent and their distance to the camera. Without a virtual object
+    // (a synthetic photograph) the real proxies' extent stands in: offsets must never fall to
+    // the float rounding of the points alone.
+    vec3 lo = camera_.position(), hi = lo;
+    auto grow = [&](vec3 a, vec3 b) {
+        lo = glm::min(lo, a);
+        hi = glm::max(hi, b);
+    };
+    bool any = false;
+    for (const Surface& s : virtual_surfaces_) {
+        vec3 a, b;
+        if (s.analytic_sphere) {
+            grow(s.sphere_center - s.sphere_radius, s.sphere_center + s.sphere_radius);
+            any = true;
+        } else if (s.mesh && s.mesh->bounds(a, b)) {
+            grow(a, b);
+            any = true;
+        }
+    }
+    if (!any) {
+        RTCBounds b;
+        rtcGetSceneBounds(real_, &b);
+        if (b.lower_x <= b.upper_x) grow(vec3(b.lower_x, b.lower_y, b.lower_z), vec3(b.upper_x, b.upper_y, b.upper_z));
+    }
+    scale_ = std::max(glm::length(hi - lo), 1e-12f);
+    epsilon_ = 1e-5f * scale_;
 }
 
 void RenderScene::build_real() {
@@ -190,25 +207,6 @@ void RenderScene::build_real() {
     }
     for (const Surface& s : real_surfaces_) attach(real_, s, s.mesh);
     rtcCommitScene(real_);
-    // Without virtual objects the camera alone gave no length (calibration and synthetic photos
-    // of the real scene): take the real geometry's extent, or ray offsets vanish and surfaces
-    // shadow themselves.
-    if (scale_ <= 1e-12f) {
-        vec3 lo = camera_.position(), hi = lo;
-        for (const Surface& s : real_surfaces_) {
-            vec3 a, b;
-            if (s.analytic_sphere) {
-                a = s.sphere_center - s.sphere_radius;
-                b = s.sphere_center + s.sphere_radius;
-            } else if (!s.mesh || !s.mesh->bounds(a, b)) {
-                continue;
-            }
-            lo = glm::min(lo, a);
-            hi = glm::max(hi, b);
-        }
-        scale_ = std::max(glm::length(hi - lo), 1e-12f);
-        epsilon_ = 1e-5f * scale_;
-    }
 }
 
 void RenderScene::update_materials(const Project& project) {
@@ -302,6 +300,13 @@ void RenderScene::build_top_level() {
         rtcReleaseGeometry(inst);
     }
     rtcCommitScene(all_);
+}
+
+Ray RenderScene::camera_ray(float px, float py) const {
+    Ray r = camera_.generate_ray(px, py);
+    float mag = std::max({std::abs(r.org.x), std::abs(r.org.y), std::abs(r.org.z)});
+    r.org += (epsilon_ + mag * 4e-7f) * r.dir;
+    return r;
 }
 
 vec3 RenderScene::offset_origin(const Hit& hit, const vec3& dir) const {

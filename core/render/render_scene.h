@@ -22,7 +22,7 @@ struct SceneAssets {
     std::vector<TriangleMesh> object_meshes;  ///< one per project.objects entry (empty for spheres)
     std::vector<Image> real_textures;         ///< one per real entry (empty unless Texture)
     std::vector<Image> object_textures;       ///< one per object (empty unless Texture)
-    size_t non_finite_replaced = 0;           ///< NaN/Inf pixels replaced while loading images
+    size_t non_finite_replaced = 0;           ///< NaN/Inf channels replaced (on load, or by RenderScene)
     size_t degenerate_triangles_dropped = 0;
     std::vector<std::string> warnings;
 };
@@ -82,8 +82,9 @@ public:
     bool has_virtual() const { return !clusters_.empty(); }
     bool has_specular() const { return has_specular_; }
 
-    /// Characteristic length (metres) from the virtual objects and the camera; ray offsets
-    /// scale with it so millimetre and kilometre scenes behave alike.
+    /// Characteristic length (metres) from the virtual objects and the camera (the real proxies
+    /// and the camera when there is no virtual object); ray offsets scale with it so millimetre
+    /// and kilometre scenes behave alike.
     float scale() const { return scale_; }
     float ray_epsilon() const { return epsilon_; }
 
@@ -93,6 +94,11 @@ public:
     Hit intersect(const Ray& ray, float tmax = INFINITY) const;
     bool occluded_real(const Ray& ray, float tmax = INFINITY) const;
     bool occluded(const Ray& ray, float tmax = INFINITY) const;
+
+    /// The camera's ray through continuous pixel (px, py), starting a scene-scaled epsilon in
+    /// front of the eye: a near clip, so a surface touching the lens (the eye on an object, to
+    /// float precision) is not seen from the wrong side.
+    Ray camera_ray(float px, float py) const;
 
     /// Origin for a new ray leaving `hit` towards `dir`, offset off the surface.
     vec3 offset_origin(const Hit& hit, const vec3& dir) const;
@@ -104,8 +110,11 @@ public:
     const std::vector<Surface>& virtual_surfaces() const { return virtual_surfaces_; }
 
 private:
+    /// Replaces NaN/Inf in the photo and textures by 0, counting them in assets_.
+    void sanitize_images();
     void build_real();
     void build_virtual();
+    void compute_scale();
     void compute_clusters();
     void estimate_albedos();
     void build_top_level();

@@ -74,6 +74,27 @@ SceneAssets load_assets(const Project& project) {
     return a;
 }
 
+void RenderScene::sanitize_images() {
+    // Images made in memory never went through load_image: the same rule applies to them.
+    auto clean = [&](Image& img, const std::string& what) {
+        size_t replaced = 0;
+        for (size_t i = 0; i < img.size(); ++i)
+            for (int c = 0; c < 3; ++c)
+                if (!std::isfinite(img[i][c])) {
+                    img[i][c] = 0.0f;
+                    ++replaced;
+                }
+        if (replaced == 0) return;
+        assets_.non_finite_replaced += replaced;
+        assets_.warnings.push_back(what + ": " + std::to_string(replaced) + " NaN/Inf values replaced by 0");
+    };
+    clean(assets_.photo, "photo");
+    for (size_t i = 0; i < assets_.real_textures.size(); ++i)
+        clean(assets_.real_textures[i], indexed("real", i, "albedo.texture"));
+    for (size_t i = 0; i < assets_.object_textures.size(); ++i)
+        clean(assets_.object_textures[i], indexed("objects", i, "albedo.texture"));
+}
+
 void enclose(vec3 c1, float r1, vec3 c2, float r2, vec3& c, float& r) {
     float d = glm::length(c2 - c1);
     if (d + r2 <= r1) { c = c1; r = r1; return; }
@@ -150,7 +171,7 @@ void RenderScene::estimate_albedos() {
     const int kProbeSamples = 64;
     for (int y = stride / 2; y < H; y += stride)
         for (int x = stride / 2; x < W; x += stride) {
-            Hit hit = intersect_real(camera_.generate_ray(float(x), float(y)));
+            Hit hit = intersect_real(camera_ray(float(x), float(y)));
             if (!hit || project_.real[hit.surface->index].albedo.kind != Albedo::Kind::Estimate) continue;
             vec3 n = glm::dot(hit.ng, camera_.position() - hit.p) >= 0 ? hit.ng : -hit.ng;
             dvec3 E = real_irradiance(*this, hit.p, n, rng, kProbeSamples).E;

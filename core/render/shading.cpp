@@ -108,7 +108,7 @@ vec3 Shader::specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int de
 SampleResult Shader::shade_camera(int x, int y, float px, float py, Rng& rng) const {
     SampleResult r;
     const vec3 photo = scene_.photo().at(x, y);
-    Ray ray = scene_.camera().generate_ray(px, py);
+    Ray ray = scene_.camera_ray(px, py);
     Hit hit = scene_.intersect(ray);
     if (!hit) return r;  // nothing modelled here: the photo stands
     if (!hit.surface->is_virtual) {
