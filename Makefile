@@ -28,7 +28,7 @@ test: build
 # statistical render suite runs in `make test` only).
 UNIT_TESTS = $(patsubst tests/unit/%/,test_%,$(sort $(dir $(wildcard tests/unit/*/*.cpp))))
 test-asan: deps
-	@cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DDP_SANITIZE=ON -DDP_BUILD_BENCH=OFF > /dev/null
+	@cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DDP_SANITIZE=ON -DDP_BUILD_BENCH=OFF -DDP_BUILD_UI=OFF > /dev/null
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(UNIT_TESTS) diffphoton
 	@cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) -L 'unit|cli'
 

@@ -4,6 +4,20 @@
 
 namespace dp {
 
+ProbeLightSample sample_probe_light(const RenderScene& scene, const Hit& hit, const vec3& dir, Rng& rng) {
+    ProbeLightSample out;
+    const vec3 n = facing_normal(hit.ng, dir);
+    const ProbeSample s = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
+    const float cos_t = glm::dot(n, s.dir);
+    if (cos_t <= 0 || s.pdf <= 0) return out;
+    Hit h = hit;
+    h.ng = n;
+    out.ray = Ray{scene.offset_origin(h, s.dir), s.dir};
+    out.reflected = hit.surface->reflectance_at(hit.uv) * kInvPi * s.radiance * (cos_t / s.pdf);
+    out.valid = true;
+    return out;
+}
+
 vec3 photographed_radiance(const RenderScene& scene, const Hit& hit, const vec3& dir, Rng& rng) {
     const Camera& cam = scene.camera();
     const vec3 to_cam = cam.position() - hit.p;
@@ -15,14 +29,9 @@ vec3 photographed_radiance(const RenderScene& scene, const Hit& hit, const vec3&
         if (!scene.occluded_real(Ray{scene.offset_origin(hit, d), d}, dist * (1 - 1e-4f)))
             return scene.photo().bilinear(px.x, px.y);
     }
-    const vec3 n = facing_normal(hit.ng, dir);
-    const ProbeSample s = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
-    const float cos_t = glm::dot(n, s.dir);
-    if (cos_t <= 0 || s.pdf <= 0) return vec3(0);
-    Hit h = hit;
-    h.ng = n;
-    if (scene.occluded_real(Ray{scene.offset_origin(h, s.dir), s.dir})) return vec3(0);
-    return hit.surface->reflectance_at(hit.uv) * kInvPi * s.radiance * (cos_t / s.pdf);
+    const ProbeLightSample ls = sample_probe_light(scene, hit, dir, rng);
+    if (!ls.valid || scene.occluded_real(ls.ray)) return vec3(0);
+    return ls.reflected;
 }
 
 }  // namespace dp

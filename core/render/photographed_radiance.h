@@ -4,6 +4,15 @@
 
 namespace dp {
 
+/// One probe sample seen from a real point, on its side facing -dir: the ray towards the probe
+/// and the radiance the point reflects from it, rho/pi * L cos / pdf, if nothing blocks it.
+struct ProbeLightSample {
+    Ray ray;
+    vec3 reflected{0};
+    bool valid = false;  ///< false: below the surface, or a direction of pdf 0
+};
+ProbeLightSample sample_probe_light(const RenderScene& scene, const Hit& hit, const vec3& dir, Rng& rng);
+
 /// Radiance a real surface point sends towards -dir in the unaltered scene: the photograph's
 /// pixel where the camera sees the point (same side, in frame, unoccluded by real geometry;
 /// Lambertian, so the direction does not matter), else rho E / pi with E from one probe sample

@@ -101,16 +101,11 @@ struct Tracer {
     /// blocks it (one probe sample): the photo shows the point unshadowed, and a floor in the
     /// object's own shadow must not light the object's underside as if it were sunlit.
     vec3 shadowed_radiance(const Hit& x, const vec3& dir, Rng& rng, Block& out) const {
-        const vec3 n = facing_normal(x.ng, dir);
-        const ProbeSample s = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
-        const float cos_t = glm::dot(n, s.dir);
-        if (cos_t <= 0 || s.pdf <= 0) return vec3(0);
-        Hit h = x;
-        h.ng = n;
-        const Ray to_probe{scene.offset_origin(h, s.dir), s.dir};
+        const ProbeLightSample ls = sample_probe_light(scene, x, dir, rng);
+        if (!ls.valid) return vec3(0);
         out.stats.rays += 2;
-        if (!scene.intersect_virtual(to_probe) || scene.occluded_real(to_probe)) return vec3(0);
-        return x.surface->reflectance_at(x.uv) * kInvPi * s.radiance * (cos_t / s.pdf);
+        if (!scene.intersect_virtual(ls.ray) || scene.occluded_real(ls.ray)) return vec3(0);
+        return ls.reflected;
     }
 
     /// Light from a real surface at the objects: reflected on (positive photons) and blocked
