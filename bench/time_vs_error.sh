@@ -11,6 +11,8 @@ DIFF_S=${DIFF_S:-30}
 STD_S=${STD_S:-120}
 ORDER=(shadow_hard shadow_soft caustic mirrors bleeding five_objects big_proxy noop)
 
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+git diff --quiet HEAD 2>/dev/null || commit="$commit with uncommitted changes"
 bash scripts/install-deps.sh --bench
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
 cmake --build "$BUILD" --target diffphoton
@@ -24,7 +26,7 @@ for i in 1 2 3 4 5; do pairs+=("$SCENES/shadow_hard" "$SCENES/big_proxy"); done
 "$BUILD/app/diffphoton" bench "${pairs[@]}" -o "$OUT/pairs.json" --methods differential --max-seconds-differential 3
 /usr/bin/python3 bench/plot_time_vs_error.py "$OUT/rows.json" --out "$OUT" --image-prefix images/time-vs-error/ \
   --pairs "$OUT/pairs.json" \
-  --note "$(nproc) cores; load average (1, 5, 15 min) $load_before before the run, $(cut -d' ' -f1-3 /proc/loadavg) after; commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)."
+  --note "$(nproc) cores; load average (1, 5, 15 min) $load_before before the run, $(cut -d' ' -f1-3 /proc/loadavg) after; built from commit $commit."
 if [ "${1:-}" = "--update-docs" ]; then
   # The summary replaces the marked region of docs/benchmarks.md; plots and last images go
   # beside it, the rows to docs/time-vs-error-rows.json.
