@@ -1,6 +1,8 @@
 // Camera matching through the widgets: corners and lines clicked in the viewport on a photo
 // drawn through a known camera, the chessboard found in OpenCV's sample photo, undo, bad input.
 #include <QAction>
+#include <QApplication>
+#include <QMouseEvent>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
@@ -14,6 +16,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "calibration/chessboard.h"
 #include "calibration_panel.h"
 #include "camera_panel.h"
 #include "proxy_panel.h"
@@ -74,7 +77,8 @@ private:
     /// Opens a project whose photo is `photo`.
     void open(const QString& photo);
     /// Widget point over photo pixel `px` (as a mouse event carries it: whole pixels).
-    QPoint widgetAt(vec2 px) const;
+    QPoint widgetAt(vec2 px) const { return widgetAtF(px).toPoint(); }
+    QPointF widgetAtF(vec2 px) const;
     template <class T>
     T* child(const char* name) const {
         T* c = w_->findChild<T*>(name);
@@ -130,11 +134,11 @@ void CalibrationTest::open(const QString& photo) {
     QVERIFY(w_->openProject(path));
 }
 
-QPoint CalibrationTest::widgetAt(vec2 px) const {
+QPointF CalibrationTest::widgetAtF(vec2 px) const {
     const Viewport* v = w_->viewport();
     const QSize rs = v->renderSize();
     const QPointF r((px.x + 0.5) * rs.width() / kW - 0.5, (px.y + 0.5) * rs.height() / kH - 0.5);
-    return v->widgetFromRender(r).toPoint();
+    return v->widgetFromRender(r);
 }
 
 void CalibrationTest::compare(const CameraSpec& spec, double& angle, double& position,
@@ -189,12 +193,19 @@ void CalibrationTest::clickedRectangleCornersMatchTheCameraAndUndoRestoresIt() {
 
 void CalibrationTest::drawnVanishingLinesMatchTheCamera() {
     w_->calibrationPanel()->setMethod(CalibrationPanel::Method::Vanishing);
+    // Vanishing points magnify click rounding: these drags carry sub-pixel positions (mouse
+    // events as a tablet sends them) so that the result can be held to the library's tolerance.
+    Viewport* v = w_->viewport();
+    auto send = [&](QEvent::Type type, QPointF at, Qt::MouseButtons buttons) {
+        QMouseEvent e(type, at, v->mapToGlobal(at), Qt::LeftButton, buttons, Qt::NoModifier);
+        QApplication::sendEvent(v, &e);
+    };
     auto drag = [&](const vec3& a, const vec3& b) {
-        const QPoint pa = widgetAt(photo_px(a)), pb = widgetAt(photo_px(b));
-        QTest::mousePress(w_->viewport(), Qt::LeftButton, {}, pa);
-        QTest::mouseMove(w_->viewport(), (pa + pb) / 2);
-        QTest::mouseMove(w_->viewport(), pb);
-        QTest::mouseRelease(w_->viewport(), Qt::LeftButton, {}, pb);
+        const QPointF pa = widgetAtF(photo_px(a)), pb = widgetAtF(photo_px(b));
+        send(QEvent::MouseButtonPress, pa, Qt::LeftButton);
+        send(QEvent::MouseMove, (pa + pb) / 2, Qt::LeftButton);
+        send(QEvent::MouseMove, pb, Qt::LeftButton);
+        send(QEvent::MouseButtonRelease, pb, Qt::NoButton);
     };
     // Long lines along the ground's X and Z directions, as floor tiles would give.
     child<QPushButton>("vanishingX")->click();
@@ -204,7 +215,8 @@ void CalibrationTest::drawnVanishingLinesMatchTheCamera() {
     drag(vec3(0, 0, -0.5f), vec3(0, 0, 0.6f));
     drag(vec3(0.7f, 0, -0.5f), vec3(0.7f, 0, 0.5f));
     child<QPushButton>("vanishingOrigin")->click();
-    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, widgetAt(photo_px(vec3(0))));
+    send(QEvent::MouseButtonPress, widgetAtF(photo_px(vec3(0))), Qt::LeftButton);
+    send(QEvent::MouseButtonRelease, widgetAtF(photo_px(vec3(0))), Qt::NoButton);
     const Camera want = truth_camera().build(kW, kH);
     child<QDoubleSpinBox>("vanishingHeight")->setValue(want.position().y);
     child<QDoubleSpinBox>("vanishingFocal")->setValue(kFocal);
@@ -214,9 +226,9 @@ void CalibrationTest::drawnVanishingLinesMatchTheCamera() {
     compare(w_->document()->project().camera, angle, position, pixels);
     qInfo("vanishing lines: rotation %.3f deg, position %.4f of the distance, reprojection %.3f px",
           angle, position, pixels);
-    QVERIFY(angle < 1.0);
-    QVERIFY(position < 0.03);
-    QVERIFY(pixels < 4);
+    QVERIFY(angle < 0.5);
+    QVERIFY(position < 0.01);
+    QVERIFY(pixels < 1.5);
 }
 
 void CalibrationTest::threeCornersAreReportedAndChangeNothing() {
@@ -258,10 +270,18 @@ void CalibrationTest::chessboardIsFoundInTheOpenCvSamplePhoto() {
     vec2 px;
     QVERIFY(got.build(640, 480).project(vec3(0), px));
     QVERIFY(px.x > 0 && px.x < 640 && px.y > 0 && px.y < 480);
+    // The camera and the error figure are the library's for the same photo and focal length
+    // (the lens' distortion, not modelled with a given focal length, leaves a few pixels).
+    const std::string path = "/usr/share/doc/opencv-doc/examples/data/left01.jpg";
+    const ChessboardSpec spec{9, 6, 0.025};
+    const CalibrationResult r = chessboard_pose(detect_chessboard(path, spec), spec,
+                                                Intrinsics::centred(640, 480, 536.0));
+    QVERIFY(got == r.camera_spec());
     const QString err = w_->cameraPanel()->errorLabel()->text();
-    bool ok = false;
-    const double rms = err.section(' ', 2, 2).toDouble(&ok);
-    QVERIFY2(ok && rms < 1.0, qPrintable(err));
+    QVERIFY2(err.contains(QString::number(r.rms_px, 'f', 2)), qPrintable(err));
+    qInfo("chessboard: %s", qPrintable(err));
+    w_->action("undo")->trigger();
+    QVERIFY(w_->document()->project().camera == before);
 }
 
 void CalibrationTest::clickedBoxFootprintBecomesARealProxy() {
