@@ -1,6 +1,9 @@
 // Camera matching through the widgets: corners and lines clicked in the viewport on a photo
 // drawn through a known camera, the chessboard found in OpenCV's sample photo, undo, bad input.
 #include <QAction>
+#include <QFileInfo>
+#include <QListWidget>
+#include <QSpinBox>
 #include <QApplication>
 #include <QMouseEvent>
 #include <QCheckBox>
@@ -19,7 +22,9 @@
 #include "calibration/chessboard.h"
 #include "calibration_panel.h"
 #include "camera_panel.h"
+#include "image/image_io.h"
 #include "proxy_panel.h"
+#include "reconstruction/albedo.h"
 #include "reconstruction/probe_align.h"
 #include "render/render_scene.h"
 #include "document.h"
@@ -72,6 +77,7 @@ private Q_SLOTS:
     void chessboardIsFoundInTheOpenCvSamplePhoto();
     void clickedBoxFootprintBecomesARealProxy();
     void sunCueClickedOnThePhotoTurnsTheProbe();
+    void albedoEstimateWritesTheLibrarysTextureNextToTheProject();
 
 private:
     /// Opens a project whose photo is `photo`.
@@ -339,6 +345,34 @@ void CalibrationTest::sunCueClickedOnThePhotoTurnsTheProbe() {
     QVERIFY(glm::length(got - want.rotation_deg) < 1.0f);
     w_->action("undo")->trigger();
     QVERIFY(doc->project().probe.rotation_deg == before);
+}
+
+void CalibrationTest::albedoEstimateWritesTheLibrarysTextureNextToTheProject() {
+    QVERIFY(w_->openProject(test::write_small_sample(dir_->path())));
+    const Project before = w_->document()->project();
+    QCOMPARE(QString::fromStdString(before.real[0].name), QString("ground"));
+    child<QSpinBox>("albedoResolution")->setValue(16);  // small: the test stays fast
+    child<QSpinBox>("albedoSamples")->setValue(32);
+    w_->proxyPanel()->list()->setCurrentRow(0);
+    child<QPushButton>("albedoEstimate")->click();
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    const RealProxy& ground = w_->document()->project().real[0];
+    QVERIFY(ground.albedo.kind == Albedo::Kind::Texture);
+    QCOMPARE(QString::fromStdString(ground.albedo.texture_path), QString("sample_ground_albedo.exr"));
+    const QString file = dir_->filePath("sample_ground_albedo.exr");
+    QVERIFY(QFileInfo::exists(file));
+    // The same texture as the library computes for the same project and settings.
+    AlbedoTextureOptions o;
+    o.max_resolution = 16;
+    o.probe_samples = 32;
+    RenderScene scene(before, load_assets(before));
+    const AlbedoTexture want = estimate_albedo_texture(scene, 0, o);
+    const Image got = load_exr_layer(file.toStdString(), "");
+    QCOMPARE(got.width(), want.albedo.width());
+    QCOMPARE(got.height(), want.albedo.height());
+    QVERIFY(test::mean_abs_diff(got, want.albedo) < 1e-6);
+    w_->action("undo")->trigger();
+    QVERIFY(w_->document()->project() == before);
 }
 
 QTEST_MAIN(CalibrationTest)
