@@ -197,6 +197,18 @@ QWidget* CalibrationPanel::makeVanishingPage() {
     cameraHeight_ = spin(0.01, 1000, 1.6, 3, tr(" m"), tr("Camera height above the ground (scale)"));
     cameraHeight_->setObjectName("vanishingHeight");
     form->addRow(tr("Camera height"), cameraHeight_);
+    distance_ = spin(0, 1e4, 0, 3, tr(" m"),
+                     tr("Scale from a known distance between two ground points instead of the "
+                        "camera height (0: use the camera height)"));
+    distance_->setSpecialValueText(tr("use camera height"));
+    distance_->setObjectName("vanishingDistance");
+    QPushButton* ends = button("vanishingDistanceEnds", tr("Click ends"),
+                               tr("Click the two ground points the known distance separates"));
+    connect(ends, &QPushButton::clicked, this, [this] { startPicking(Target::Distance); });
+    auto* distRow = new QHBoxLayout;
+    distRow->addWidget(distance_, 1);
+    distRow->addWidget(ends);
+    form->addRow(tr("Or distance"), distRow);
     vanFocal_ = spin(0, 1e5, 0, 1, tr(" px"),
                      tr("Focal length in pixels; 0 takes it from two vanishing points"));
     vanFocal_->setSpecialValueText(tr("from the lines"));
@@ -225,6 +237,11 @@ void CalibrationPanel::startPicking(Target target) {
             origin_.clear();
             pick->start(PickTool::Kind::Point, 1, tr("Click the world origin on the ground"));
             break;
+        case Target::Distance:
+            distanceEnds_.clear();
+            pick->start(PickTool::Kind::Point, 2,
+                        tr("Click the two ground points of the known distance"));
+            break;
         case Target::X:
         case Target::Y:
         case Target::Z:
@@ -244,6 +261,7 @@ void CalibrationPanel::startPicking(Target target) {
 void CalibrationPanel::onPoint(QPointF px) {
     if (target_ == Target::Corners) corners_.push_back(px);
     if (target_ == Target::Origin) origin_ = {px};
+    if (target_ == Target::Distance) distanceEnds_.push_back(px);
     refreshMarks();
 }
 
@@ -257,6 +275,7 @@ void CalibrationPanel::clearPicks() {
     if (target_ != Target::None) viewport_->pickTool()->stop();
     corners_.clear();
     origin_.clear();
+    distanceEnds_.clear();
     for (auto& l : lines_) l.clear();
     refreshMarks();
 }
@@ -274,6 +293,8 @@ void CalibrationPanel::refreshMarks() {
             for (const auto& s : lines_[a])
                 marks.push_back({s.first, s.second, true, kAxisColour[a], axis[a]});
         for (QPointF o : origin_) marks.push_back({o, o, false, QColor(255, 255, 255), "O"});
+        if (distanceEnds_.size() == 2)
+            marks.push_back({distanceEnds_[0], distanceEnds_[1], true, QColor(255, 200, 0), "d"});
     }
     viewport_->pickTool()->setMarks(marks);
     cornerCount_->setText(tr("Corners: %1 / 4").arg(corners_.size()));
@@ -379,7 +400,15 @@ bool CalibrationPanel::applyVanishing() {
             throw InputError("vanishing lines", "origin",
                              "click the world origin on the ground (\"Click origin\")");
         in.origin = toPhoto(origin_[0]);
-        in.camera_height = cameraHeight_->value();
+        if (distance_->value() > 0) {
+            if (distanceEnds_.size() != 2)
+                throw InputError("vanishing lines", "distance",
+                                 "click the two ends of the known distance (\"Click ends\")");
+            in.distance = VanishingInput::Distance{toPhoto(distanceEnds_[0]),
+                                                   toPhoto(distanceEnds_[1]), distance_->value()};
+        } else {
+            in.camera_height = cameraHeight_->value();
+        }
         if (vanFocal_->value() > 0) in.focal_px = vanFocal_->value();
         const Image& img = photo();
         apply(tr("vanishing lines"),

@@ -48,7 +48,7 @@ public:
 
 private:
     /// What the pick tool's clicks and drags are for.
-    enum class Target { None, Corners, X, Y, Z, Origin };
+    enum class Target { None, Corners, X, Y, Z, Origin, Distance };
 
     QWidget* makeChessboardPage();
     QWidget* makeRectanglePage();
@@ -82,13 +82,13 @@ private:
     QDoubleSpinBox *rectWidth_, *rectHeight_, *rectFocal_;
     QLabel* cornerCount_;
     // Vanishing lines.
-    QDoubleSpinBox *cameraHeight_, *vanFocal_;
+    QDoubleSpinBox *cameraHeight_, *distance_, *vanFocal_;
     QLabel* lineCount_;
 
     Target target_ = Target::None;
     QVector<QPointF> corners_;
     QVector<QPair<QPointF, QPointF>> lines_[3];  ///< X, Y, Z
-    QVector<QPointF> origin_;
+    QVector<QPointF> origin_, distanceEnds_;
     std::string photoPath_;
     Image photo_;
 };

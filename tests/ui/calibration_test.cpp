@@ -235,6 +235,25 @@ void CalibrationTest::drawnVanishingLinesMatchTheCamera() {
     QVERIFY(angle < 0.5);
     QVERIFY(position < 0.01);
     QVERIFY(pixels < 1.5);
+
+    // The scale from a known distance instead: the rectangle's 0.6 m edge.
+    Project p = w_->document()->project();
+    p.camera = CameraSpec{};
+    w_->document()->edit("reset camera", p);
+    child<QDoubleSpinBox>("vanishingDistance")->setValue(0.6);
+    child<QPushButton>("vanishingDistanceEnds")->click();
+    for (const vec3& c : {kCorners[0], kCorners[1]}) {
+        send(QEvent::MouseButtonPress, widgetAtF(photo_px(c)), Qt::LeftButton);
+        send(QEvent::MouseButtonRelease, widgetAtF(photo_px(c)), Qt::NoButton);
+    }
+    QVERIFY(w_->calibrationPanel()->applyVanishing());
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    compare(w_->document()->project().camera, angle, position, pixels);
+    qInfo("vanishing lines, known distance: rotation %.3f deg, position %.4f, reprojection %.3f px",
+          angle, position, pixels);
+    QVERIFY(angle < 0.5);
+    QVERIFY(position < 0.01);
+    QVERIFY(pixels < 1.5);
 }
 
 void CalibrationTest::threeCornersAreReportedAndChangeNothing() {
