@@ -238,7 +238,7 @@ void Viewport::keyPressEvent(QKeyEvent* e) {
             setGizmoMode(e->key() == Qt::Key_G   ? GizmoMode::Translate
                          : e->key() == Qt::Key_R ? GizmoMode::Rotate
                                                  : GizmoMode::Scale);
-            if (!dragging_ && doc_->selected() >= 0 &&
+            if (!dragging_ && !pick_->active() && doc_->selected() >= 0 &&
                 rect().contains(mapFromGlobal(QCursor::pos()))) {
                 setMouseTracking(true);  // Blender-style: the object follows until a click
                 beginDrag(mapFromGlobal(QCursor::pos()));
