@@ -6,7 +6,6 @@
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
-#include <QPushButton>
 #include <QVBoxLayout>
 
 #include "document.h"
@@ -65,14 +64,6 @@ CameraPanel::CameraPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_
     calibrate_ = new QGroupBox(tr("Calibrate"));
     calibrate_->setToolTip(tr("Camera calibration from the photo"));
     auto* calLayout = new QVBoxLayout(calibrate_);
-    for (const QString& name :
-         {tr("Chessboard (auto-detect)"), tr("Known rectangle (click corners)"),
-          tr("Vanishing lines (draw)")}) {
-        auto* b = new QPushButton(name);
-        b->setEnabled(false);
-        b->setToolTip(tr("Calibration tools are not part of this build"));
-        calLayout->addWidget(b);
-    }
     error_ = new QLabel(tr("Reprojection error: -"));
     error_->setToolTip(tr("RMS distance in pixels between the detected and reprojected points"));
     calLayout->addWidget(error_);
@@ -107,6 +98,11 @@ void CameraPanel::apply() {
     }
     p.camera.vfov_deg = float(fields_[6]->value());
     doc_->edit(tr("Adjust camera"), p);
+}
+
+void CameraPanel::setCalibrationTools(QWidget* tools) {
+    auto* box = static_cast<QVBoxLayout*>(calibrate_->layout());
+    box->insertWidget(0, tools);
 }
 
 void CameraPanel::applyCalibration(const QString& method, const CameraSpec& camera,

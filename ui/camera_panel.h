@@ -26,6 +26,10 @@ public:
     QCheckBox* proxiesBox() const { return proxies_; }
     QCheckBox* outlinesBox() const { return outlines_; }
 
+    /// Puts the calibration tools into the "Calibrate" group, above the error figure.
+    void setCalibrationTools(QWidget* tools);
+    QLabel* errorLabel() const { return error_; }
+
     /// Applies a camera found by a calibration tool and shows its reprojection error (pixels).
     void applyCalibration(const QString& method, const CameraSpec& camera,
                           double reprojectionErrorPx);

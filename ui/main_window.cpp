@@ -19,11 +19,14 @@
 #include <cmath>
 
 #include "autosave.h"
+#include "calibration_panel.h"
 #include "camera_panel.h"
 #include "document.h"
 #include "error_reporter.h"
 #include "material_panel.h"
+#include "probe_align_panel.h"
 #include "probe_panel.h"
+#include "proxy_panel.h"
 #include "project_edit.h"
 #include "render_controller.h"
 #include "scene_panel.h"
@@ -209,11 +212,24 @@ void MainWindow::createDocks() {
     settingsPanel_ = new SettingsPanel(doc_);
     probePanel_ = new ProbePanel(doc_);
     cameraPanel_ = new CameraPanel(doc_);
+    calibrationPanel_ = new CalibrationPanel(doc_, viewport_, cameraPanel_, reporter_);
+    cameraPanel_->setCalibrationTools(calibrationPanel_);
     QDockWidget* render = dock("renderDock", tr("Render"), settingsPanel_, Qt::LeftDockWidgetArea);
-    QDockWidget* probe = dock("probeDock", tr("Light Probe"), probePanel_, Qt::LeftDockWidgetArea);
+    probeAlignPanel_ = new ProbeAlignPanel(doc_, viewport_, reporter_);
+    auto* probeTools = new QWidget;
+    auto* probeCol = new QVBoxLayout(probeTools);
+    probeCol->setContentsMargins(0, 0, 0, 0);
+    probeCol->addWidget(probePanel_);
+    probeCol->addWidget(probeAlignPanel_);
+    probeCol->addStretch(1);
+    proxyPanel_ = new ProxyPanel(doc_, viewport_, reporter_);
+    QDockWidget* probe = dock("probeDock", tr("Light Probe"), probeTools, Qt::LeftDockWidgetArea);
     QDockWidget* camera = dock("cameraDock", tr("Camera"), cameraPanel_, Qt::LeftDockWidgetArea);
+    QDockWidget* proxies =
+        dock("proxyDock", tr("Real Proxies"), proxyPanel_, Qt::LeftDockWidgetArea);
     tabifyDockWidget(render, probe);
     tabifyDockWidget(probe, camera);
+    tabifyDockWidget(camera, proxies);
     render->raise();
     // The viewport gets most of the width; the panels only what their fields need.
     resizeDocks({render, findChild<QDockWidget*>("sceneDock")}, {300, 440}, Qt::Horizontal);

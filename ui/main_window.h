@@ -15,11 +15,14 @@ class QSlider;
 namespace dp::ui {
 
 class Autosave;
+class CalibrationPanel;
 class CameraPanel;
 class Document;
 class ErrorReporter;
 class MaterialPanel;
+class ProbeAlignPanel;
 class ProbePanel;
+class ProxyPanel;
 class RenderController;
 class ScenePanel;
 class SettingsPanel;
@@ -41,6 +44,10 @@ public:
     ScenePanel* scenePanel() const { return scenePanel_; }
     MaterialPanel* materialPanel() const { return materialPanel_; }
     ProbePanel* probePanel() const { return probePanel_; }
+    CameraPanel* cameraPanel() const { return cameraPanel_; }
+    CalibrationPanel* calibrationPanel() const { return calibrationPanel_; }
+    ProxyPanel* proxyPanel() const { return proxyPanel_; }
+    ProbeAlignPanel* probeAlignPanel() const { return probeAlignPanel_; }
     Autosave* autosave() const { return autosave_; }
     QLabel* statusLabel() const { return status_; }
     QAction* action(const QString& objectName) const;
@@ -104,6 +111,9 @@ private:
     SettingsPanel* settingsPanel_ = nullptr;
     ProbePanel* probePanel_ = nullptr;
     CameraPanel* cameraPanel_ = nullptr;
+    CalibrationPanel* calibrationPanel_ = nullptr;
+    ProxyPanel* proxyPanel_ = nullptr;
+    ProbeAlignPanel* probeAlignPanel_ = nullptr;
     Autosave* autosave_ = nullptr;
     QLabel* status_;
     QSlider* exposure_ = nullptr;

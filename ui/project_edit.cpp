@@ -72,6 +72,16 @@ std::string unique_name(const Project& project, const std::string& base) {
     }
 }
 
+std::string unique_real_name(const Project& project, const std::string& base) {
+    std::set<std::string> used;
+    for (const RealProxy& r : project.real) used.insert(r.name);
+    if (!used.count(base)) return base;
+    for (int i = 2;; ++i) {
+        std::string name = base + " " + std::to_string(i);
+        if (!used.count(name)) return name;
+    }
+}
+
 void bounding_sphere(const VirtualObject& o, vec3& center, float& radius, float mesh_radius) {
     center = o.transform.translation;
     const vec3 s = glm::abs(o.transform.scale);

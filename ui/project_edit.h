@@ -23,6 +23,9 @@ VirtualObject make_object(Shape::Kind kind, const vec3& position, const std::str
 /// A name not yet used by the project's objects ("sphere", "sphere 2", ...).
 std::string unique_name(const Project& project, const std::string& base);
 
+/// A name not yet used by the project's real proxies ("ground", "ground 2", ...).
+std::string unique_real_name(const Project& project, const std::string& base);
+
 /// Bounding sphere of an object in world space (mesh objects use `mesh_radius` in local units,
 /// the radius of the loaded mesh's bounds; 1 if unknown).
 void bounding_sphere(const VirtualObject& object, vec3& center, float& radius,

@@ -11,7 +11,8 @@
 
 namespace dp::ui {
 
-Viewport::Viewport(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
+Viewport::Viewport(Document* doc, QWidget* parent)
+    : QWidget(parent), doc_(doc), pick_(new PickTool(this)) {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(320, 200);
     setAttribute(Qt::WA_OpaquePaintEvent);
@@ -19,6 +20,7 @@ Viewport::Viewport(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) 
         tr("Click an object to select it; drag to move (G), rotate (R) or scale (S).\n"
            "Wheel zooms, middle button pans, X deletes, Esc cancels a drag."));
     connect(doc_, &Document::changed, this, [this] { update(); });
+    connect(pick_, &PickTool::changed, this, [this] { update(); });
     connect(doc_, &Document::selectionChanged, this, [this](int index) {
         overlays_.selected = index;
         update();
@@ -94,6 +96,10 @@ QRectF Viewport::imageRect() const {
     return imageToWidget().mapRect(QRectF(0, 0, s.width(), s.height()));
 }
 
+QPointF Viewport::widgetFromRender(QPointF px) const {
+    return imageToWidget().map(px + QPointF(0.5, 0.5));
+}
+
 vec2 Viewport::toImage(QPointF widget) const {
     const QPointF p = imageToWidget().inverted().map(widget);
     return vec2(float(p.x() - 0.5), float(p.y() - 0.5));  // pixel centres at integers
@@ -135,6 +141,8 @@ void Viewport::paintEvent(QPaintEvent*) {
     o.selected = doc_->selected();
     p.setClipRect(imageRect());  // overlays belong to the photo, not the margin around it
     draw_overlays(p, doc_->project(), camera(), camToWidget, o);
+    p.setClipping(false);
+    pick_->paint(p, camToWidget);
 }
 
 void Viewport::beginDrag(QPointF pos) {
@@ -169,6 +177,7 @@ void Viewport::mousePressEvent(QMouseEvent* e) {
     }
     if (e->button() != Qt::LeftButton || !renderSize_.isValid()) return;
     const vec2 px = toImage(e->position());
+    if (pick_->press(QPointF(px.x, px.y))) return;
     const int hit = pick_object(doc_->project(), camera(), px.x, px.y);
     doc_->select(hit);
     if (hit >= 0) beginDrag(e->position());
@@ -179,6 +188,11 @@ void Viewport::mouseMoveEvent(QMouseEvent* e) {
         pan_ += e->position() - lastPos_;
         lastPos_ = e->position();
         update();
+        return;
+    }
+    if (pick_->active()) {
+        const vec2 px = toImage(e->position());
+        pick_->move(QPointF(px.x, px.y));
         return;
     }
     const int sel = doc_->selected();
@@ -197,6 +211,11 @@ void Viewport::mouseMoveEvent(QMouseEvent* e) {
 void Viewport::mouseReleaseEvent(QMouseEvent* e) {
     if (e->button() == Qt::MiddleButton) {
         panning_ = false;
+        return;
+    }
+    if (e->button() == Qt::LeftButton && pick_->active()) {
+        const vec2 px = toImage(e->position());
+        pick_->release(QPointF(px.x, px.y));
         return;
     }
     if (e->button() == Qt::LeftButton && dragging_ && !hasMouseTracking()) finishDrag(false);
@@ -219,7 +238,7 @@ void Viewport::keyPressEvent(QKeyEvent* e) {
             setGizmoMode(e->key() == Qt::Key_G   ? GizmoMode::Translate
                          : e->key() == Qt::Key_R ? GizmoMode::Rotate
                                                  : GizmoMode::Scale);
-            if (!dragging_ && doc_->selected() >= 0 &&
+            if (!dragging_ && !pick_->active() && doc_->selected() >= 0 &&
                 rect().contains(mapFromGlobal(QCursor::pos()))) {
                 setMouseTracking(true);  // Blender-style: the object follows until a click
                 beginDrag(mapFromGlobal(QCursor::pos()));
@@ -231,6 +250,7 @@ void Viewport::keyPressEvent(QKeyEvent* e) {
             if (!dragging_ && doc_->selected() >= 0) Q_EMIT deleteRequested();
             return;
         case Qt::Key_Escape:
+            if (pick_->active()) pick_->cancel();
             finishDrag(true);
             return;
         case Qt::Key_Home:

@@ -6,6 +6,7 @@
 #include "display.h"
 #include "gizmo.h"
 #include "overlays.h"
+#include "pick_tool.h"
 #include "render_controller.h"
 
 namespace dp::ui {
@@ -15,7 +16,8 @@ class Document;
 /// Shows the progressive render (photo / augmented / dL), zooms (wheel) and pans (middle
 /// mouse), draws the overlays, and moves the selected object with the gizmo: click selects,
 /// left-drag applies the current mode (G translate, R rotate, S scale), X deletes, Esc or the
-/// right button cancels a drag.
+/// right button cancels a drag. While the pick tool is active, left clicks and drags go to it
+/// (calibration and proxy tools) and Esc cancels it.
 class Viewport : public QWidget {
     Q_OBJECT
 public:
@@ -43,6 +45,10 @@ public:
     const QImage& shownImage() const { return shown_; }
     /// Rectangle of the widget covered by the render.
     QRectF imageRect() const;
+    /// Widget position of a render pixel (pixel centres at integers).
+    QPointF widgetFromRender(QPointF renderPx) const;
+    /// The point and segment picker the calibration and proxy tools share.
+    PickTool* pickTool() const { return pick_; }
 
 Q_SIGNALS:
     void dragStarted();
@@ -67,6 +73,7 @@ private:
     void finishDrag(bool cancel);
 
     Document* doc_;
+    PickTool* pick_;
     std::shared_ptr<const RenderFrame> frame_;
     QImage shown_;
     QSize renderSize_;

@@ -1,0 +1,398 @@
+// Camera matching through the widgets: corners and lines clicked in the viewport on a photo
+// drawn through a known camera, the chessboard found in OpenCV's sample photo, undo, bad input.
+#include <QAction>
+#include <QFileInfo>
+#include <QListWidget>
+#include <QSpinBox>
+#include <QApplication>
+#include <QMouseEvent>
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QImage>
+#include <QLabel>
+#include <QPainter>
+#include <QPushButton>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QUndoStack>
+#include <cmath>
+#include <numbers>
+
+#include "calibration/chessboard.h"
+#include "calibration_panel.h"
+#include "camera_panel.h"
+#include "image/image_io.h"
+#include "proxy_panel.h"
+#include "reconstruction/albedo.h"
+#include "reconstruction/probe_align.h"
+#include "render/render_scene.h"
+#include "document.h"
+#include "scene/project_io.h"
+#include "ui_test_support.h"
+#include "viewport.h"
+
+using namespace dp;
+using namespace dp::ui;
+
+namespace {
+
+constexpr int kW = 512, kH = 256;  // the photo; the test window renders 256 x 128
+constexpr float kFocal = 400.0f;
+
+/// The camera that "took" the photo: an OpenCV-model camera looking down at the rectangle.
+CameraSpec truth_camera() {
+    const Camera look = Camera::look_at(kW, kH, vec3(1.3f, 1.0f, 1.5f), vec3(0.3f, 0, 0.2f),
+                                        vec3(0, 1, 0), 40.0f);
+    CameraSpec c;
+    c.model = CameraSpec::Model::Intrinsics;
+    c.fx = c.fy = kFocal;
+    c.cx = 0.5f * float(kW - 1);
+    c.cy = 0.5f * float(kH - 1);
+    c.rotation = look.rotation();
+    c.translation = look.translation();
+    return c;
+}
+
+/// A 0.6 x 0.4 m rectangle on the ground, corner 0 at the origin, 0 -> 1 along +X.
+const vec3 kCorners[4] = {vec3(0, 0, 0), vec3(0.6f, 0, 0), vec3(0.6f, 0, 0.4f), vec3(0, 0, 0.4f)};
+
+vec2 photo_px(const vec3& world) {
+    vec2 px;
+    if (!truth_camera().build(kW, kH).project(world, px)) qFatal("point behind the camera");
+    return px;
+}
+
+}  // namespace
+
+class CalibrationTest : public QObject {
+    Q_OBJECT
+private Q_SLOTS:
+    void init();
+    void cleanup();
+    void clickedRectangleCornersMatchTheCameraAndUndoRestoresIt();
+    void drawnVanishingLinesMatchTheCamera();
+    void threeCornersAreReportedAndChangeNothing();
+    void escapeDropsUnfinishedCorners();
+    void chessboardIsFoundInTheOpenCvSamplePhoto();
+    void clickedBoxFootprintBecomesARealProxy();
+    void sunCueClickedOnThePhotoTurnsTheProbe();
+    void albedoEstimateWritesTheLibrarysTextureNextToTheProject();
+
+private:
+    /// Opens a project whose photo is `photo`.
+    void open(const QString& photo);
+    /// Widget point over photo pixel `px` (as a mouse event carries it: whole pixels).
+    QPoint widgetAt(vec2 px) const { return widgetAtF(px).toPoint(); }
+    QPointF widgetAtF(vec2 px) const;
+    template <class T>
+    T* child(const char* name) const {
+        T* c = w_->findChild<T*>(name);
+        if (!c) qFatal("no widget %s", name);
+        return c;
+    }
+    /// The matched camera against the truth: rotation (degrees), position error relative to
+    /// the distance to the rectangle, worst reprojection difference of a few points (pixels).
+    void compare(const CameraSpec& spec, double& angle, double& position, double& pixels) const;
+
+    QTemporaryDir* dir_ = nullptr;
+    RecordingReporter* reporter_ = nullptr;
+    MainWindow* w_ = nullptr;
+};
+
+void CalibrationTest::init() {
+    dir_ = new QTemporaryDir;
+    reporter_ = new RecordingReporter;
+    w_ = new MainWindow(test::test_options(reporter_, dir_->filePath("recovery")));
+    w_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(w_));
+    // The photo: a light rectangle on a dark floor, drawn through the known camera.
+    QImage img(kW, kH, QImage::Format_RGB32);
+    img.fill(QColor(60, 60, 60));
+    QPainter p(&img);
+    p.setRenderHint(QPainter::Antialiasing);
+    QPolygonF quad;
+    for (const vec3& c : kCorners) {
+        const vec2 px = photo_px(c);
+        QVERIFY(px.x > 0 && px.x < kW - 1 && px.y > 0 && px.y < kH - 1);
+        quad << QPointF(px.x + 0.5, px.y + 0.5);  // QPainter puts pixel centres at +0.5
+    }
+    p.setPen(Qt::NoPen);
+    p.setBrush(QColor(230, 230, 230));
+    p.drawPolygon(quad);
+    p.end();
+    QVERIFY(img.save(dir_->filePath("rectangle.png")));
+    open(dir_->filePath("rectangle.png"));
+}
+
+void CalibrationTest::cleanup() {
+    delete w_;
+    delete reporter_;
+    delete dir_;
+}
+
+void CalibrationTest::open(const QString& photo) {
+    Project p = load_project(test::write_small_sample(dir_->path()).toStdString());
+    p.photo.path = photo.toStdString();
+    p.photo.exposure = 0;
+    const QString path = dir_->filePath("calibrate.json");
+    save_project(p, path.toStdString());
+    QVERIFY(w_->openProject(path));
+}
+
+QPointF CalibrationTest::widgetAtF(vec2 px) const {
+    const Viewport* v = w_->viewport();
+    const QSize rs = v->renderSize();
+    const QPointF r((px.x + 0.5) * rs.width() / kW - 0.5, (px.y + 0.5) * rs.height() / kH - 0.5);
+    return v->widgetFromRender(r);
+}
+
+void CalibrationTest::compare(const CameraSpec& spec, double& angle, double& position,
+                              double& pixels) const {
+    const Camera got = spec.build(kW, kH), want = truth_camera().build(kW, kH);
+    angle = std::acos(std::min(1.0f, glm::dot(got.forward(), want.forward()))) * 180 / std::numbers::pi;
+    position = glm::length(got.position() - want.position()) /
+               glm::length(want.position() - vec3(0.3f, 0, 0.2f));
+    pixels = 0;
+    for (const vec3& w : {kCorners[0], kCorners[2], vec3(0.3f, 0.5f, 0.2f), vec3(-0.5f, 0, -1)}) {
+        vec2 a, b;
+        QVERIFY(got.project(w, a) && want.project(w, b));
+        pixels = std::max(pixels, double(glm::length(a - b)));
+    }
+}
+
+void CalibrationTest::clickedRectangleCornersMatchTheCameraAndUndoRestoresIt() {
+    Document* doc = w_->document();
+    const CameraSpec before = doc->project().camera;
+    const int steps = doc->undoStack()->count();
+    child<QDoubleSpinBox>("rectangleWidth")->setValue(0.6);
+    child<QDoubleSpinBox>("rectangleHeight")->setValue(0.4);
+    child<QDoubleSpinBox>("rectangleFocal")->setValue(kFocal);
+    child<QPushButton>("rectanglePick")->click();
+    QVERIFY(w_->viewport()->pickTool()->active());
+    for (const vec3& c : kCorners)
+        QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, widgetAt(photo_px(c)));
+    QCOMPARE(w_->calibrationPanel()->corners().size(), 4);
+    QVERIFY(!w_->viewport()->pickTool()->active());  // four corners end the picking
+    QCOMPARE(doc->selected(), -1);  // the clicks went to the tool, not to object picking
+    child<QPushButton>("rectangleApply")->click();
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+
+    const CameraSpec& got = doc->project().camera;
+    QVERIFY(got.model == CameraSpec::Model::Intrinsics);
+    double angle, position, pixels;
+    compare(got, angle, position, pixels);
+    qInfo("rectangle: rotation %.3f deg, position %.4f of the distance, reprojection %.3f px",
+          angle, position, pixels);
+    // The library's own tolerance on synthetic photos: 0.5 degree, 1% of the distance.
+    QVERIFY(angle < 0.5);
+    QVERIFY(position < 0.01);
+    QVERIFY(pixels < 1.5);
+    QVERIFY(w_->cameraPanel()->errorLabel()->text().contains(" px"));
+    QCOMPARE(doc->undoStack()->count(), steps + 1);
+
+    w_->action("undo")->trigger();
+    QVERIFY(doc->project().camera == before);
+    w_->action("redo")->trigger();
+    QVERIFY(doc->project().camera == got);
+}
+
+void CalibrationTest::drawnVanishingLinesMatchTheCamera() {
+    w_->calibrationPanel()->setMethod(CalibrationPanel::Method::Vanishing);
+    // Vanishing points magnify click rounding: these drags carry sub-pixel positions (mouse
+    // events as a tablet sends them) so that the result can be held to the library's tolerance.
+    Viewport* v = w_->viewport();
+    auto send = [&](QEvent::Type type, QPointF at, Qt::MouseButtons buttons) {
+        QMouseEvent e(type, at, v->mapToGlobal(at), Qt::LeftButton, buttons, Qt::NoModifier);
+        QApplication::sendEvent(v, &e);
+    };
+    auto drag = [&](const vec3& a, const vec3& b) {
+        const QPointF pa = widgetAtF(photo_px(a)), pb = widgetAtF(photo_px(b));
+        send(QEvent::MouseButtonPress, pa, Qt::LeftButton);
+        send(QEvent::MouseMove, (pa + pb) / 2, Qt::LeftButton);
+        send(QEvent::MouseMove, pb, Qt::LeftButton);
+        send(QEvent::MouseButtonRelease, pb, Qt::NoButton);
+    };
+    // Long lines along the ground's X and Z directions, as floor tiles would give.
+    child<QPushButton>("vanishingX")->click();
+    drag(vec3(-0.3f, 0, 0), vec3(0.9f, 0, 0));
+    drag(vec3(-0.3f, 0, 0.5f), vec3(0.7f, 0, 0.5f));
+    child<QPushButton>("vanishingZ")->click();
+    drag(vec3(0, 0, -0.5f), vec3(0, 0, 0.6f));
+    drag(vec3(0.7f, 0, -0.5f), vec3(0.7f, 0, 0.5f));
+    child<QPushButton>("vanishingOrigin")->click();
+    send(QEvent::MouseButtonPress, widgetAtF(photo_px(vec3(0))), Qt::LeftButton);
+    send(QEvent::MouseButtonRelease, widgetAtF(photo_px(vec3(0))), Qt::NoButton);
+    const Camera want = truth_camera().build(kW, kH);
+    child<QDoubleSpinBox>("vanishingHeight")->setValue(want.position().y);
+    child<QDoubleSpinBox>("vanishingFocal")->setValue(kFocal);
+    QVERIFY(w_->calibrationPanel()->applyVanishing());
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    double angle, position, pixels;
+    compare(w_->document()->project().camera, angle, position, pixels);
+    qInfo("vanishing lines: rotation %.3f deg, position %.4f of the distance, reprojection %.3f px",
+          angle, position, pixels);
+    QVERIFY(angle < 0.5);
+    QVERIFY(position < 0.01);
+    QVERIFY(pixels < 1.5);
+
+    // The scale from a known distance instead: the rectangle's 0.6 m edge.
+    Project p = w_->document()->project();
+    p.camera = CameraSpec{};
+    w_->document()->edit("reset camera", p);
+    child<QDoubleSpinBox>("vanishingDistance")->setValue(0.6);
+    child<QPushButton>("vanishingDistanceEnds")->click();
+    for (const vec3& c : {kCorners[0], kCorners[1]}) {
+        send(QEvent::MouseButtonPress, widgetAtF(photo_px(c)), Qt::LeftButton);
+        send(QEvent::MouseButtonRelease, widgetAtF(photo_px(c)), Qt::NoButton);
+    }
+    QVERIFY(w_->calibrationPanel()->applyVanishing());
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    compare(w_->document()->project().camera, angle, position, pixels);
+    qInfo("vanishing lines, known distance: rotation %.3f deg, position %.4f, reprojection %.3f px",
+          angle, position, pixels);
+    QVERIFY(angle < 0.5);
+    QVERIFY(position < 0.01);
+    QVERIFY(pixels < 1.5);
+}
+
+void CalibrationTest::threeCornersAreReportedAndChangeNothing() {
+    const Project before = w_->document()->project();
+    const int steps = w_->document()->undoStack()->count();
+    child<QPushButton>("rectanglePick")->click();
+    for (int i = 0; i < 3; ++i)
+        QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, widgetAt(photo_px(kCorners[i])));
+    child<QPushButton>("rectangleApply")->click();
+    QCOMPARE(reporter_->errors.size(), 1);
+    QVERIFY2(reporter_->errors[0].contains("corners") && reporter_->errors[0].contains("3"),
+             qPrintable(reporter_->errors[0]));
+    QVERIFY(w_->document()->project() == before);
+    QCOMPARE(w_->document()->undoStack()->count(), steps);
+}
+
+void CalibrationTest::escapeDropsUnfinishedCorners() {
+    child<QPushButton>("rectanglePick")->click();
+    for (int i = 0; i < 2; ++i)
+        QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, widgetAt(photo_px(kCorners[i])));
+    QCOMPARE(w_->calibrationPanel()->corners().size(), 2);
+    QTest::keyClick(w_->viewport(), Qt::Key_Escape);
+    QVERIFY(!w_->viewport()->pickTool()->active());
+    QCOMPARE(w_->calibrationPanel()->corners().size(), 0);
+}
+
+void CalibrationTest::chessboardIsFoundInTheOpenCvSamplePhoto() {
+    open("/usr/share/doc/opencv-doc/examples/data/left01.jpg");
+    const CameraSpec before = w_->document()->project().camera;
+    w_->calibrationPanel()->setMethod(CalibrationPanel::Method::Chessboard);
+    child<QComboBox>("boardFocalSource")->setCurrentIndex(1);  // given
+    child<QDoubleSpinBox>("boardFocal")->setValue(536.0);     // OpenCV's calibration of the set
+    child<QPushButton>("chessboardApply")->click();
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    const CameraSpec& got = w_->document()->project().camera;
+    QVERIFY(!(got == before));
+    QCOMPARE(got.fx, 536.0f);
+    // The board is the world's ground: its first corner projects back onto the photo.
+    vec2 px;
+    QVERIFY(got.build(640, 480).project(vec3(0), px));
+    QVERIFY(px.x > 0 && px.x < 640 && px.y > 0 && px.y < 480);
+    // The camera and the error figure are the library's for the same photo and focal length
+    // (the lens' distortion, not modelled with a given focal length, leaves a few pixels).
+    const std::string path = "/usr/share/doc/opencv-doc/examples/data/left01.jpg";
+    const ChessboardSpec spec{9, 6, 0.025};
+    const CalibrationResult r = chessboard_pose(detect_chessboard(path, spec), spec,
+                                                Intrinsics::centred(640, 480, 536.0));
+    QVERIFY(got == r.camera_spec());
+    const QString err = w_->cameraPanel()->errorLabel()->text();
+    QVERIFY2(err.contains(QString::number(r.rms_px, 'f', 2)), qPrintable(err));
+    qInfo("chessboard: %s", qPrintable(err));
+    w_->action("undo")->trigger();
+    QVERIFY(w_->document()->project().camera == before);
+}
+
+void CalibrationTest::clickedBoxFootprintBecomesARealProxy() {
+    Document* doc = w_->document();
+    Project p = doc->project();
+    p.camera = truth_camera();
+    doc->edit("camera", p);
+    const size_t proxies = p.real.size();
+    child<QDoubleSpinBox>("boxHeight")->setValue(0.3);
+    child<QPushButton>("proxyBox")->click();
+    for (const vec3& c : kCorners)
+        QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, widgetAt(photo_px(c)));
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    QCOMPARE(doc->project().real.size(), proxies + 1);
+    const RealProxy& box = doc->project().real.back();
+    QVERIFY(box.shape.kind == Shape::Kind::Box);
+    const vec3 size = box.shape.size, at = box.transform.translation;
+    qInfo("box: size %.3f %.3f %.3f at %.3f %.3f %.3f", size.x, size.y, size.z, at.x, at.y, at.z);
+    // The footprint is the 0.6 x 0.4 m rectangle, to the precision of a click.
+    QVERIFY(std::abs(std::max(size.x, size.z) - 0.6f) < 0.02f);
+    QVERIFY(std::abs(std::min(size.x, size.z) - 0.4f) < 0.02f);
+    QVERIFY(std::abs(size.y - 0.3f) < 1e-4f);
+    QVERIFY(std::abs(at.x - 0.3f) < 0.01f && std::abs(at.z - 0.2f) < 0.01f);
+    w_->action("undo")->trigger();
+    QCOMPARE(doc->project().real.size(), proxies);
+}
+
+void CalibrationTest::sunCueClickedOnThePhotoTurnsTheProbe() {
+    Document* doc = w_->document();
+    Project p = doc->project();
+    p.camera = truth_camera();
+    doc->edit("camera", p);
+    const vec3 before = p.probe.rotation_deg;
+    // A pole 0.5 m tall at (0.3, 0, 0.2) whose shadow ends 0.5 m away along +X and -Z.
+    const vec3 foot(0.3f, 0, 0.2f), tip(0.7f, 0, -0.1f);
+    child<QDoubleSpinBox>("cueHeight")->setValue(0.5);
+    child<QCheckBox>("cueBase")->setChecked(true);
+    child<QPushButton>("sunCue")->click();
+    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, widgetAt(photo_px(foot)));
+    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, widgetAt(photo_px(tip)));
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    // The same turn as the library gives for the exact pixels, to the precision of a click.
+    ShadowCue cue;
+    cue.object_px = photo_px(foot);
+    cue.shadow_px = photo_px(tip);
+    cue.height = 0.5f;
+    cue.object_is_base = true;
+    const vec3 sun = sun_direction_from_shadow(truth_camera().build(kW, kH), cue);
+    const ProbeYaw want =
+        align_probe_yaw(brightest_direction(load_assets(p).probe_latlong), before, sun);
+    const vec3 got = doc->project().probe.rotation_deg;
+    qInfo("probe rotation %.2f %.2f %.2f, exact clicks %.2f %.2f %.2f", got.x, got.y, got.z,
+          want.rotation_deg.x, want.rotation_deg.y, want.rotation_deg.z);
+    QVERIFY(std::abs(want.yaw_deg) > 1);  // the cue does turn the probe
+    QVERIFY(glm::length(got - want.rotation_deg) < 1.0f);
+    w_->action("undo")->trigger();
+    QVERIFY(doc->project().probe.rotation_deg == before);
+}
+
+void CalibrationTest::albedoEstimateWritesTheLibrarysTextureNextToTheProject() {
+    QVERIFY(w_->openProject(test::write_small_sample(dir_->path())));
+    const Project before = w_->document()->project();
+    QCOMPARE(QString::fromStdString(before.real[0].name), QString("ground"));
+    child<QSpinBox>("albedoResolution")->setValue(16);  // small: the test stays fast
+    child<QSpinBox>("albedoSamples")->setValue(32);
+    w_->proxyPanel()->list()->setCurrentRow(0);
+    child<QPushButton>("albedoEstimate")->click();
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    const RealProxy& ground = w_->document()->project().real[0];
+    QVERIFY(ground.albedo.kind == Albedo::Kind::Texture);
+    QCOMPARE(QString::fromStdString(ground.albedo.texture_path), QString("sample_ground_albedo.exr"));
+    const QString file = dir_->filePath("sample_ground_albedo.exr");
+    QVERIFY(QFileInfo::exists(file));
+    // The same texture as the library computes for the same project and settings.
+    AlbedoTextureOptions o;
+    o.max_resolution = 16;
+    o.probe_samples = 32;
+    RenderScene scene(before, load_assets(before));
+    const AlbedoTexture want = estimate_albedo_texture(scene, 0, o);
+    const Image got = load_exr_layer(file.toStdString(), "");
+    QCOMPARE(got.width(), want.albedo.width());
+    QCOMPARE(got.height(), want.albedo.height());
+    QVERIFY(test::mean_abs_diff(got, want.albedo) < 1e-6);
+    w_->action("undo")->trigger();
+    QVERIFY(w_->document()->project() == before);
+}
+
+QTEST_MAIN(CalibrationTest)
+#include "calibration_test.moc"

@@ -1,0 +1,430 @@
+#include "calibration_panel.h"
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QStackedWidget>
+#include <QVBoxLayout>
+
+#include "base/error.h"
+#include "calibration/chessboard.h"
+#include "calibration/correspondences.h"
+#include "calibration/exif.h"
+#include "calibration/vanishing.h"
+#include "camera_panel.h"
+#include "document.h"
+#include "error_reporter.h"
+#include "image/image_io.h"
+#include "project_edit.h"
+#include "reconstruction/proxies.h"
+#include "viewport.h"
+
+namespace dp::ui {
+
+namespace {
+
+QDoubleSpinBox* spin(double lo, double hi, double value, int decimals, const QString& suffix,
+                     const QString& tip) {
+    auto* s = new QDoubleSpinBox;
+    s->setRange(lo, hi);
+    s->setDecimals(decimals);
+    s->setValue(value);
+    s->setSuffix(suffix);
+    s->setToolTip(tip);
+    return s;
+}
+
+QPushButton* button(const QString& name, const QString& text, const QString& tip) {
+    auto* b = new QPushButton(text);
+    b->setObjectName(name);
+    b->setToolTip(tip);
+    return b;
+}
+
+const QColor kAxisColour[3] = {QColor(240, 70, 70), QColor(70, 220, 70), QColor(80, 140, 255)};
+
+}  // namespace
+
+CalibrationPanel::CalibrationPanel(Document* doc, Viewport* viewport, CameraPanel* camera,
+                                   ErrorReporter* reporter, QWidget* parent)
+    : QWidget(parent), doc_(doc), viewport_(viewport), camera_(camera), reporter_(reporter) {
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    method_ = new QComboBox;
+    method_->setObjectName("calibrationMethod");
+    method_->addItems({tr("Chessboard (auto-detect)"), tr("Known rectangle (click corners)"),
+                       tr("Vanishing lines (draw)")});
+    method_->setToolTip(tr("How to match the camera to the photo"));
+    pages_ = new QStackedWidget;
+    pages_->addWidget(makeChessboardPage());
+    pages_->addWidget(makeRectanglePage());
+    pages_->addWidget(makeVanishingPage());
+    connect(method_, &QComboBox::currentIndexChanged, this, [this](int i) {
+        if (target_ != Target::None) viewport_->pickTool()->stop();
+        pages_->setCurrentIndex(i);
+        refreshMarks();
+    });
+    layout->addWidget(method_);
+    layout->addWidget(pages_);
+    QPushButton* ground = button("addGroundPlane", tr("Add ground plane"),
+                                 tr("Add the ground (y = 0) as a real proxy, sized to what "
+                                    "the matched camera sees of it"));
+    connect(ground, &QPushButton::clicked, this, [this] { addGroundPlane(); });
+    layout->addWidget(ground);
+    status_ = new QLabel;
+    status_->setObjectName("calibrationStatus");
+    status_->setWordWrap(true);
+    layout->addWidget(status_);
+
+    PickTool* pick = viewport_->pickTool();
+    connect(pick, &PickTool::pointPicked, this, [this](QPointF p) { onPoint(p); });
+    connect(pick, &PickTool::segmentDrawn, this, [this](QPointF a, QPointF b) { onSegment(a, b); });
+    connect(pick, &PickTool::finished, this, [this](bool cancelled) {
+        if (target_ == Target::None) return;  // another tool's run
+        // Esc drops an unfinished set of corners; drawn lines stay (each is complete).
+        if (cancelled && target_ == Target::Corners && corners_.size() < 4) corners_.clear();
+        target_ = Target::None;
+        refreshMarks();
+    });
+    connect(doc_, &Document::reloaded, this, [this] { clearPicks(); });
+    setMethod(Method::Rectangle);
+}
+
+void CalibrationPanel::setMethod(Method m) {
+    method_->setCurrentIndex(int(m));
+}
+
+QWidget* CalibrationPanel::makeChessboardPage() {
+    auto* page = new QWidget;
+    auto* form = new QFormLayout(page);
+    cols_ = new QSpinBox;
+    rows_ = new QSpinBox;
+    for (QSpinBox* s : {cols_, rows_}) s->setRange(2, 50);
+    cols_->setValue(9);
+    rows_->setValue(6);
+    cols_->setObjectName("boardCols");
+    rows_->setObjectName("boardRows");
+    cols_->setToolTip(tr("Inner corners along a row (squares - 1)"));
+    rows_->setToolTip(tr("Inner corners along a column (squares - 1)"));
+    auto* size = new QHBoxLayout;
+    size->addWidget(cols_);
+    size->addWidget(new QLabel(QStringLiteral("x")));
+    size->addWidget(rows_);
+    form->addRow(tr("Inner corners"), size);
+    square_ = spin(0.001, 10, 0.025, 4, tr(" m"), tr("Side of one square in metres"));
+    square_->setObjectName("boardSquare");
+    form->addRow(tr("Square size"), square_);
+    focalSource_ = new QComboBox;
+    focalSource_->setObjectName("boardFocalSource");
+    focalSource_->addItems(
+        {tr("From EXIF"), tr("Given focal length"), tr("Estimate from the board")});
+    focalSource_->setToolTip(tr("Where the focal length comes from: the photo's EXIF data, the "
+                                "field below, or the board's perspective (a tilted board)"));
+    form->addRow(tr("Focal length"), focalSource_);
+    boardFocal_ = spin(0, 1e5, 1000, 1, tr(" px"), tr("Focal length in pixels of the photo"));
+    boardFocal_->setObjectName("boardFocal");
+    form->addRow(QString(), boardFocal_);
+    QPushButton* go = button("chessboardApply", tr("Detect and apply"),
+                             tr("Find the board in the photo and match the camera to it"));
+    connect(go, &QPushButton::clicked, this, [this] { applyChessboard(); });
+    form->addRow(go);
+    return page;
+}
+
+QWidget* CalibrationPanel::makeRectanglePage() {
+    auto* page = new QWidget;
+    auto* form = new QFormLayout(page);
+    rectWidth_ = spin(0.001, 1000, 0.297, 3, tr(" m"), tr("Length of the edge from corner 1 to 2"));
+    rectHeight_ = spin(0.001, 1000, 0.210, 3, tr(" m"), tr("Length of the edge from corner 2 to 3"));
+    rectFocal_ = spin(0, 1e5, 0, 1, tr(" px"),
+                      tr("Focal length in pixels of the photo; 0 estimates it from the "
+                         "rectangle's perspective (it must be seen at an angle)"));
+    rectFocal_->setSpecialValueText(tr("estimate"));
+    rectWidth_->setObjectName("rectangleWidth");
+    rectHeight_->setObjectName("rectangleHeight");
+    rectFocal_->setObjectName("rectangleFocal");
+    form->addRow(tr("Width"), rectWidth_);
+    form->addRow(tr("Height"), rectHeight_);
+    form->addRow(tr("Focal length"), rectFocal_);
+    auto* row = new QHBoxLayout;
+    QPushButton* pick = button("rectanglePick", tr("Click corners"),
+                               tr("Click the rectangle's four corners in the photo, in order "
+                                  "around it; corner 1 becomes the world origin"));
+    QPushButton* apply = button("rectangleApply", tr("Apply"),
+                                tr("Match the camera to the clicked corners"));
+    connect(pick, &QPushButton::clicked, this, [this] { startPicking(Target::Corners); });
+    connect(apply, &QPushButton::clicked, this, [this] { applyRectangle(); });
+    row->addWidget(pick);
+    row->addWidget(apply);
+    form->addRow(row);
+    cornerCount_ = new QLabel;
+    form->addRow(cornerCount_);
+    return page;
+}
+
+QWidget* CalibrationPanel::makeVanishingPage() {
+    auto* page = new QWidget;
+    auto* form = new QFormLayout(page);
+    const char* names[3] = {"vanishingX", "vanishingY", "vanishingZ"};
+    const QString texts[3] = {tr("X lines"), tr("Vertical"), tr("Z lines")};
+    const QString tips[3] = {
+        tr("Drag two or more segments along one ground direction (world X)"),
+        tr("Drag two or more segments along vertical edges (world Y)"),
+        tr("Drag two or more segments along the ground direction at right angles to X")};
+    auto* row = new QHBoxLayout;
+    for (int axis : {0, 2, 1}) {
+        QPushButton* b = button(names[axis], texts[axis], tips[axis]);
+        b->setStyleSheet(QStringLiteral("color: %1").arg(kAxisColour[axis].name()));
+        connect(b, &QPushButton::clicked, this, [this, axis] {
+            startPicking(axis == 0 ? Target::X : axis == 1 ? Target::Y : Target::Z);
+        });
+        row->addWidget(b);
+    }
+    form->addRow(row);
+    auto* row2 = new QHBoxLayout;
+    QPushButton* origin = button("vanishingOrigin", tr("Click origin"),
+                                 tr("Click a point on the ground: the world origin"));
+    QPushButton* clear = button("vanishingClear", tr("Clear"), tr("Remove the drawn lines"));
+    connect(origin, &QPushButton::clicked, this, [this] { startPicking(Target::Origin); });
+    connect(clear, &QPushButton::clicked, this, [this] { clearPicks(); });
+    row2->addWidget(origin);
+    row2->addWidget(clear);
+    form->addRow(row2);
+    cameraHeight_ = spin(0.01, 1000, 1.6, 3, tr(" m"), tr("Camera height above the ground (scale)"));
+    cameraHeight_->setObjectName("vanishingHeight");
+    form->addRow(tr("Camera height"), cameraHeight_);
+    distance_ = spin(0, 1e4, 0, 3, tr(" m"),
+                     tr("Scale from a known distance between two ground points instead of the "
+                        "camera height (0: use the camera height)"));
+    distance_->setSpecialValueText(tr("use camera height"));
+    distance_->setObjectName("vanishingDistance");
+    QPushButton* ends = button("vanishingDistanceEnds", tr("Click ends"),
+                               tr("Click the two ground points the known distance separates"));
+    connect(ends, &QPushButton::clicked, this, [this] { startPicking(Target::Distance); });
+    auto* distRow = new QHBoxLayout;
+    distRow->addWidget(distance_, 1);
+    distRow->addWidget(ends);
+    form->addRow(tr("Or distance"), distRow);
+    vanFocal_ = spin(0, 1e5, 0, 1, tr(" px"),
+                     tr("Focal length in pixels; 0 takes it from two vanishing points"));
+    vanFocal_->setSpecialValueText(tr("from the lines"));
+    vanFocal_->setObjectName("vanishingFocal");
+    form->addRow(tr("Focal length"), vanFocal_);
+    QPushButton* apply = button("vanishingApply", tr("Apply"),
+                                tr("Match the camera to the drawn lines"));
+    connect(apply, &QPushButton::clicked, this, [this] { applyVanishing(); });
+    form->addRow(apply);
+    lineCount_ = new QLabel;
+    form->addRow(lineCount_);
+    return page;
+}
+
+void CalibrationPanel::startPicking(Target target) {
+    PickTool* pick = viewport_->pickTool();
+    pick->stop();
+    target_ = target;
+    switch (target) {
+        case Target::Corners:
+            corners_.clear();
+            pick->start(PickTool::Kind::Point, 4,
+                        tr("Click the rectangle's 4 corners in order around it"));
+            break;
+        case Target::Origin:
+            origin_.clear();
+            pick->start(PickTool::Kind::Point, 1, tr("Click the world origin on the ground"));
+            break;
+        case Target::Distance:
+            distanceEnds_.clear();
+            pick->start(PickTool::Kind::Point, 2,
+                        tr("Click the two ground points of the known distance"));
+            break;
+        case Target::X:
+        case Target::Y:
+        case Target::Z:
+            pick->start(PickTool::Kind::Segment, 0,
+                        tr("Drag segments along %1 edges")
+                            .arg(target == Target::X   ? tr("X")
+                                 : target == Target::Y ? tr("vertical")
+                                                       : tr("Z")));
+            break;
+        case Target::None:
+            break;
+    }
+    viewport_->setFocus();
+    refreshMarks();
+}
+
+void CalibrationPanel::onPoint(QPointF px) {
+    if (target_ == Target::Corners) corners_.push_back(px);
+    if (target_ == Target::Origin) origin_ = {px};
+    if (target_ == Target::Distance) distanceEnds_.push_back(px);
+    refreshMarks();
+}
+
+void CalibrationPanel::onSegment(QPointF a, QPointF b) {
+    const int axis = target_ == Target::X ? 0 : target_ == Target::Y ? 1 : target_ == Target::Z ? 2 : -1;
+    if (axis >= 0) lines_[axis].push_back({a, b});
+    refreshMarks();
+}
+
+void CalibrationPanel::clearPicks() {
+    if (target_ != Target::None) viewport_->pickTool()->stop();
+    corners_.clear();
+    origin_.clear();
+    distanceEnds_.clear();
+    for (auto& l : lines_) l.clear();
+    refreshMarks();
+}
+
+void CalibrationPanel::refreshMarks() {
+    QVector<PickTool::Mark> marks;
+    const int page = method_->currentIndex();
+    if (page == int(Method::Rectangle)) {
+        for (int i = 0; i < corners_.size(); ++i)
+            marks.push_back({corners_[i], corners_[i], false, QColor(255, 200, 0),
+                             QString::number(i + 1)});
+    } else if (page == int(Method::Vanishing)) {
+        static const char* axis[3] = {"X", "Y", "Z"};
+        for (int a = 0; a < 3; ++a)
+            for (const auto& s : lines_[a])
+                marks.push_back({s.first, s.second, true, kAxisColour[a], axis[a]});
+        for (QPointF o : origin_) marks.push_back({o, o, false, QColor(255, 255, 255), "O"});
+        if (distanceEnds_.size() == 2)
+            marks.push_back({distanceEnds_[0], distanceEnds_[1], true, QColor(255, 200, 0), "d"});
+    }
+    viewport_->pickTool()->setMarks(marks);
+    cornerCount_->setText(tr("Corners: %1 / 4").arg(corners_.size()));
+    lineCount_->setText(tr("Lines: X %1, Z %2, vertical %3; origin %4")
+                            .arg(lines_[0].size())
+                            .arg(lines_[2].size())
+                            .arg(lines_[1].size())
+                            .arg(origin_.isEmpty() ? tr("not set") : tr("set")));
+}
+
+bool CalibrationPanel::guarded(const QString& title, const std::function<void()>& f) {
+    try {
+        f();
+        return true;
+    } catch (const std::exception& e) {
+        reporter_->error(window(), title, QString::fromStdString(e.what()));
+        return false;
+    }
+}
+
+const Image& CalibrationPanel::photo(std::string* name) {
+    const Project& p = doc_->project();
+    const std::string path = p.resolve(p.photo.path).string();
+    if (path != photoPath_ || photo_.empty()) {
+        photo_ = load_image(path, "photo.path");
+        photoPath_ = path;
+    }
+    if (name) *name = path;
+    return photo_;
+}
+
+ImagePoint CalibrationPanel::toPhoto(QPointF r) {
+    const QSize rs = viewport_->renderSize();
+    const Image& img = photo();
+    if (!rs.isValid()) throw InputError("", "", "no photo is shown in the viewport");
+    const double sx = double(img.width()) / rs.width(), sy = double(img.height()) / rs.height();
+    return ImagePoint((r.x() + 0.5) * sx - 0.5, (r.y() + 0.5) * sy - 0.5);
+}
+
+void CalibrationPanel::apply(const QString& method, const CalibrationResult& r) {
+    camera_->applyCalibration(method, r.camera_spec(), r.rms_px);
+    QString text = tr("Matched (%1): horizontal field of view %2°")
+                       .arg(method)
+                       .arg(r.intrinsics.hfov_deg(), 0, 'f', 1);
+    for (const std::string& w : r.warnings) text += "\n" + QString::fromStdString(w);
+    status_->setText(text);
+}
+
+bool CalibrationPanel::applyChessboard() {
+    if (target_ != Target::None) viewport_->pickTool()->stop();
+    return guarded(tr("Chessboard calibration failed"), [this] {
+        std::string path;
+        const Image& img = photo(&path);
+        const ChessboardSpec spec{cols_->value(), rows_->value(), square_->value()};
+        const ChessboardView view = detect_chessboard(img, spec, path);
+        CalibrationResult r;
+        switch (focalSource_->currentIndex()) {
+            case 0: {
+                const ExifFocal e = read_exif_focal(path);
+                const double f = e.focal_px * double(img.width()) / e.width;
+                r = chessboard_pose(view, spec, Intrinsics::centred(img.width(), img.height(), f));
+                break;
+            }
+            case 1:
+                check_focal(boardFocal_->value(), path, "focal length");
+                r = chessboard_pose(view, spec,
+                                    Intrinsics::centred(img.width(), img.height(),
+                                                        boardFocal_->value()));
+                break;
+            default:
+                r = chessboard_single(view, spec);
+        }
+        apply(tr("chessboard"), r);
+    });
+}
+
+bool CalibrationPanel::applyRectangle() {
+    if (target_ != Target::None) viewport_->pickTool()->stop();
+    return guarded(tr("Rectangle calibration failed"), [this] {
+        std::vector<ImagePoint> px;
+        for (QPointF c : corners_) px.push_back(toPhoto(c));
+        std::string path;
+        const Image& img = photo(&path);
+        std::optional<Intrinsics> k;
+        if (rectFocal_->value() > 0)
+            k = Intrinsics::centred(img.width(), img.height(), rectFocal_->value());
+        const CalibrationResult r = calibrate_rectangle(px, rectWidth_->value(),
+                                                        rectHeight_->value(), img.width(),
+                                                        img.height(), k, "rectangle");
+        apply(tr("rectangle"), r);
+    });
+}
+
+bool CalibrationPanel::applyVanishing() {
+    if (target_ != Target::None) viewport_->pickTool()->stop();
+    return guarded(tr("Vanishing-line calibration failed"), [this] {
+        VanishingInput in;
+        std::vector<LineSegment>* lists[3] = {&in.x, &in.y, &in.z};
+        for (int a = 0; a < 3; ++a)
+            for (const auto& s : lines_[a])
+                lists[a]->push_back({toPhoto(s.first), toPhoto(s.second)});
+        if (origin_.isEmpty())
+            throw InputError("vanishing lines", "origin",
+                             "click the world origin on the ground (\"Click origin\")");
+        in.origin = toPhoto(origin_[0]);
+        if (distance_->value() > 0) {
+            if (distanceEnds_.size() != 2)
+                throw InputError("vanishing lines", "distance",
+                                 "click the two ends of the known distance (\"Click ends\")");
+            in.distance = VanishingInput::Distance{toPhoto(distanceEnds_[0]),
+                                                   toPhoto(distanceEnds_[1]), distance_->value()};
+        } else {
+            in.camera_height = cameraHeight_->value();
+        }
+        if (vanFocal_->value() > 0) in.focal_px = vanFocal_->value();
+        const Image& img = photo();
+        apply(tr("vanishing lines"),
+              calibrate_vanishing(in, img.width(), img.height(), "vanishing lines"));
+    });
+}
+
+bool CalibrationPanel::addGroundPlane() {
+    return guarded(tr("Ground plane failed"), [this] {
+        const Image& img = photo();
+        Project p = doc_->project();
+        ProxyFit fit = ground_proxy(p.camera.build(img.width(), img.height()), 0,
+                                    unique_real_name(p, "ground"));
+        p.real.push_back(fit.proxy);
+        doc_->edit(tr("Add ground plane"), p);
+    });
+}
+
+}  // namespace dp::ui

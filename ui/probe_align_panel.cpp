@@ -1,0 +1,172 @@
+#include "probe_align_panel.h"
+
+#include <QApplication>
+#include <QCheckBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QLabel>
+#include <QPushButton>
+#include <QVBoxLayout>
+#include <cmath>
+#include <filesystem>
+
+#include "base/error.h"
+#include "document.h"
+#include "error_reporter.h"
+#include "photo_geometry.h"
+#include "reconstruction/probe_align.h"
+#include "viewport.h"
+
+namespace dp::ui {
+
+ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporter* reporter,
+                                 QWidget* parent)
+    : QWidget(parent), doc_(doc), viewport_(viewport), reporter_(reporter) {
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    auto* sun = new QGroupBox(tr("Sun from a shadow"));
+    auto* sunForm = new QFormLayout(sun);
+    height_ = new QDoubleSpinBox;
+    height_->setRange(0.001, 1000);
+    height_->setDecimals(3);
+    height_->setValue(0.5);
+    height_->setSuffix(tr(" m"));
+    height_->setObjectName("cueHeight");
+    height_->setToolTip(tr("Height above the ground of the object point you click"));
+    sunForm->addRow(tr("Point height"), height_);
+    base_ = new QCheckBox(tr("Click its foot instead"));
+    base_->setObjectName("cueBase");
+    base_->setToolTip(tr("Click the ground point directly below the object point (e.g. the "
+                         "foot of a pole) rather than the point itself"));
+    sunForm->addRow(base_);
+    auto* pickSun = new QPushButton(tr("Click point, then shadow tip"));
+    pickSun->setObjectName("sunCue");
+    pickSun->setToolTip(tr("Turn the probe so its sun casts the shadow seen in the photo"));
+    connect(pickSun, &QPushButton::clicked, this, [this] { startPicking(Target::Sun); });
+    sunForm->addRow(pickSun);
+    layout->addWidget(sun);
+
+    auto* card = new QGroupBox(tr("Exposure from a grey card"));
+    auto* cardForm = new QFormLayout(card);
+    reflectance_ = new QDoubleSpinBox;
+    reflectance_->setRange(0.01, 1);
+    reflectance_->setDecimals(3);
+    reflectance_->setValue(0.18);
+    reflectance_->setObjectName("cardReflectance");
+    reflectance_->setToolTip(tr("The card's reflectance (0.18 for a standard grey card)"));
+    cardForm->addRow(tr("Reflectance"), reflectance_);
+    auto* pickCard = new QPushButton(tr("Drag over the card"));
+    pickCard->setObjectName("greyCard");
+    pickCard->setToolTip(tr("Drag a rectangle inside the card (it must lie on a real proxy)"));
+    connect(pickCard, &QPushButton::clicked, this, [this] { startPicking(Target::Card); });
+    cardForm->addRow(pickCard);
+    layout->addWidget(card);
+    status_ = new QLabel;
+    status_->setWordWrap(true);
+    status_->setObjectName("probeAlignStatus");
+    layout->addWidget(status_);
+
+    PickTool* pick = viewport_->pickTool();
+    connect(pick, &PickTool::pointPicked, this, [this](QPointF p) {
+        if (target_ != Target::Sun) return;
+        points_.push_back(p);
+        QVector<PickTool::Mark> marks;
+        for (int i = 0; i < points_.size(); ++i)
+            marks.push_back({points_[i], points_[i], false, QColor(255, 220, 60),
+                             i == 0 ? tr("object") : tr("shadow")});
+        viewport_->pickTool()->setMarks(marks);
+    });
+    connect(pick, &PickTool::segmentDrawn, this, [this](QPointF a, QPointF b) {
+        if (target_ == Target::Card) points_ = {a, b};
+    });
+    connect(pick, &PickTool::finished, this, [this](bool cancelled) {
+        const Target t = target_;
+        target_ = Target::None;
+        if (t == Target::None) return;
+        const QVector<QPointF> pts = points_;
+        points_.clear();
+        viewport_->pickTool()->setMarks({});
+        if (cancelled || pts.size() != 2) return;
+        if (t == Target::Sun) alignSun(pts[0], pts[1]);
+        if (t == Target::Card) matchGreyCard(pts[0], pts[1]);
+    });
+}
+
+void ProbeAlignPanel::startPicking(Target target) {
+    target_ = Target::None;  // an unfinished run of ours is dropped, not applied
+    points_.clear();
+    viewport_->pickTool()->stop();
+    viewport_->pickTool()->setMarks({});
+    target_ = target;
+    if (target == Target::Sun)
+        viewport_->pickTool()->start(PickTool::Kind::Point, 2,
+                                     tr("Click the object point, then the tip of its shadow"));
+    else
+        viewport_->pickTool()->start(PickTool::Kind::Segment, 1,
+                                     tr("Drag from corner to corner inside the grey card"));
+    viewport_->setFocus();
+}
+
+bool ProbeAlignPanel::guarded(const QString& title, const std::function<void()>& f) {
+    try {
+        f();
+        return true;
+    } catch (const std::exception& e) {
+        QApplication::restoreOverrideCursor();
+        reporter_->error(window(), title, QString::fromStdString(e.what()));
+        return false;
+    }
+}
+
+bool ProbeAlignPanel::alignSun(QPointF object, QPointF shadowTip) {
+    return guarded(tr("Sun alignment failed"), [&] {
+        Project p = doc_->project();
+        const QSize ps = photo_size(p);
+        ShadowCue cue;
+        cue.object_px = render_to_photo(object, viewport_->renderSize(), ps);
+        cue.shadow_px = render_to_photo(shadowTip, viewport_->renderSize(), ps);
+        cue.height = float(height_->value());
+        cue.object_is_base = base_->isChecked();
+        const vec3 sun = sun_direction_from_shadow(photo_camera(p), cue);
+        const SceneAssets assets = load_assets(p);
+        const vec3 bright = brightest_direction(assets.probe_latlong);
+        const ProbeYaw yaw = align_probe_yaw(bright, p.probe.rotation_deg, sun);
+        p.probe.rotation_deg = yaw.rotation_deg;
+        doc_->edit(tr("Align probe to the shadow"), p);
+        status_->setText(tr("Probe turned %1° about the vertical; sun elevation differs by %2°")
+                             .arg(yaw.yaw_deg, 0, 'f', 1)
+                             .arg(yaw.elevation_mismatch_deg, 0, 'f', 1));
+    });
+}
+
+bool ProbeAlignPanel::matchGreyCard(QPointF a, QPointF b) {
+    return guarded(tr("Grey card failed"), [&] {
+        Project p = doc_->project();
+        const QSize ps = photo_size(p);
+        const vec2 pa = render_to_photo(a, viewport_->renderSize(), ps);
+        const vec2 pb = render_to_photo(b, viewport_->renderSize(), ps);
+        GreyCard card;
+        card.x0 = int(std::lround(std::min(pa.x, pb.x)));
+        card.y0 = int(std::lround(std::min(pa.y, pb.y)));
+        card.x1 = int(std::lround(std::max(pa.x, pb.x)));
+        card.y1 = int(std::lround(std::max(pa.y, pb.y)));
+        card.reflectance = float(reflectance_->value());
+        float clip = INFINITY;
+        const std::string ext = std::filesystem::path(p.photo.path).extension().string();
+        if (ext != ".exr" && ext != ".hdr" && ext != ".EXR" && ext != ".HDR")
+            clip = 0.99f * std::exp2(p.photo.exposure);  // 8-bit photos clip at the top
+        QApplication::setOverrideCursor(Qt::WaitCursor);
+        RenderScene scene(p, load_assets(p));
+        const ExposureMatch m = match_exposure_grey_card(scene, card, clip);
+        QApplication::restoreOverrideCursor();
+        p.probe.intensity = m.intensity;
+        doc_->edit(tr("Probe exposure from the grey card"), p);
+        status_->setText(tr("Probe intensity x%1 (from %2 card pixels, spread %3)")
+                             .arg(m.scale, 0, 'f', 3)
+                             .arg(m.pixels)
+                             .arg(m.spread, 0, 'f', 3));
+    });
+}
+
+}  // namespace dp::ui

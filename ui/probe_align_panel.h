@@ -1,0 +1,47 @@
+#pragma once
+#include <QPointF>
+#include <QVector>
+#include <QWidget>
+#include <functional>
+
+class QCheckBox;
+class QDoubleSpinBox;
+class QLabel;
+
+namespace dp::ui {
+
+class Document;
+class ErrorReporter;
+class Viewport;
+
+/// Aligns the light probe with the photo: the sun cue (click a point of an object and the tip
+/// of its shadow: the probe turns about the vertical so its brightest region lies where the
+/// shadow says the sun is) and the grey card (drag over a card of known reflectance: the probe
+/// intensity is scaled so the card's shading matches the photo). Each is one undo step.
+class ProbeAlignPanel : public QWidget {
+    Q_OBJECT
+public:
+    ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporter* reporter,
+                    QWidget* parent = nullptr);
+
+    /// Turns the probe from a cue: object point and shadow tip in render pixels.
+    bool alignSun(QPointF object, QPointF shadowTip);
+    /// Scales the probe intensity from a grey card: opposite corners in render pixels.
+    bool matchGreyCard(QPointF a, QPointF b);
+
+private:
+    enum class Target { None, Sun, Card };
+    void startPicking(Target target);
+    bool guarded(const QString& title, const std::function<void()>& f);
+
+    Document* doc_;
+    Viewport* viewport_;
+    ErrorReporter* reporter_;
+    QDoubleSpinBox *height_, *reflectance_;
+    QCheckBox* base_;
+    QLabel* status_;
+    Target target_ = Target::None;
+    QVector<QPointF> points_;
+};
+
+}  // namespace dp::ui

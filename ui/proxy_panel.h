@@ -1,0 +1,54 @@
+#pragma once
+#include <QPointF>
+#include <QVector>
+#include <QWidget>
+#include <functional>
+
+class QDoubleSpinBox;
+class QLabel;
+class QListWidget;
+class QSpinBox;
+
+namespace dp::ui {
+
+class Document;
+class ErrorReporter;
+class Viewport;
+
+/// The real proxies that stand in for the photo's surfaces: a list (select, remove), boxes
+/// from their clicked footprint (four corners on the ground, in order) and a height, walls from
+/// two clicked points at their base, and the albedo texture of the selected proxy estimated
+/// from the photo and the probe on demand (written next to the project file). Every change is
+/// one undo step; bad input is reported and changes nothing.
+class ProxyPanel : public QWidget {
+    Q_OBJECT
+public:
+    ProxyPanel(Document* doc, Viewport* viewport, ErrorReporter* reporter,
+               QWidget* parent = nullptr);
+
+    QListWidget* list() const { return list_; }
+    /// A box from four footprint corners / a wall from two base points (render pixels).
+    bool addBox(const QVector<QPointF>& corners);
+    bool addWall(const QVector<QPointF>& base);
+    /// Estimates the albedo texture of real proxy `index` and points the proxy at it.
+    bool estimateAlbedo(int index);
+
+private:
+    enum class Target { None, Box, Wall };
+    void refresh();
+    void startPicking(Target target);
+    void removeSelected();
+    bool guarded(const QString& title, const std::function<void()>& f);
+
+    Document* doc_;
+    Viewport* viewport_;
+    ErrorReporter* reporter_;
+    QListWidget* list_;
+    QDoubleSpinBox *boxHeight_, *wallHeight_, *wallThickness_;
+    QSpinBox *resolution_, *samples_;
+    QLabel* status_;
+    Target target_ = Target::None;
+    QVector<QPointF> points_;
+};
+
+}  // namespace dp::ui
