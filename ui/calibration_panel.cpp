@@ -306,13 +306,7 @@ void CalibrationPanel::refreshMarks() {
 }
 
 bool CalibrationPanel::guarded(const QString& title, const std::function<void()>& f) {
-    try {
-        f();
-        return true;
-    } catch (const std::exception& e) {
-        reporter_->error(window(), title, QString::fromStdString(e.what()));
-        return false;
-    }
+    return run_reporting_errors(reporter_, window(), title, f);
 }
 
 const Image& CalibrationPanel::photo(std::string* name) {

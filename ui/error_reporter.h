@@ -2,6 +2,8 @@
 #include <QString>
 #include <QStringList>
 
+#include <functional>
+
 class QWidget;
 
 namespace dp::ui {
@@ -39,5 +41,10 @@ public:
 private:
     bool answer_;
 };
+
+/// Runs `work`; an exception it throws becomes one error message under `title` (any override
+/// cursor is restored first). Returns true if `work` finished.
+bool run_reporting_errors(ErrorReporter* reporter, QWidget* parent, const QString& title,
+                          const std::function<void()>& work);
 
 }  // namespace dp::ui

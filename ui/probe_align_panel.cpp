@@ -109,14 +109,7 @@ void ProbeAlignPanel::startPicking(Target target) {
 }
 
 bool ProbeAlignPanel::guarded(const QString& title, const std::function<void()>& f) {
-    try {
-        f();
-        return true;
-    } catch (const std::exception& e) {
-        QApplication::restoreOverrideCursor();
-        reporter_->error(window(), title, QString::fromStdString(e.what()));
-        return false;
-    }
+    return run_reporting_errors(reporter_, window(), title, f);
 }
 
 bool ProbeAlignPanel::alignSun(QPointF object, QPointF shadowTip) {

@@ -172,14 +172,7 @@ void ProxyPanel::startPicking(Target target) {
 }
 
 bool ProxyPanel::guarded(const QString& title, const std::function<void()>& f) {
-    try {
-        f();
-        return true;
-    } catch (const std::exception& e) {
-        QApplication::restoreOverrideCursor();
-        reporter_->error(window(), title, QString::fromStdString(e.what()));
-        return false;
-    }
+    return run_reporting_errors(reporter_, window(), title, f);
 }
 
 bool ProxyPanel::addBox(const QVector<QPointF>& corners) {
