@@ -11,6 +11,7 @@
 
 #include "document.h"
 #include "image/image_io.h"
+#include "stroke_slider.h"
 
 namespace dp::ui {
 
@@ -68,25 +69,17 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
 
 QSlider* MaterialPanel::addSlider(QFormLayout* form, const QString& label, const QString& tip,
                                   int lo, int hi, QLabel** value) {
-    auto* s = new QSlider(Qt::Horizontal);
-    s->setRange(lo, hi);
-    s->setToolTip(tip);
-    *value = new QLabel;
-    (*value)->setMinimumWidth(40);
-    auto* row = new QHBoxLayout;
-    row->addWidget(s, 1);
-    row->addWidget(*value);
-    form->addRow(label, row);
-    connect(s, &QSlider::sliderPressed, this, [this] {
-        strokeKey_ = doc_->newMergeKey();
-        Q_EMIT strokeStarted();
-    });
-    connect(s, &QSlider::sliderReleased, this, [this] {
-        strokeKey_ = -1;
-        Q_EMIT strokeFinished();
-    });
-    connect(s, &QSlider::valueChanged, this, [this, s] { sliderMoved(s); });
-    return s;
+    return add_stroke_slider(
+        form, label, tip, lo, hi, 40, value, this,
+        [this] {
+            strokeKey_ = doc_->newMergeKey();
+            Q_EMIT strokeStarted();
+        },
+        [this] {
+            strokeKey_ = -1;
+            Q_EMIT strokeFinished();
+        },
+        [this](QSlider* s) { sliderMoved(s); });
 }
 
 void MaterialPanel::sliderMoved(QSlider* moved) {

@@ -11,6 +11,7 @@
 #include "document.h"
 #include "image/image_io.h"
 #include "scene_builder.h"
+#include "stroke_slider.h"
 
 namespace dp::ui {
 
@@ -25,25 +26,17 @@ ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     preview_->installEventFilter(this);
     form->addRow(preview_);
     auto slider = [&](const QString& label, const QString& tip, int lo, int hi, QLabel** value) {
-        auto* s = new QSlider(Qt::Horizontal);
-        s->setRange(lo, hi);
-        s->setToolTip(tip);
-        *value = new QLabel;
-        (*value)->setMinimumWidth(48);
-        auto* row = new QHBoxLayout;
-        row->addWidget(s, 1);
-        row->addWidget(*value);
-        form->addRow(label, row);
-        connect(s, &QSlider::sliderPressed, this, [this] {
-            strokeKey_ = doc_->newMergeKey();
-            Q_EMIT strokeStarted();
-        });
-        connect(s, &QSlider::sliderReleased, this, [this] {
-            strokeKey_ = -1;
-            Q_EMIT strokeFinished();
-        });
-        connect(s, &QSlider::valueChanged, this, [this] { applySliders(); });
-        return s;
+        return add_stroke_slider(
+            form, label, tip, lo, hi, 48, value, this,
+            [this] {
+                strokeKey_ = doc_->newMergeKey();
+                Q_EMIT strokeStarted();
+            },
+            [this] {
+                strokeKey_ = -1;
+                Q_EMIT strokeFinished();
+            },
+            [this](QSlider*) { applySliders(); });
     };
     rotation_ = slider(tr("Rotation"), tr("Turn the probe about the vertical axis (degrees)"), -180,
                        180, &rotationValue_);
