@@ -6,23 +6,15 @@
 #include "base/error.h"
 #include "calibration/correspondences.h"
 #include "calibration/vanishing.h"
+#include "common/input_error.h"
 
 using namespace dp;
+using dp::test::input_error_message;
 
 namespace {
 
-/// The InputError's message, or a note that none was thrown.
-std::string error_of(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "(no InputError)";
-}
-
 #define EXPECT_INPUT_ERROR(call, text) \
-    EXPECT_NE(error_of([&] { call; }).find(text), std::string::npos) << error_of([&] { call; })
+    EXPECT_NE(input_error_message([&] { call; }).find(text), std::string::npos) << input_error_message([&] { call; })
 
 const Intrinsics kK = Intrinsics::centred(640, 480, 500);
 

@@ -9,8 +9,10 @@
 
 #include "base/error.h"
 #include "calibration/exif.h"
+#include "common/input_error.h"
 
 using namespace dp;
+using dp::test::input_error_message;
 
 namespace {
 
@@ -44,15 +46,6 @@ protected:
     std::filesystem::path dir_;
 };
 
-std::string message(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no InputError";
-}
-
 }  // namespace
 
 TEST_F(Exif, ThirtyFiveMillimetreEquivalentGivesTheFocalOnTheDiagonal) {
@@ -85,19 +78,19 @@ TEST_F(Exif, AGivenSensorWidthWinsOverTheTags) {
 }
 
 TEST_F(Exif, MissingOrUnusableExifIsAnInputError) {
-    EXPECT_NE(message([&] { read_exif_focal(plain_jpeg("plain.jpg")); }).find("no EXIF data"),
+    EXPECT_NE(input_error_message([&] { read_exif_focal(plain_jpeg("plain.jpg")); }).find("no EXIF data"),
               std::string::npos);
-    EXPECT_NE(message([&] { read_exif_focal((dir_ / "missing.jpg").string()); })
+    EXPECT_NE(input_error_message([&] { read_exif_focal((dir_ / "missing.jpg").string()); })
                   .find("file not found"),
               std::string::npos);
     std::ofstream((dir_ / "garbage.jpg").string()) << "not an image at all";
-    EXPECT_NE(message([&] { read_exif_focal((dir_ / "garbage.jpg").string()); })
+    EXPECT_NE(input_error_message([&] { read_exif_focal((dir_ / "garbage.jpg").string()); })
                   .find("cannot read the file's metadata"),
               std::string::npos);
     auto no_focal = jpeg_with("nofocal.jpg", {{"Exif.Image.Make", "Acme"}});
-    EXPECT_NE(message([&] { read_exif_focal(no_focal); }).find("no focal length"),
+    EXPECT_NE(input_error_message([&] { read_exif_focal(no_focal); }).find("no focal length"),
               std::string::npos);
     auto no_sensor = jpeg_with("nosensor.jpg", {{"Exif.Photo.FocalLength", "50/1"}});
-    EXPECT_NE(message([&] { read_exif_focal(no_sensor); }).find("give the sensor width"),
+    EXPECT_NE(input_error_message([&] { read_exif_focal(no_sensor); }).find("give the sensor width"),
               std::string::npos);
 }

@@ -9,8 +9,10 @@
 
 #include "base/error.h"
 #include "calibration/fspy.h"
+#include "common/input_error.h"
 
 using namespace dp;
+using dp::test::input_error_message;
 using json = nlohmann::json;
 
 namespace {
@@ -66,15 +68,6 @@ protected:
     std::string file(const std::string& name) const { return (dir_ / name).string(); }
     std::filesystem::path dir_;
 };
-
-std::string message(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const InputError& e) {
-        return e.what();
-    }
-    return "no InputError";
-}
 
 }  // namespace
 
@@ -145,22 +138,22 @@ TEST_F(Fspy, AKnownCameraRoundTripsExactly) {
 
 TEST_F(Fspy, BrokenFilesAreInputErrors) {
     std::ofstream(file("text.fspy")) << "hello";
-    EXPECT_NE(message([&] { read_fspy(file("text.fspy")); }).find("not an fSpy project"),
+    EXPECT_NE(input_error_message([&] { read_fspy(file("text.fspy")); }).find("not an fSpy project"),
               std::string::npos);
-    EXPECT_NE(message([&] { read_fspy(file("missing.fspy")); }).find("cannot open"),
+    EXPECT_NE(input_error_message([&] { read_fspy(file("missing.fspy")); }).find("cannot open"),
               std::string::npos);
     const std::vector<std::vector<double>> I = {
         {1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}};
     write_fspy(file("v2.fspy"), state_for(I, 1.0, 0, 0, 8, 6), small_png(), 2);
-    EXPECT_NE(message([&] { read_fspy(file("v2.fspy")); }).find("unsupported fSpy project version 2"),
+    EXPECT_NE(input_error_message([&] { read_fspy(file("v2.fspy")); }).find("unsupported fSpy project version 2"),
               std::string::npos);
     json no_camera = state_for(I, 1.0, 0, 0, 8, 6);
     no_camera["cameraParameters"] = nullptr;
     write_fspy(file("nocam.fspy"), no_camera, small_png());
-    EXPECT_NE(message([&] { read_fspy(file("nocam.fspy")); }).find("no camera parameters"),
+    EXPECT_NE(input_error_message([&] { read_fspy(file("nocam.fspy")); }).find("no camera parameters"),
               std::string::npos);
     // Truncated: the image announced in the header is missing.
     write_fspy(file("full.fspy"), state_for(I, 1.0, 0, 0, 8, 6), small_png());
     std::filesystem::resize_file(file("full.fspy"), std::filesystem::file_size(file("full.fspy")) - 10);
-    EXPECT_NE(message([&] { read_fspy(file("full.fspy")); }).find("truncated"), std::string::npos);
+    EXPECT_NE(input_error_message([&] { read_fspy(file("full.fspy")); }).find("truncated"), std::string::npos);
 }
