@@ -82,7 +82,12 @@ public:
     /// precision so that large maps are sampled with their exact pmf. A black probe returns
     /// pdf 0 and zero radiance.
     ProbeSample sample(float u0, float u1, float u2) const;
-    /// Solid-angle pdf of sample() for a world direction.
+    /// The same distribution as sample() by inversion of the marginal (rows) and conditional
+    /// (columns) CDFs: a monotone map of the unit square, so stratified or low-discrepancy
+    /// points stay evenly spread over a bright region such as the sun's disk. u.x picks the
+    /// column, u.y the row.
+    ProbeSample sample_inverse(vec2 u) const;
+    /// Solid-angle pdf of sample() and sample_inverse() for a world direction.
     float pdf(const vec3& dir) const;
     /// Probability that sample() picks pixel `pixel`.
     double pixel_pmf(size_t pixel) const;
@@ -99,6 +104,7 @@ private:
 
     /// luminance(L_j) * Omega_j of a pixel as the sampling weights are built (0 unless positive).
     double pixel_weight(size_t pixel) const;
+    void build_inverse_cdfs();
 
     /// One column of the alias table: the coin that sample() flips once it has picked the
     /// column. Only the coin decides the direction, so it is kept apart from the per-pixel data
@@ -125,6 +131,8 @@ private:
     std::vector<PixelData, HugePageAllocator<PixelData>> pixels_;  ///< row-major
     std::vector<float, HugePageAllocator<float>> pdf_;  ///< per pixel, compact for pdf()
     std::vector<Row> rows_;
+    std::vector<double> row_cdf_;  ///< height + 1 entries: the marginal over rows
+    std::vector<double, HugePageAllocator<double>> column_cdf_;  ///< per row, width + 1 entries
     double total_power_ = 0;
 };
 

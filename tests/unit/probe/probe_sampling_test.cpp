@@ -169,3 +169,67 @@ TEST(ProbeSampling, FloatRandomNumbersSampleALargeMapAtItsExactPmf) {
         if (probe.sample(rng.uniform(), rng.uniform(), rng.uniform()).pixel == bright) hits += 1;
     EXPECT_NEAR(hits, n * p, 5 * std::sqrt(n * p * (1 - p)));
 }
+
+TEST(ProbeSampling, InversionPicksPixelsAtThePixelPmfAndDirectionsUniformlyInside) {
+    const int w = 32, h = 16, sub = 2, n = 1000000;
+    Image img = random_probe(w, h, 8);
+    Probe probe(img, euler_xyz_deg(vec3(-15, 40, 5)), 0.8f);
+    std::vector<double> observed(img.size() * sub * sub, 0.0), expected(observed.size());
+    Rng rng(8, 8);
+    int outside = 0;
+    for (int k = 0; k < n; ++k) {
+        ProbeSample s = probe.sample_inverse(vec2(rng.uniform(), rng.uniform()));
+        const vec3 d = probe.to_probe(s.dir);
+        size_t pixel = latlong_pixel(d, w, h);
+        if (pixel != s.pixel) {  // a direction on a pixel's edge may round into its neighbour
+            ++outside;
+            continue;
+        }
+        ASSERT_EQ(s.pdf, probe.pdf(s.dir)) << "sample " << k;
+        int i = int(pixel % w), j = int(pixel / w);
+        double u = latlong_uv(d).x * w - i;
+        double cos_top = std::cos(kPiD * j / h), cos_bottom = std::cos(kPiD * (j + 1) / h);
+        double t = (cos_top - double(d.y)) / (cos_top - cos_bottom);
+        int a = std::clamp(int(u * sub), 0, sub - 1), b = std::clamp(int(t * sub), 0, sub - 1);
+        observed[(pixel * sub + b) * sub + a] += 1;
+    }
+    for (size_t k = 0; k < expected.size(); ++k)
+        expected[k] = n * probe.pixel_pmf(k / (sub * sub)) / (sub * sub);
+    test::ChiSquare chi = test::chi_square_test(observed, expected);
+    EXPECT_GT(chi.p_value, 1e-3) << "chi2 " << chi.statistic << " dof " << chi.dof;
+    EXPECT_LE(outside, n / 10000);
+}
+
+TEST(ProbeSampling, InversionSpreadsAStratifiedGridEvenlyOverTheSunsDisk) {
+    // A sun of 2 degrees in a black sky: a 16 x 16 grid of strata should put the sun's samples
+    // evenly over its disk, where independent random numbers would clump. Measured by the
+    // spread of the samples' mean direction around the sun's centre over many jittered grids.
+    const int w = 1024, h = 512;
+    const vec3 sun_dir = glm::normalize(vec3(0.3f, 0.8f, -0.5f));
+    Image img = make_sun_sky_probe(w, h, sun_dir, vec3(1e5f), 2.0f, vec3(0.0f), vec3(0.0f));
+    Probe probe(img, glm::mat3(1), 1);
+    auto spread = [&](bool stratified) {
+        Rng rng(9, stratified);
+        double sum2 = 0;
+        const int trials = 50, g = 16;
+        vec3 overall(0);
+        std::vector<vec3> means;
+        for (int t = 0; t < trials; ++t) {
+            dvec3 mean(0);
+            for (int a = 0; a < g; ++a)
+                for (int b = 0; b < g; ++b) {
+                    vec2 u = stratified ? vec2((a + rng.uniform()) / g, (b + rng.uniform()) / g)
+                                        : vec2(rng.uniform(), rng.uniform());
+                    mean += dvec3(probe.sample_inverse(u).dir);
+                }
+            means.push_back(vec3(glm::normalize(mean)));
+            overall += means.back();
+        }
+        overall = glm::normalize(overall);
+        for (const vec3& m : means) sum2 += double(glm::dot(m - overall, m - overall));
+        return std::sqrt(sum2 / trials);
+    };
+    const double random = spread(false), stratified = spread(true);
+    std::printf("spread of the mean sun direction: random %.3g, stratified %.3g\n", random, stratified);
+    EXPECT_LT(stratified, 0.2 * random);
+}
