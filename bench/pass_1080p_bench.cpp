@@ -1,11 +1,8 @@
 // One progressive pass of the sample project at 1920x1080 with a million photons: the product's
 // interactive-rate promise (under 1 s per pass on a 2-core machine, under 1 GiB resident).
 #include <benchmark/benchmark.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <atomic>
 #include <chrono>
 #include <memory>
 #include <vector>
@@ -13,7 +10,6 @@
 #include "base/rng.h"
 #include "bench_common.h"
 #include "render/photon_tracer.h"
-#include "render/pixel_cache.h"
 #include "render/progressive.h"
 #include "render/shading.h"
 
@@ -81,118 +77,39 @@ BENCHMARK(BM_OnePass1080p)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-/// What the camera's centre ray sees per pixel, as ProgressiveRenderer caches it.
-
-
-/// Runs body(pixel index, x, y) over the image in blocks of rows, as shade_pass does; returns
-/// the sum of what it returned.
-template <class Body>
-size_t count_over_rows(int W, int H, const Body& body) {
-    std::atomic<size_t> count{0};
-    tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const tbb::blocked_range<int>& r) {
-        size_t local = 0;
-        for (int y = r.begin(); y < r.end(); ++y)
-            for (int x = 0; x < W; ++x) local += body(size_t(y) * W + x, x, y);
-        count += local;
-    });
-    return count.load();
-}
-
-// The same pass as BM_OnePass1080p rebuilt from the public API with a timer around each phase,
-// to show where the time goes. The shading phase is split by pixel class: pixels near a
-// virtual object (camera ray, next-event estimation, bounce, caustic gather) and real pixels
-// whose cell the photon map reaches (camera ray, one gather). `skip_test_s` is the cost of the
-// skip test alone (reaches() for every pixel), included in the two shading figures.
+// The same pass with the renderer's own phase timers (RenderStats): photon tracing, map
+// builds, marking the pixels the photons reach and picking the tiles, shading the tiles, and
+// adding them up (with the convergence check).
 void BM_OnePass1080pPhases(benchmark::State& state) {
     auto scene = scene_1080p();
-    const RenderScene& s = *scene;
-    tbb::task_arena arena(bench::arena_threads(s, 0));
-    const uint64_t seed = s.project().render.seed;
-    float radius = 0;
-    int diffuse_samples = 0;
-    PixelCache cache;
-    arena.execute([&] {
-        ProgressiveRenderer r(scene, kPhotonsPerPass, seed);
-        radius = r.radius_for_pass(kPass);
-        diffuse_samples = r.camera_diffuse_samples();
-        cache = build_pixel_cache(s);
-    });
-    const int W = s.photo().width(), H = s.photo().height();
-    const size_t n = size_t(W) * H;
-    std::vector<dvec3> sum_delta(n, dvec3(0)), sum_dL(n, dvec3(0));
-    std::vector<double> sum_alpha(n, 0.0);
-    double t_trace = 0, t_build = 0, t_virtual = 0, t_real = 0, t_acc = 0, t_skip = 0;
-    size_t px_virtual = 0, px_real = 0;
+    tbb::task_arena arena(bench::arena_threads(*scene, 0));
+    const uint64_t seed = scene->project().render.seed;
+    RenderStats sum;
+    double tiles = 0, pixels = 0;
     for (auto _ : state) {
         arena.execute([&] {
-            auto t0 = std::chrono::steady_clock::now();
-            PhotonPass photons = trace_photons(s, seed, kPass, kPhotonsPerPass);
-            t_trace += seconds_since(t0);
-
-            t0 = std::chrono::steady_clock::now();
-            PassMaps maps;
-            maps.radius = radius;
-            maps.real.build(std::move(photons.real), radius);
-            maps.caustic.build(std::move(photons.caustic), radius);
-            t_build += seconds_since(t0);
-
-            std::vector<SampleResult> out(n, SampleResult{});
-            Shader shader(s, maps, diffuse_samples);
-            // Same sample streams as ProgressiveRenderer::shade_pass for pass 1.
-            auto shade = [&](size_t i, int x, int y) {
-                Rng rng = Rng::keyed(seed, uint64_t(kPass) * 2 + 1, i);
-                const vec2 j = camera_jitter(seed, kPass, i);
-                const float jx = j.x, jy = j.y;
-                out[i] = shader.shade_camera(x, y, float(x) + jx, float(y) + jy, rng);
-            };
-            auto rows = [&](auto&& body) { return count_over_rows(W, H, body); };
-
-            t0 = std::chrono::steady_clock::now();
-            px_virtual += rows([&](size_t i, int x, int y) -> size_t {
-                if (!cache.near_virtual[i]) return 0;
-                shade(i, x, y);
-                return 1;
-            });
-            t_virtual += seconds_since(t0);
-
-            t0 = std::chrono::steady_clock::now();
-            auto reached = [&](size_t i) {
-                return cache.has_real[i] && maps.real.reaches(cache.real_point[i]);
-            };
-            px_real += rows([&](size_t i, int x, int y) -> size_t {
-                if (cache.near_virtual[i] || !reached(i)) return 0;
-                shade(i, x, y);
-                return 1;
-            });
-            t_real += seconds_since(t0);
-
-            t0 = std::chrono::steady_clock::now();
-            for (size_t i = 0; i < n; ++i) {
-                const SampleResult& r = out[i];
-                if (!is_finite(r.delta) || !is_finite(r.dL) || !std::isfinite(r.alpha)) continue;
-                sum_delta[i] += dvec3(r.delta);
-                sum_dL[i] += dvec3(r.dL);
-                sum_alpha[i] += r.alpha;
-            }
-            t_acc += seconds_since(t0);
-
-            t0 = std::chrono::steady_clock::now();
-            size_t kept = rows([&](size_t i, int, int) -> size_t {
-                return cache.near_virtual[i] || reached(i);
-            });
-            t_skip += seconds_since(t0);
-            benchmark::DoNotOptimize(kept);
+            state.PauseTiming();
+            ProgressiveRenderer r(scene, kPhotonsPerPass, seed);
+            state.ResumeTiming();
+            r.render_pass();
+            const RenderStats& st = r.stats();
+            sum.trace_s += st.trace_s;
+            sum.maps_s += st.maps_s;
+            sum.mark_s += st.mark_s;
+            sum.shade_s += st.shade_s;
+            sum.accumulate_s += st.accumulate_s;
+            tiles += double(st.tiles_shaded);
+            pixels += double(st.pixels_gathered);
         });
     }
     const double it = double(state.iterations());
-    state.counters["trace_s"] = t_trace / it;
-    state.counters["build_s"] = t_build / it;
-    state.counters["shade_virtual_s"] = t_virtual / it;
-    state.counters["shade_real_s"] = t_real / it;
-    state.counters["accumulate_s"] = t_acc / it;
-    state.counters["skip_test_s"] = t_skip / it;
-    state.counters["pixels_virtual"] = double(px_virtual) / it;
-    state.counters["pixels_real_gathered"] = double(px_real) / it;
+    state.counters["trace_s"] = sum.trace_s / it;
+    state.counters["maps_s"] = sum.maps_s / it;
+    state.counters["mark_s"] = sum.mark_s / it;
+    state.counters["shade_s"] = sum.shade_s / it;
+    state.counters["accumulate_s"] = sum.accumulate_s / it;
+    state.counters["tiles_shaded"] = tiles / it;
+    state.counters["pixels_shaded"] = pixels / it;
     state.counters["threads"] = double(arena.max_concurrency());
 }
 BENCHMARK(BM_OnePass1080pPhases)

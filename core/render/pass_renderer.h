@@ -21,6 +21,14 @@ struct RenderStats {
     float radius = 0;              ///< gather radius of the last pass
     size_t non_finite_samples = 0; ///< samples discarded because they were NaN/Inf
     uint64_t samples_per_pixel = 0;///< camera samples per pixel so far (path-traced methods)
+    /// Estimated relative RMSE of the image so far over the pixels the objects change, from
+    /// the difference of the two interleaved halves of the passes; negative while unknown.
+    double estimated_rel_error = -1;
+    size_t tiles_total = 0, tiles_shaded = 0;  ///< tiles, and those the last pass shaded
+    size_t tiles_stopped = 0;                  ///< tiles adaptive sampling found converged
+    /// Where the last pass's time went (seconds): photons, maps, marking the pixels the photons
+    /// reach, shading the tiles, adding them up.
+    double trace_s = 0, maps_s = 0, mark_s = 0, shade_s = 0, accumulate_s = 0;
 };
 
 /// A progressive renderer driven one pass at a time: the differential photon mapper, or the

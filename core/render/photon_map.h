@@ -37,6 +37,24 @@ public:
     /// share a cell (neighbouring pixels often do).
     glm::i64vec3 cell_of(const vec3& x) const;
     bool reaches_cell(const glm::i64vec3& cell) const;
+    /// Edge length of a grid cell: one gather diameter.
+    double cell_size() const { return 1.0 / inv_cell_; }
+    /// Calls f(centre) once for every cell that holds a photon (order unspecified).
+    template <class F>
+    void for_each_cell(F&& f) const {
+        const double size = cell_size();
+        auto centre = [&](const glm::i64vec3& c) { return vec3((dvec3(c) + 0.5) * size); };
+        for (const Cell& c : table_) {
+            if (c.key == kEmpty) continue;
+            glm::i64vec3 last = cell_of(photons_[c.begin].position);
+            f(centre(last));
+            if (exact_) continue;  // wrapped keys: one run may hold several distant cells
+            for (uint32_t i = c.begin + 1; i < c.end; ++i) {
+                const glm::i64vec3 cell = cell_of(photons_[i].position);
+                if (cell != last) f(centre(cell)), last = cell;
+            }
+        }
+    }
 
 private:
     struct Cell {

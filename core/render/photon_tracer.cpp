@@ -28,13 +28,28 @@ struct Tracer {
     PhotonEmitter emitter;
     int max_depth = 8;
 
-    Tracer(const RenderScene& s, int64_t count, int64_t surround_count)
-        : scene(s), emitter(s, count, surround_count), max_depth(std::max(1, s.project().render.max_depth)) {}
+    bool store_first_shadow = true;  ///< false: next-event estimation takes the first landing
+
+    Tracer(const RenderScene& s, int64_t count, int64_t surround_count, const PhotonPassOptions& o)
+        : scene(s), emitter(s, count, surround_count), max_depth(std::max(1, s.project().render.max_depth)),
+          store_first_shadow(!o.direct_by_rays) {}
+
+    /// Whether a shadow photon landing at `hr` (travelling along `dir`) is stored there: always
+    /// without the split; under it only where the object nearest to `hr` on the line is glass
+    /// (next-event estimation leaves light blocked by glass to the photons, see DirectChange).
+    bool stores_first_shadow(const Hit& hr, const vec3& dir, Block& out) const {
+        if (store_first_shadow) return true;
+        if (!scene.has_transmissive()) return false;
+        ++out.stats.rays;
+        const Hit nearest = scene.intersect_virtual(Ray{scene.offset_origin(hr, -dir), -dir});
+        return nearest && nearest.surface->transmits();
+    }
 
     /// Follows a photon from a known first hit: stores on real surfaces (and caustics on
     /// virtual diffuse ones if `caustics`), bounces until absorbed. Negative photons die on
-    /// virtual objects.
-    void follow(Hit hit, vec3 dir, vec3 flux, bool negative, Rng& rng, Block& out, bool caustics = true) const {
+    /// virtual objects; their first landing is stored only if `store_first`.
+    void follow(Hit hit, vec3 dir, vec3 flux, bool negative, Rng& rng, Block& out, bool caustics = true,
+                bool store_first = true) const {
         bool specular_only = !negative && caustics;
         const vec3 flux0 = glm::abs(flux);
         const float flux0_max = std::max({flux0.x, flux0.y, flux0.z});
@@ -47,8 +62,10 @@ struct Tracer {
             const Surface& s = *hit.surface;
             bool diffuse = !s.is_virtual || s.material.kind == Material::Kind::Diffuse;
             if (!s.is_virtual) {
-                out.real.push_back({hit.p, flux, facing_normal(hit.ng, dir)});
-                ++out.stats.stored_real;
+                if (depth > 0 || store_first) {
+                    out.real.push_back({hit.p, flux, facing_normal(hit.ng, dir)});
+                    ++out.stats.stored_real;
+                }
             } else if (negative) {
                 return;
             } else if (diffuse && specular_only && depth > 0) {
@@ -93,7 +110,7 @@ struct Tracer {
         ++out.stats.rays;
         if (scene.occluded_real(Ray{origin, w})) return;  // the probe never lit this line
         ++out.stats.hit_virtual;
-        if (hr) follow(hr, -w, -flux, true, rng, out);
+        if (hr) follow(hr, -w, -flux, true, rng, out, true, stores_first_shadow(hr, -w, out));
         follow(hv, -w, flux, false, rng, out);
     }
 
@@ -115,23 +132,29 @@ struct Tracer {
         ++out.stats.emitted;
         const PhotonEmitter::SurroundLine line = emitter.emit_surround_line(rng);
         if (!line.valid) return;
-        Hit x = scene.intersect_real(Ray{line.through, line.w});
-        ++out.stats.rays;
-        if (!x) return;  // the probe: the probe photons carry that light
         const vec3 down = -line.w;
-        const Ray ray{scene.offset_origin(x, down), down};
-        Hit hv = scene.intersect_virtual(ray);
+        // The first object on the line, then the first real surface beyond it towards +w: the
+        // emitter. Searching from the disk instead would miss every line whose disk point lies
+        // behind a wall or under a floor that cuts through the cluster's sphere.
+        const Hit hv = scene.intersect_virtual(Ray{line.origin, down});
         ++out.stats.rays;
         if (!hv) return;
-        Hit hr = scene.intersect_real(ray);
+        const Hit x = scene.intersect_real(Ray{scene.offset_origin(hv, line.w), line.w});
         ++out.stats.rays;
-        if (hr && hr.t < hv.t) return;  // another real surface takes this light, as photographed
-        const vec3 L = photographed_radiance(scene, x, line.w, rng) - shadowed_radiance(x, line.w, rng, out);
-        if (L == vec3(0) || !is_finite(L)) return;
-        const vec3 flux = vec3(dvec3(L) * line.flux_per_radiance);
+        if (!x) return;  // the probe: the probe photons carry that light
+        // Blocked: the radiance the emitter had (the photograph). Reflected: what it has now, less
+        // the probe light the object takes from it.
+        const vec3 old_radiance = photographed_radiance(scene, x, line.w, rng);
+        const vec3 new_radiance = old_radiance - shadowed_radiance(x, line.w, rng, out);
+        if (!is_finite(old_radiance) || !is_finite(new_radiance)) return;
+        const Hit hr = scene.intersect_real(Ray{scene.offset_origin(hv, down), down});
+        ++out.stats.rays;
         ++out.stats.surround_hit_virtual;
-        if (hr) follow(hr, down, -flux, true, rng, out);
-        follow(hv, down, flux, false, rng, out, false);
+        if (hr && old_radiance != vec3(0))
+            follow(hr, down, -vec3(dvec3(old_radiance) * line.flux_per_radiance), true, rng, out, true,
+                   stores_first_shadow(hr, down, out));
+        if (new_radiance != vec3(0))
+            follow(hv, down, vec3(dvec3(new_radiance) * line.flux_per_radiance), false, rng, out, false);
     }
 };
 
@@ -169,15 +192,18 @@ EmittedPhoton PhotonEmitter::emit(Rng& rng) const {
     Frame frame(w);
     vec2 d = sample_concentric_disk(vec2(rng.uniform(), rng.uniform())) * c.radius;
     vec3 disk = c.center + c.radius * w + frame.t * d.x + frame.b * d.y;
-    // Start outside every cluster so the ray meets all virtual objects on its line.
-    vec3 oc = disk - global_center_;
-    float b = glm::dot(oc, w), cc = glm::dot(oc, oc) - global_radius_ * global_radius_;
-    float s_exit = -b + std::sqrt(std::max(0.0f, b * b - cc));
-    vec3 origin = disk + w * (std::max(0.0f, s_exit) + scene_.ray_epsilon());
+    const vec3 origin = outside_all_clusters(disk, w);
     if (owned_by_earlier_cluster(k, origin, w)) return e;
     e.ray = Ray{origin, -w};
     e.valid = true;
     return e;
+}
+
+vec3 PhotonEmitter::outside_all_clusters(const vec3& point, const vec3& w) const {
+    const vec3 oc = point - global_center_;
+    const float b = glm::dot(oc, w), cc = glm::dot(oc, oc) - global_radius_ * global_radius_;
+    const float s_exit = -b + std::sqrt(std::max(0.0f, b * b - cc));
+    return point + w * (std::max(0.0f, s_exit) + scene_.ray_epsilon());
 }
 
 bool PhotonEmitter::owned_by_earlier_cluster(size_t k, const vec3& point, const vec3& w) const {
@@ -200,6 +226,7 @@ PhotonEmitter::SurroundLine PhotonEmitter::emit_surround_line(Rng& rng) const {
     const vec2 d = sample_concentric_disk(vec2(rng.uniform(), rng.uniform())) * c.radius;
     line.through = c.center + frame.t * d.x + frame.b * d.y;
     if (owned_by_earlier_cluster(k, line.through, line.w)) return line;
+    line.origin = outside_all_clusters(line.through, line.w);
     // Radiance L through the disk (area pi R^2) from a direction of pdf 1 / (4 pi).
     line.flux_per_radiance = 4.0 * kPi * kPi * double(c.radius) * c.radius * inv_surround_count_ / pmf;
     line.valid = true;
@@ -207,11 +234,12 @@ PhotonEmitter::SurroundLine PhotonEmitter::emit_surround_line(Rng& rng) const {
 }
 
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
-                         const std::atomic<bool>* cancel, bool from_surroundings) {
+                         const std::atomic<bool>* cancel, PhotonPassOptions options) {
     PhotonPass result;
     if (!scene.has_virtual() || count <= 0 || scene.probe().total_luminance_power() <= 0) return result;
-    const int64_t surround = from_surroundings ? count / kSurroundPhotonDivisor : 0, total = count + surround;
-    Tracer tracer(scene, count, surround);
+    const int64_t surround = options.from_surroundings ? count / kSurroundPhotonDivisor : 0;
+    const int64_t total = count + surround;
+    Tracer tracer(scene, count, surround, options);
     const int64_t blocks = (total + kBlock - 1) / kBlock;
     std::vector<Block> out(blocks);
     tbb::parallel_for(tbb::blocked_range<int64_t>(0, blocks, 1), [&](const tbb::blocked_range<int64_t>& r) {

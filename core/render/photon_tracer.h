@@ -45,10 +45,12 @@ public:
 
     /// A line towards the objects for light from the real surroundings: a cluster by
     /// cross-section, a direction `w` uniform on the sphere, a point on the cluster's disk
-    /// (through its centre, across `w`). The emitter is the first real surface from `through`
-    /// along `w`; a photon's flux is its radiance times `flux_per_radiance`.
+    /// (through its centre, across `w`). `origin` is where the line enters the sphere around all
+    /// clusters on the `w` side; the emitter is the first real surface beyond the first virtual
+    /// object that the line meets from there. A photon's flux is its radiance times
+    /// `flux_per_radiance`.
     struct SurroundLine {
-        vec3 through{0}, w{0};
+        vec3 through{0}, w{0}, origin{0};
         double flux_per_radiance = 0;
         bool valid = false;  ///< false: a line an earlier cluster owns
     };
@@ -57,6 +59,9 @@ public:
 private:
     /// A line through several clusters is owned by the first one it crosses.
     bool owned_by_earlier_cluster(size_t k, const vec3& point, const vec3& w) const;
+    /// The point where the line through `point` along `w` leaves the sphere around all clusters
+    /// on the `w` side (plus an epsilon): from there a ray along -w meets every virtual object.
+    vec3 outside_all_clusters(const vec3& point, const vec3& w) const;
 
     const RenderScene& scene_;
     AliasTable cluster_table_;
@@ -69,12 +74,22 @@ private:
 /// objects, reflected onto other real surfaces or blocked from them (past the paper).
 inline constexpr int64_t kSurroundPhotonDivisor = 4;
 
+/// What a photon pass carries.
+struct PhotonPassOptions {
+    /// False leaves the surroundings' photons out (tests of the probe photons).
+    bool from_surroundings = true;
+    /// True under the split estimator: the light a virtual object blocks from the first real
+    /// surface behind it is left to next-event estimation (DirectChange), so shadow photons are
+    /// not stored where they first land; they still bounce on, carrying the indirect change.
+    bool direct_by_rays = false;
+};
+
 /// Shoots `count` photons from the probe at the emission clusters and traces their change to
 /// the light (method.md, "Photon distribution"), then count / kSurroundPhotonDivisor photons
-/// of light from the real surroundings (their photographed radiance) at the same clusters. The result depends only on (seed, pass), not
-/// on the number of threads. Checks `cancel` between blocks of photons.
-/// `from_surroundings` false leaves the surroundings' photons out (tests of the probe photons).
+/// of light from the real surroundings (their photographed radiance) at the same clusters.
+/// The result depends only on (seed, pass), not on the number of threads. Checks `cancel`
+/// between blocks of photons.
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
-                         const std::atomic<bool>* cancel = nullptr, bool from_surroundings = true);
+                         const std::atomic<bool>* cancel = nullptr, PhotonPassOptions options = {});
 
 }  // namespace dp

@@ -4,20 +4,48 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
 #include "base/rng.h"
-#include "base/sampling.h"
-#include "render/shading.h"
+#include "base/sobol.h"
 
 namespace dp {
+
+namespace {
+
+constexpr int kTile = FramePlan::kTile;
+constexpr size_t kTilePixels = size_t(kTile) * kTile;
+/// Adaptive sampling looks at the tiles every this many passes.
+constexpr int kConvergenceInterval = 4;
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+/// A uniform number in [0, 1) from three integers: the roulette of one pixel in one pass.
+float hash_uniform(uint64_t seed, uint64_t pass, uint64_t pixel) {
+    return fixed_to_unit(uint32_t(hash_combine(hash_combine(seed ^ 0x726f756c65747465ull, pass), pixel) >> 32));
+}
+
+/// Calls f(pixel index, x, y, tile-local index) for the image pixels of tile t.
+template <class F>
+void for_tile_pixels(const FramePlan& plan, uint32_t t, F&& f) {
+    const int x0 = int(t % uint32_t(plan.tiles_x)) * kTile, y0 = int(t / uint32_t(plan.tiles_x)) * kTile;
+    const int x1 = std::min(x0 + kTile, plan.width), y1 = std::min(y0 + kTile, plan.height);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) f(size_t(y) * plan.width + x, x, y, size_t(y - y0) * kTile + (x - x0));
+}
+
+}  // namespace
 
 ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, int64_t photons_per_pass,
                                          uint64_t seed)
     : scene_(std::move(scene)), photons_per_pass_(std::max<int64_t>(1, photons_per_pass)), seed_(seed) {
     const RenderSettings& rs = scene_->project().render;
     alpha_ = rs.alpha;
+    split_ = rs.estimator == Estimator::Split;
     if (rs.initial_radius && *rs.initial_radius > 0) {
         r1_ = *rs.initial_radius;
     } else {
@@ -27,18 +55,14 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
         if (rmax <= 0) rmax = scene_->scale();
         r1_ = rmax * std::clamp(std::sqrt(100.0f / float(photons_per_pass_)), 0.004f, 0.2f);
     }
-    const size_t n = size_t(scene_->photo().width()) * scene_->photo().height();
-    sums_ = PassAccumulator(n);
-    stats_.pixels_total = n;
-    cache_ = build_pixel_cache(*scene_);
-    const size_t near = size_t(std::count(cache_.near_virtual.begin(), cache_.near_virtual.end(), uint8_t(1)));
+    if (split_ && scene_->has_virtual()) direct_.emplace(*scene_);
+    plan_ = build_frame_plan(*scene_, split_);
+    sums_ = TileAccumulator(plan_.width, plan_.height, kTile);
+    stats_.pixels_total = size_t(plan_.width) * plan_.height;
+    stats_.tiles_total = plan_.tiles();
+    size_t near = 0;
+    for (FramePlan::PixelKind k : plan_.kind) near += k == FramePlan::PixelKind::NearVirtual;
     diffuse_samples_ = dp::camera_diffuse_samples(photons_per_pass_, near);
-}
-
-vec2 camera_jitter(uint64_t seed, int pass, size_t pixel) {
-    Rng shift_rng = Rng::keyed(seed, ~uint64_t(0), pixel);
-    const vec2 shift(shift_rng.uniform(), shift_rng.uniform());
-    return r2_point(uint64_t(pass), shift) - vec2(0.5f);
 }
 
 float ProgressiveRenderer::radius_for_pass(int pass) const {
@@ -47,116 +71,241 @@ float ProgressiveRenderer::radius_for_pass(int pass) const {
     return float(std::sqrt(r2));
 }
 
-void ProgressiveRenderer::shade_pass(int pass, const PassMaps& maps, std::vector<SampleResult>& out,
-                                     const std::atomic<bool>* cancel, size_t& gathered) {
-    const RenderScene& s = *scene_;
-    const int W = s.photo().width(), H = s.photo().height();
-    // Reused across passes: a fresh 2M-pixel buffer each pass costs page faults.
-    out.resize(size_t(W) * H);
-    std::fill(out.begin(), out.end(), SampleResult{});
-    std::atomic<size_t> count{0};
-    if (!s.has_virtual()) {
-        gathered = 0;
-        return;
-    }
-    Shader shader(s, maps, diffuse_samples_);
-    tbb::parallel_for(tbb::blocked_range<int>(0, H, 4), [&](const tbb::blocked_range<int>& rows) {
-        if (cancel && cancel->load(std::memory_order_relaxed)) return;
-        size_t local = 0;
-        glm::i64vec3 last_cell(INT64_MIN);
-        bool last_reaches = false;
-        auto reaches = [&](const vec3& p) {
-            glm::i64vec3 c = maps.real.cell_of(p);
-            if (c != last_cell) last_cell = c, last_reaches = maps.real.reaches_cell(c);
-            return last_reaches;
-        };
-        for (int y = rows.begin(); y < rows.end(); ++y)
-            for (int x = 0; x < W; ++x) {
-                size_t i = size_t(y) * W + x;
-                // Pixels no photon cell can reach keep the photo: no ray, no gather.
-                if (!cache_.near_virtual[i] && !(cache_.has_real[i] && reaches(cache_.real_point[i]))) continue;
-                Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
-                const vec2 j = camera_jitter(seed_, pass, i);
-                const float jx = j.x, jy = j.y;
-                out[i] = shader.shade_camera(x, y, float(x) + jx, float(y) + jy, rng);
-                ++local;
-            }
-        count += local;
-    });
-    gathered = count.load();
-}
-
-PhotonStats ProgressiveRenderer::build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel) const {
-    PhotonPass photons = trace_photons(*scene_, seed_, uint64_t(pass), photons_per_pass_, cancel);
+PhotonStats ProgressiveRenderer::build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel,
+                                                 RenderStats* timing) const {
+    PhotonPassOptions options;
+    options.direct_by_rays = split_;
+    auto t = std::chrono::steady_clock::now();
+    PhotonPass photons = trace_photons(*scene_, seed_, uint64_t(pass), photons_per_pass_, cancel, options);
+    if (timing) timing->trace_s = seconds_since(t);
+    t = std::chrono::steady_clock::now();
     maps.radius = radius_for_pass(pass);
     maps.real.build(std::move(photons.real), maps.radius);
     maps.caustic.build(std::move(photons.caustic), maps.radius);
+    if (timing) timing->maps_s = seconds_since(t);
     return photons.stats;
 }
 
+void ProgressiveRenderer::mark_photon_pixels(const PassMaps& maps, PassWork& work,
+                                             std::vector<uint8_t>& photon_tile) const {
+    const int W = plan_.width, H = plan_.height;
+    work.photon_pixel.assign(size_t(W) * H, 0);
+    photon_tile.assign(plan_.tiles(), 0);
+    if (maps.real.empty()) return;
+    std::vector<vec3> centres;
+    maps.real.for_each_cell([&](const vec3& c) { centres.push_back(c); });
+    const Camera& cam = scene_->camera();
+    // A pixel can gather a photon of a cell when the point it sees lies within this of the
+    // cell's centre: the cell's half diagonal plus the gather radius.
+    const float reach = float(0.5 * std::sqrt(3.0) * maps.real.cell_size()) + maps.radius;
+    const float focal = std::max(cam.fx(), cam.fy());
+    std::atomic<bool> everything{false};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, centres.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            const vec3& c = centres[k];
+            const float z = (cam.rotation() * c + cam.translation()).z;
+            if (z <= 2 * reach) {
+                // Right at the lens: its footprint is unbounded; mark the frame.
+                if (z > -reach) everything.store(true, std::memory_order_relaxed);
+                continue;
+            }
+            vec2 px;
+            if (!cam.project(c, px)) continue;
+            // Margin for the sub-pixel jitter and for lens distortion's local magnification.
+            const float rho = 1.25f * reach * focal / (z - reach) + 1.5f;
+            const int x0 = std::max(0, int(std::floor(px.x - rho))), x1 = std::min(W - 1, int(std::ceil(px.x + rho)));
+            const int y0 = std::max(0, int(std::floor(px.y - rho))), y1 = std::min(H - 1, int(std::ceil(px.y + rho)));
+            for (int y = y0; y <= y1; ++y) {
+                for (int x = x0; x <= x1; ++x)
+                    std::atomic_ref<uint8_t>(work.photon_pixel[size_t(y) * W + x]).store(1, std::memory_order_relaxed);
+                for (int tx = x0 / kTile; tx <= x1 / kTile && x0 <= x1; ++tx)
+                    std::atomic_ref<uint8_t>(photon_tile[size_t(y / kTile) * plan_.tiles_x + tx])
+                        .store(1, std::memory_order_relaxed);
+            }
+        }
+    });
+    if (everything.load()) {
+        std::fill(work.photon_pixel.begin(), work.photon_pixel.end(), uint8_t(1));
+        std::fill(photon_tile.begin(), photon_tile.end(), uint8_t(1));
+    }
+}
+
+ProgressiveRenderer::PassWork ProgressiveRenderer::plan_pass(int pass, const PassMaps& maps,
+                                                             bool respect_stopped) const {
+    PassWork work;
+    std::vector<uint8_t> photon_tile;
+    mark_photon_pixels(maps, work, photon_tile);
+    for (uint32_t t = 0; t < plan_.tiles(); ++t) {
+        if (respect_stopped && !sums_.live(t)) continue;
+        // Roulette on the tile's largest probability; its pixels then keep their share of it.
+        const float p = plan_.tile_direct_max[t];
+        const bool direct = split_ && p > 0 &&
+                            (p >= 1 || sobol_owen_2d(uint32_t(pass - 1), hash_combine(seed_ ^ 0x74696c65ull, t)).x < p);
+        if (plan_.tile_has_object[t] || photon_tile[t] || direct) {
+            work.tiles.push_back(t);
+            work.direct_tile.push_back(direct);
+        }
+    }
+    return work;
+}
+
+bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const PassWork& work,
+                                      std::vector<SampleResult>& out, const std::atomic<bool>* cancel,
+                                      size_t& shaded) const {
+    out.assign(work.tiles.size() * kTilePixels, SampleResult{});
+    std::atomic<size_t> count{0};
+    const Shader shader(*scene_, maps, diffuse_samples_, direct_ ? &*direct_ : nullptr);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, work.tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return;
+        size_t local = 0;
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            const uint32_t t = work.tiles[k];
+            const float tile_p = plan_.tile_direct_max[t];
+            for_tile_pixels(plan_, t, [&](size_t i, int x, int y, size_t slot) {
+                const FramePlan::PixelKind kind = plan_.kind[i];
+                if (kind == FramePlan::PixelKind::Nothing) return;
+                CameraWork w;
+                if (kind == FramePlan::PixelKind::Real) {
+                    w.gather = work.photon_pixel[i] != 0;
+                    const float p = plan_.direct_probability[i];
+                    const bool picked = work.direct_tile[k] && p > 0 && hash_uniform(seed_, uint64_t(pass), i) * tile_p < p;
+                    w.direct_weight = picked ? 1.0 / double(p) : 0.0;
+                    if (!w.gather && !picked) return;
+                }
+                PixelSampler sampler(seed_, i, uint32_t(pass - 1));
+                const vec2 j = sampler.next2d() - vec2(0.5f);
+                Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
+                out[k * kTilePixels + slot] = shader.shade_camera(x, y, float(x) + j.x, float(y) + j.y, sampler, rng, w);
+                ++local;
+            });
+        }
+        count += local;
+    });
+    shaded = count.load();
+    return !(cancel && cancel->load());
+}
+
 bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
-    auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = std::chrono::steady_clock::now();
     const int pass = stats_.passes + 1;
+    RenderStats st = stats_;
     PassMaps maps;
-    PhotonStats photon_stats = build_pass_maps(pass, maps, cancel);
+    const PhotonStats photon_stats = build_pass_maps(pass, maps, cancel, &st);
     if (cancel && cancel->load()) return false;
-    std::vector<SampleResult>& samples = samples_;
-    size_t gathered = 0;
-    shade_pass(pass, maps, samples, cancel, gathered);
-    if (cancel && cancel->load()) return false;
-    const size_t bad = sums_.add(samples);
-    double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    stats_.passes = pass;
-    stats_.seconds += dt;
-    stats_.photons_emitted += photon_stats.emitted;
-    stats_.photons_stored += photon_stats.stored_real + photon_stats.stored_caustic;
-    stats_.rays += photon_stats.rays;
-    stats_.photons_per_second = stats_.seconds > 0 ? double(stats_.photons_emitted) / stats_.seconds : 0;
-    stats_.pixels_gathered = gathered;
-    stats_.radius = maps.radius;
-    stats_.non_finite_samples += bad;
+    auto t = std::chrono::steady_clock::now();
+    const PassWork work = plan_pass(pass, maps, true);
+    st.mark_s = seconds_since(t);
+    std::vector<SampleResult> samples;
+    size_t shaded = 0;
+    t = std::chrono::steady_clock::now();
+    if (!shade_tiles(pass, maps, work, samples, cancel, shaded)) return false;
+    st.shade_s = seconds_since(t);
+    t = std::chrono::steady_clock::now();
+    std::atomic<size_t> bad{0};
+    tbb::parallel_for(size_t(0), work.tiles.size(), [&](size_t k) {
+        bad += sums_.add_tile(work.tiles[k], pass % 2 == 1, &samples[k * kTilePixels]);
+    });
+    sums_.finish_pass();
+    update_convergence();
+    st.accumulate_s = seconds_since(t);
+    st.passes = pass;
+    st.seconds += seconds_since(t0);
+    st.photons_emitted += photon_stats.emitted;
+    st.photons_stored += photon_stats.stored_real + photon_stats.stored_caustic;
+    st.rays += photon_stats.rays;
+    st.photons_per_second = st.seconds > 0 ? double(st.photons_emitted) / st.seconds : 0;
+    st.pixels_gathered = shaded;
+    st.tiles_shaded = work.tiles.size();
+    st.radius = maps.radius;
+    st.non_finite_samples += bad.load();
+    st.estimated_rel_error = stats_.estimated_rel_error;
+    st.tiles_stopped = stats_.tiles_stopped;
+    stats_ = st;
     return true;
+}
+
+void ProgressiveRenderer::update_convergence() {
+    const RenderSettings& rs = scene_->project().render;
+    const Image& photo = scene_->photo();
+    const int passes = sums_.passes();
+    const bool judge = rs.adaptive_threshold > 0 && passes >= rs.adaptive_min_passes &&
+                       passes % kConvergenceInterval == 0;
+    double e2_changed = 0, value_changed = 0;
+    size_t changed = 0, stopped = 0;
+    const float floor = plan_.value_floor;
+    for (uint32_t t = 0; t < sums_.tiles(); ++t) {
+        if (!sums_.touched(t)) continue;  // only touched tiles are ever stopped
+        stopped += !sums_.live(t);
+        double tile_e2 = 0, tile_value = 0;
+        int n = 0;
+        for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) {
+            const dvec3 d = sums_.mean_delta(i);
+            const double before = luminance(photo[i]);
+            const double value = std::max(before + luminance(d), double(floor));
+            const double e2 = passes >= 2 ? sums_.error2(i) : 0.0;
+            tile_e2 += e2;
+            tile_value += value;
+            ++n;
+            if (sums_.mean_alpha(i) > 0 || std::abs(luminance(d)) > 0.01 * std::max(before, double(floor))) {
+                e2_changed += e2;
+                value_changed += value;
+                ++changed;
+            }
+        });
+        if (judge && sums_.live(t) && n > 0 && std::sqrt(tile_e2 / n) < rs.adaptive_threshold * (tile_value / n)) {
+            sums_.stop(t);
+            ++stopped;
+        }
+    }
+    stats_.tiles_stopped = stopped;
+    stats_.estimated_rel_error = passes < 2 ? -1.0 : changed ? std::sqrt(e2_changed / changed) / (value_changed / changed) : 0.0;
 }
 
 void ProgressiveRenderer::render_single_pass(int pass, Image& delta, Image& dL, Image& alpha) {
     PassMaps maps;
     build_pass_maps(pass, maps, nullptr);
+    const PassWork work = plan_pass(pass, maps, false);
     std::vector<SampleResult> samples;
-    size_t gathered = 0;
-    shade_pass(pass, maps, samples, nullptr, gathered);
-    const int W = scene_->photo().width(), H = scene_->photo().height();
-    delta = Image(W, H);
-    dL = Image(W, H);
-    alpha = Image(W, H);
-    for (size_t i = 0; i < samples.size(); ++i) {
-        delta[i] = samples[i].delta;
-        dL[i] = samples[i].dL;
-        alpha[i] = vec3(samples[i].alpha);
-    }
+    size_t shaded = 0;
+    shade_tiles(pass, maps, work, samples, nullptr, shaded);
+    delta = Image(plan_.width, plan_.height);
+    dL = Image(plan_.width, plan_.height);
+    alpha = Image(plan_.width, plan_.height);
+    for (size_t k = 0; k < work.tiles.size(); ++k)
+        for_tile_pixels(plan_, work.tiles[k], [&](size_t i, int, int, size_t slot) {
+            const SampleResult& r = samples[k * kTilePixels + slot];
+            delta[i] = r.delta;
+            dL[i] = r.dL;
+            alpha[i] = vec3(r.alpha);
+        });
 }
 
 Image ProgressiveRenderer::image() const {
     Image out = scene_->photo();
-    if (stats_.passes == 0) return out;
-    for (size_t i = 0; i < out.size(); ++i) {
-        if (sums_.untouched(i)) continue;  // untouched pixels stay bit-exact
-        vec3 v = out[i] + vec3(sums_.mean_delta(i));
-        out[i] = is_finite(v) ? v : out[i];
+    for (uint32_t t = 0; t < sums_.tiles(); ++t) {
+        if (!sums_.touched(t)) continue;
+        for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) {
+            if (sums_.untouched(i)) return;  // untouched pixels stay bit-exact
+            const vec3 v = out[i] + vec3(sums_.mean_delta(i));
+            if (is_finite(v)) out[i] = v;
+        });
     }
     return out;
 }
 
 Image ProgressiveRenderer::delta_layer() const {
-    Image out(scene_->photo().width(), scene_->photo().height());
-    if (stats_.passes == 0) return out;
-    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(sums_.mean_dL(i));
+    Image out(plan_.width, plan_.height);
+    for (uint32_t t = 0; t < sums_.tiles(); ++t)
+        if (sums_.touched(t))
+            for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) { out[i] = vec3(sums_.mean_dL(i)); });
     return out;
 }
 
 Image ProgressiveRenderer::alpha_layer() const {
-    Image out(scene_->photo().width(), scene_->photo().height());
-    if (stats_.passes == 0) return out;
-    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(float(sums_.mean_alpha(i)));
+    Image out(plan_.width, plan_.height);
+    for (uint32_t t = 0; t < sums_.tiles(); ++t)
+        if (sums_.touched(t))
+            for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) { out[i] = vec3(float(sums_.mean_alpha(i))); });
     return out;
 }
 

@@ -2,15 +2,17 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "image/image.h"
+#include "render/direct_change.h"
+#include "render/frame_plan.h"
 #include "render/pass_renderer.h"
-#include "render/pass_accumulator.h"
 #include "render/photon_tracer.h"
-#include "render/pixel_cache.h"
 #include "render/render_scene.h"
 #include "render/shading.h"
+#include "render/tile_accumulator.h"
 
 namespace dp {
 
@@ -18,15 +20,18 @@ namespace dp {
 /// clamp(-lum(dL) / lum(photo), 0, 1), grey RGB; 0 where the photo is black or dL >= 0.
 Image shadow_matte(const Image& photo, const Image& dL);
 
-/// Sub-pixel offset in [-0.5, 0.5)^2 of pixel `pixel`'s camera sample in pass `pass`: point
-/// `pass` of the pixel's shifted R2 sequence, so the passes cover each pixel evenly.
-vec2 camera_jitter(uint64_t seed, int pass, size_t pixel);
-
 /// Progressive differential photon mapping (Knaus & Zwicker 2011): each pass shoots fresh
 /// photons with its own seed and gathers with a shrinking radius; the image is the mean of the
-/// pass images, accumulated in double. A pass depends only on (seed, pass index).
+/// pass images, accumulated in double. A pass depends only on (seed, pass index) and on which
+/// tiles adaptive sampling has stopped, itself a function of the passes before.
+///
+/// Under the split estimator (the default) the direct light the objects block at real points
+/// is estimated by rays (DirectChange) and photons carry the rest. A pass touches only the
+/// tiles its change can reach: tiles with an object, tiles the pass's photons reach, and tiles
+/// whose direct-light change Russian roulette picks (FramePlan).
 class ProgressiveRenderer final : public PassRenderer {
 public:
+    /// Estimator and adaptive sampling come from the scene's project render settings.
     ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, int64_t photons_per_pass, uint64_t seed);
 
     const RenderScene& scene() const { return *scene_; }
@@ -37,7 +42,8 @@ public:
     /// Renders and accumulates the next pass; returns false (accumulating nothing) if
     /// `cancel` became true meanwhile.
     bool render_pass(const std::atomic<bool>* cancel = nullptr) override;
-    /// Renders exactly pass `pass` into its own images without accumulating (debugging).
+    /// Renders exactly pass `pass` into its own images without accumulating (debugging), as a
+    /// fresh render's pass would be (no tile stopped).
     void render_single_pass(int pass, Image& delta, Image& dL, Image& alpha);
 
     const RenderStats& stats() const override { return stats_; }
@@ -53,21 +59,40 @@ public:
     double skipped_fraction() const;
     /// Estimates per camera sample on virtual diffuse surfaces (shading.h).
     int camera_diffuse_samples() const { return diffuse_samples_; }
+    const FramePlan& plan() const { return plan_; }
+    const TileAccumulator& accumulator() const { return sums_; }
 
 private:
-    /// Traces pass `pass`'s photons and builds its maps with the pass's radius.
-    PhotonStats build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel) const;
-    void shade_pass(int pass, const PassMaps& maps, std::vector<SampleResult>& out,
-                    const std::atomic<bool>* cancel, size_t& gathered);
+    /// One pass's work: the tiles it shades and, per pixel, whether its photons reach it.
+    struct PassWork {
+        std::vector<uint32_t> tiles;
+        std::vector<uint8_t> direct_tile;   ///< per entry of `tiles`: roulette picked its direct light
+        std::vector<uint8_t> photon_pixel;  ///< per pixel: some photon cell lies within reach
+    };
+    /// Traces pass `pass`'s photons and builds its maps with the pass's radius (timed into
+    /// `timing` when given).
+    PhotonStats build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel,
+                                RenderStats* timing = nullptr) const;
+    /// Marks the pixels (and tiles) that the pass's real photons can reach.
+    void mark_photon_pixels(const PassMaps& maps, PassWork& work, std::vector<uint8_t>& photon_tile) const;
+    /// Picks the tiles pass `pass` shades: those its change can reach, skipping tiles adaptive
+    /// sampling stopped if `respect_stopped`.
+    PassWork plan_pass(int pass, const PassMaps& maps, bool respect_stopped) const;
+    /// Shades the pass's tiles into `out` (kTile^2 samples per tile, in work.tiles order).
+    bool shade_tiles(int pass, const PassMaps& maps, const PassWork& work, std::vector<SampleResult>& out,
+                     const std::atomic<bool>* cancel, size_t& shaded) const;
+    /// Stops converged tiles and refreshes the error estimate.
+    void update_convergence();
 
     std::shared_ptr<const RenderScene> scene_;
     int64_t photons_per_pass_;
     uint64_t seed_;
     float r1_ = 0, alpha_ = 2.0f / 3.0f;
-    PixelCache cache_;  ///< what the centre rays see, once per camera and geometry
+    bool split_ = true;
+    std::optional<DirectChange> direct_;  ///< present under the split estimator
+    FramePlan plan_;  ///< once per camera and geometry
     int diffuse_samples_ = 2;
-    PassAccumulator sums_;
-    std::vector<SampleResult> samples_;  ///< the current pass's samples, reused
+    TileAccumulator sums_;
     RenderStats stats_;
 };
 

@@ -140,8 +140,10 @@ void RenderScene::build_virtual() {
         place_shape(o.shape, o.transform, loaded, s, virtual_world_meshes_[i]);
         virtual_surfaces_.push_back(s);
     }
-    for (const Surface& s : virtual_surfaces_)
+    for (const Surface& s : virtual_surfaces_) {
         if (s.material.kind != Material::Kind::Diffuse) has_specular_ = true;
+        if (s.transmits()) has_transmissive_ = true;
+    }
     // Hidden objects keep their slot (geomID == index) but get no geometry.
     for (size_t i = 0; i < objs.size(); ++i) {
         const Surface& s = virtual_surfaces_[i];
@@ -219,6 +221,8 @@ void RenderScene::update_materials(const Project& project) {
     }
     has_specular_ = std::any_of(virtual_surfaces_.begin(), virtual_surfaces_.end(),
                                 [](const Surface& s) { return s.material.kind != Material::Kind::Diffuse; });
+    has_transmissive_ = std::any_of(virtual_surfaces_.begin(), virtual_surfaces_.end(),
+                                    [](const Surface& s) { return s.transmits(); });
 }
 
 Hit RenderScene::finish_hit(const RTCRayHit& rh, const std::vector<Surface>& surfaces, const Ray& ray) const {

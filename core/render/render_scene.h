@@ -44,6 +44,8 @@ struct Surface {
 
     /// Diffuse reflectance at a hit (texture lookup when there is one), clamped to [0, 0.98].
     vec3 reflectance_at(const vec2& uv) const;
+    /// Light passes through it (glass).
+    bool transmits() const { return is_virtual && material.kind == Material::Kind::Glass; }
 };
 
 /// A ray-surface intersection. `ng` is the unit geometric normal as stored (not flipped);
@@ -81,6 +83,9 @@ public:
     const std::vector<EmissionCluster>& clusters() const { return clusters_; }
     bool has_virtual() const { return !clusters_.empty(); }
     bool has_specular() const { return has_specular_; }
+    /// Some virtual object transmits light (glass): its shadow and the light through it are
+    /// left to photons together (docs/method-notes.md, "The split").
+    bool has_transmissive() const { return has_transmissive_; }
 
     /// Characteristic length (metres) from the virtual objects and the camera (the real proxies
     /// and the camera when there is no virtual object); ray offsets scale with it so millimetre
@@ -135,7 +140,7 @@ private:
     std::vector<Surface> real_surfaces_, virtual_surfaces_;
     std::vector<TriangleMesh> real_world_meshes_, virtual_world_meshes_;
     std::vector<EmissionCluster> clusters_;
-    bool has_specular_ = false;
+    bool has_specular_ = false, has_transmissive_ = false;
     float scale_ = 1, epsilon_ = 1e-4f;
 };
 

@@ -21,25 +21,30 @@ int camera_diffuse_samples(int64_t photons_per_pass, size_t pixels_near_virtual)
     return int(std::clamp(std::floor(balanced), 2.0, 8.0));
 }
 
-Shader::Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples)
-    : scene_(scene), maps_(maps), camera_diffuse_samples_(std::max(1, camera_diffuse_samples)),
+Shader::Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples,
+               const DirectChange* direct)
+    : scene_(scene), maps_(maps), direct_(direct), camera_diffuse_samples_(std::max(1, camera_diffuse_samples)),
       max_depth_(std::max(1, scene.project().render.max_depth)) {
     inv_area_ = maps.radius > 0 ? 1.0 / (double(kPi) * maps.radius * maps.radius) : 0.0;
 }
 
-vec3 Shader::real_delta(const Hit& hit, const vec3& dir) const {
-    if (maps_.real.empty()) return vec3(0);
-    dvec3 phi = maps_.real.gather(hit.p, facing_normal(hit.ng, dir));
-    if (phi == dvec3(0)) return vec3(0);
-    vec3 rho = hit.surface->reflectance_at(hit.uv);
-    return vec3(dvec3(rho) * (double(kInvPi) * inv_area_) * phi);
+vec3 Shader::real_delta(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct, bool gather) const {
+    const vec3 n = facing_normal(hit.ng, dir);
+    dvec3 E(0);
+    if (direct_ && direct && direct->weight > 0)
+        E += direct_->estimate(hit, n, direct->probe, direct->cone, direct->pick, rng) * direct->weight;
+    if (gather && !maps_.real.empty()) E += maps_.real.gather(hit.p, n) * inv_area_;
+    if (E == dvec3(0)) return vec3(0);
+    return vec3(dvec3(hit.surface->reflectance_at(hit.uv)) * double(kInvPi) * E);
 }
 
 vec3 Shader::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
-    return photographed_radiance(scene_, hit, dir, rng) + real_delta(hit, dir);
+    const DirectSamples direct = DirectSamples::from(rng);
+    return photographed_radiance(scene_, hit, dir, rng) + real_delta(hit, dir, rng, &direct);
 }
 
-vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples) const {
+vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples,
+                                      const PixelSampler* sampler) const {
     const Surface& s = *hit.surface;
     const vec3 rho = s.reflectance_at(hit.uv);
     const vec3 n = facing_normal(hit.ns, dir);
@@ -50,15 +55,24 @@ vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng,
     h.ns = n;
     vec3 sum(0);
     for (int k = 0; k < samples; ++k) {
+        vec2 u_light, u_bounce;
+        if (sampler) {
+            PixelSampler sk = sampler->with_index(sampler->index() * uint32_t(samples) + uint32_t(k));
+            u_light = sk.next2d();
+            u_bounce = sk.next2d();
+        } else {
+            u_light = vec2(rng.uniform(), rng.uniform());
+            u_bounce = vec2(rng.uniform(), rng.uniform());
+        }
         // Probe light by next-event estimation, MIS-weighted against the cosine bounce below.
-        ProbeSample ls = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
+        ProbeSample ls = probe.sample_inverse(u_light);
         float cos_l = glm::dot(n, ls.dir);
         if (ls.pdf > 0 && cos_l > 0 && glm::dot(ng, ls.dir) > 0 &&
             !scene_.occluded(Ray{scene_.offset_origin(h, ls.dir), ls.dir}))
             sum += ls.radiance * (cos_l / ls.pdf) * power_heuristic(ls.pdf, cos_l * kInvPi) * kInvPi;
         if (depth >= kDiffuseGatherDepth) continue;
         // One cosine-weighted bounce: real surroundings (the photo), other virtual objects, probe.
-        vec3 d = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
+        vec3 d = sample_diffuse(h, -ng, u_bounce);
         Ray ray{scene_.offset_origin(h, d), d};
         Hit next = scene_.intersect(ray);
         if (!next) {
@@ -105,22 +119,23 @@ vec3 Shader::specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int de
     return follow(scatter_specular(m, hit, dir, rng.uniform()), 0);
 }
 
-SampleResult Shader::shade_camera(int x, int y, float px, float py, Rng& rng) const {
+SampleResult Shader::shade_camera(int x, int y, float px, float py, PixelSampler& sampler, Rng& rng,
+                                  const CameraWork& work) const {
     SampleResult r;
-    const vec3 photo = scene_.photo().at(x, y);
-    Ray ray = scene_.camera_ray(px, py);
-    Hit hit = scene_.intersect(ray);
+    const Ray ray = scene_.camera_ray(px, py);
+    const Hit hit = scene_.intersect(ray);
     if (!hit) return r;  // nothing modelled here: the photo stands
     if (!hit.surface->is_virtual) {
-        r.dL = real_delta(hit, ray.dir);
+        const DirectSamples direct = DirectSamples::from(sampler, work.direct_weight);
+        r.dL = real_delta(hit, ray.dir, rng, work.direct_weight > 0 ? &direct : nullptr, work.gather);
         r.delta = r.dL;
         return r;
     }
     r.alpha = 1;
-    vec3 L = hit.surface->material.kind == Material::Kind::Diffuse
-                 ? virtual_diffuse_radiance(hit, ray.dir, rng, 0, camera_diffuse_samples_)
-                 : specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
-    r.delta = L - photo;
+    const vec3 L = hit.surface->material.kind == Material::Kind::Diffuse
+                       ? virtual_diffuse_radiance(hit, ray.dir, rng, 0, camera_diffuse_samples_, &sampler)
+                       : specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
+    r.delta = L - scene_.photo().at(x, y);
     return r;
 }
 

@@ -1,5 +1,7 @@
 #pragma once
 #include "base/rng.h"
+#include "base/sobol.h"
+#include "render/direct_change.h"
 #include "render/photon_map.h"
 #include "render/render_scene.h"
 
@@ -26,24 +28,55 @@ struct SampleResult {
 /// pixels after 10 s 0.080 with 2, 0.073 with 4, 0.067 with 6, 0.063 with this rule.
 int camera_diffuse_samples(int64_t photons_per_pass, size_t pixels_near_virtual);
 
+/// The numbers of one direct-light estimate at a real point (DirectChange::estimate) and its
+/// weight: 1, or 1/p for a pixel that Russian roulette kept with probability p.
+struct DirectSamples {
+    vec2 probe{0}, cone{0};
+    float pick = 0;
+    double weight = 1;
+    static DirectSamples from(Rng& rng) {
+        return {vec2(rng.uniform(), rng.uniform()), vec2(rng.uniform(), rng.uniform()), rng.uniform(), 1.0};
+    }
+    static DirectSamples from(PixelSampler& s, double weight) {
+        const vec2 a = s.next2d(), b = s.next2d();
+        return {a, b, s.next1d(), weight};
+    }
+};
+
+/// What a camera sample on a real surface estimates this pass.
+struct CameraWork {
+    bool gather = true;          ///< the pass's photons can reach the pixel
+    double direct_weight = 1;    ///< 0: no direct-light estimate this pass (roulette)
+};
+
 /// Shades camera rays against the photo and one pass's photon maps (method.md, "Display").
+/// With a DirectChange (the split estimator) the direct light the objects block at real
+/// points is estimated by rays and the photons carry the rest; without one, photons carry all.
 class Shader {
 public:
     /// `camera_diffuse_samples`: estimates averaged per camera sample on a virtual diffuse
     /// surface (see camera_diffuse_samples()).
-    Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples = 2);
+    Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples = 2,
+           const DirectChange* direct = nullptr);
 
-    /// One jittered sample at continuous pixel coordinates (px, py) of pixel (x, y).
-    SampleResult shade_camera(int x, int y, float px, float py, Rng& rng) const;
+    /// One jittered sample at continuous pixel coordinates (px, py) of pixel (x, y). The first
+    /// bounce's numbers come from `sampler` (the pixel's low-discrepancy stream for this pass),
+    /// deeper ones from `rng`.
+    SampleResult shade_camera(int x, int y, float px, float py, PixelSampler& sampler, Rng& rng,
+                              const CameraWork& work = {}) const;
 
-    /// dL at a real hit seen from direction `dir`: rho/pi * sum(phi) / (pi r^2).
-    vec3 real_delta(const Hit& hit, const vec3& dir) const;
+    /// dL at a real hit seen from direction `dir`: rho/pi (dE_direct + sum(phi) / (pi r^2)).
+    /// `direct` null leaves the direct-light estimate out (or there is no DirectChange).
+    vec3 real_delta(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct,
+                    bool gather = true) const;
     /// Radiance leaving a real point towards -dir in the augmented scene: the photo where the
     /// camera sees the point, rho E / pi elsewhere, plus dL.
     vec3 real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const;
     /// Radiance leaving a virtual diffuse point towards -dir, averaging `samples` estimates
-    /// of the probe and bounce light (caustic photons are gathered once).
-    vec3 virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples) const;
+    /// of the probe and bounce light (caustic photons are gathered once). With `sampler`, the
+    /// estimates are samples index * samples + k of the pixel's stream.
+    vec3 virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples,
+                                  const PixelSampler* sampler = nullptr) const;
     /// Radiance arriving along a ray after a specular interaction or a gather bounce.
     /// `from_diffuse`: light from the probe through specular chains is in the caustic map.
     vec3 incoming(const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const;
@@ -57,6 +90,7 @@ private:
 
     const RenderScene& scene_;
     const PassMaps& maps_;
+    const DirectChange* direct_;
     int camera_diffuse_samples_;
     double inv_area_;  // 1 / (pi r^2)
     int max_depth_;

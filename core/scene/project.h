@@ -105,6 +105,12 @@ struct CameraSpec {
     bool operator==(const CameraSpec& o) const;
 };
 
+/// How the change of light on real surfaces is estimated (docs/method-notes.md, "The split").
+enum class Estimator {
+    Split,    ///< direct light the objects block by rays, photons for the rest (default)
+    Photons,  ///< shadow photons for everything, as in the paper
+};
+
 struct RenderSettings {
     int64_t photons_per_pass = 200000;
     int passes = 16;
@@ -114,6 +120,11 @@ struct RenderSettings {
     int max_depth = 8;
     uint64_t seed = 1;
     int threads = 0;  ///< 0: all cores
+    Estimator estimator = Estimator::Split;
+    /// Adaptive sampling: a tile whose estimated relative error falls below this stops taking
+    /// camera samples (0: every tile takes every pass).
+    float adaptive_threshold = 0.002f;
+    int adaptive_min_passes = 16;  ///< no tile stops before this many passes
     bool operator==(const RenderSettings&) const = default;
 };
 

@@ -403,7 +403,8 @@ CameraSpec parse_camera(const Reader& r, const json& j) {
 
 RenderSettings parse_render(const Reader& r, const json& j) {
     r.object(j, "render", {"photons_per_pass", "passes", "time_budget_s", "initial_radius", "alpha",
-                           "max_depth", "seed", "threads"});
+                           "max_depth", "seed", "threads", "estimator", "adaptive_threshold",
+                           "adaptive_min_passes"});
     constexpr int64_t kIntMax = std::numeric_limits<int>::max();
     constexpr int64_t kInt64Max = std::numeric_limits<int64_t>::max();
     RenderSettings s;
@@ -431,6 +432,16 @@ RenderSettings parse_render(const Reader& r, const json& j) {
     if (auto* v = r.optional(j, "seed")) s.seed = r.unsigned_integer(*v, "render.seed");
     if (auto* v = r.optional(j, "threads"))
         s.threads = int(r.integer(*v, "render.threads", 0, kIntMax));
+    if (auto* v = r.optional(j, "estimator"))
+        s.estimator = r.choice<Estimator>(*v, "render.estimator", "estimator",
+                                          {{"split", Estimator::Split}, {"photons", Estimator::Photons}});
+    if (auto* v = r.optional(j, "adaptive_threshold")) {
+        s.adaptive_threshold = r.real(*v, "render.adaptive_threshold");
+        r.check(s.adaptive_threshold >= 0 && s.adaptive_threshold < 1, "render.adaptive_threshold",
+                "must be in [0, 1) (got " + shortest(s.adaptive_threshold) + "; 0 turns adaptive sampling off)");
+    }
+    if (auto* v = r.optional(j, "adaptive_min_passes"))
+        s.adaptive_min_passes = int(r.integer(*v, "render.adaptive_min_passes", 2, kIntMax));
     return s;
 }
 
@@ -547,6 +558,9 @@ J write_project(const Project& p) {
     render["max_depth"] = s.max_depth;
     render["seed"] = s.seed;
     render["threads"] = s.threads;
+    render["estimator"] = s.estimator == Estimator::Split ? "split" : "photons";
+    render["adaptive_threshold"] = num(s.adaptive_threshold);
+    render["adaptive_min_passes"] = s.adaptive_min_passes;
     doc["render"] = render;
     return doc;
 }

@@ -92,7 +92,7 @@ TEST(DirectionalShadow, NegativeFluxEqualsTheFluxThroughTheSpheresCrossSection) 
     ShadowScene s;
     const int64_t N = 1000000;
     // The probe's photons alone: light from the floor also darkens and lightens it elsewhere.
-    PhotonPass pass = trace_photons(*s.scene, 11, 1, N, nullptr, false);
+    PhotonPass pass = trace_photons(*s.scene, 11, 1, N, nullptr, {.from_surroundings = false});
     double negative = 0, photon_flux = 0;
     int64_t n_negative = 0;
     for (const Photon& p : pass.real)

@@ -1,5 +1,5 @@
 // A billion signed photons whose fluxes nearly cancel (a caustic inside a shadow), through the
-// real accumulation chain: PhotonMap::gather, Shader::real_delta, PassAccumulator. Each stage's
+// real accumulation chain: PhotonMap::gather, Shader::real_delta, TileAccumulator. Each stage's
 // result is compared with an exact sum computed in 128-bit fixed point.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "render/pass_accumulator.h"
+#include "render/tile_accumulator.h"
 #include "render/stress_common.h"
 
 using namespace dp;
@@ -69,9 +69,9 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
     const float radius = 0.01f;
     const size_t kPhotons = size_t(1) << 20;
     const int kPasses = 16, kPixels = 60;
-    PassAccumulator acc(kPixels);
+    TileAccumulator acc(8, 8, 8);  // one tile of 64 pixels, the first kPixels used
     std::vector<__int128> pass_sum(kPixels * 3, 0);  // exact sums of what the accumulator got
-    std::vector<SampleResult> samples(kPixels);
+    std::vector<SampleResult> samples(64);
     double worst_gather = 0, worst_delta = 0;
     double cancellation = 0;
     uint64_t accumulated = 0;
@@ -97,7 +97,7 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
             hit.ng = hit.ns = vec3(0, 1, 0);
             const vec3 down(0, -1, 0);
             const dvec3 phi = maps.real.gather(hit.p, vec3(0, 1, 0));
-            const vec3 dL = shader.real_delta(hit, down);
+            const vec3 dL = shader.real_delta(hit, down, rng, nullptr);
             accumulated += kPhotons;
             const dvec3 rho = dvec3(ground.reflectance_at(hit.uv));
             for (int c = 0; c < 3; ++c) {
@@ -113,7 +113,8 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
             samples[k].delta = samples[k].dL = dL;
             samples[k].alpha = 0;
         }
-        ASSERT_EQ(acc.add(samples), 0u);
+        ASSERT_EQ(acc.add_tile(0, pass % 2 == 1, samples.data()), 0u);
+        acc.finish_pass();
     }
     std::printf("%.3g photons accumulated; net/total flux %.2e; worst gather error %.2e, dL error %.2e\n",
                 double(accumulated), cancellation, worst_gather, worst_delta);
@@ -138,16 +139,18 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
 }
 
 TEST(SignedAccumulation, ANonFiniteSampleIsDroppedWholeAndCounted) {
-    PassAccumulator acc(3);
-    std::vector<SampleResult> s(3);
+    TileAccumulator acc(3, 1, 8);
+    std::vector<SampleResult> s(64);
     s[0].delta = vec3(1, 2, 3);
     s[1].delta = vec3(NAN, 0, 0);
     s[2].dL = vec3(0, INFINITY, 0);
     s[2].delta = vec3(5);
-    EXPECT_EQ(acc.add(s), 2u);
+    EXPECT_EQ(acc.add_tile(0, true, s.data()), 2u);
+    acc.finish_pass();
     s[1].delta = vec3(4);
     s[2].dL = vec3(0);
-    EXPECT_EQ(acc.add(s), 0u);
+    EXPECT_EQ(acc.add_tile(0, false, s.data()), 0u);
+    acc.finish_pass();
     // Check: pixel 1's NaN pass added nothing (its mean is 4/2), pixel 2's Inf pass likewise.
     EXPECT_EQ(acc.mean_delta(0), dvec3(1, 2, 3));
     EXPECT_EQ(acc.mean_delta(1), dvec3(2));

@@ -46,7 +46,8 @@ TEST(Mirror, AReflectedRayReturnsTheBackProjectedPhotoValue) {
             if (disc2 > 0 && -b2 - std::sqrt(disc2) > 0) continue;
             vec3 expected = photo.bilinear(px.x, px.y);
             Rng rng(1, 1);
-            SampleResult s = shader.shade_camera(x, y, float(x), float(y), rng);
+            PixelSampler ps(1, 0, 0);
+            SampleResult s = shader.shade_camera(x, y, float(x), float(y), ps, rng);
             vec3 got = photo.at(x, y) + s.delta;
             EXPECT_NEAR(got.x, expected.x, 2e-3f) << x << "," << y;
             EXPECT_NEAR(got.y, expected.y, 2e-3f) << x << "," << y;
@@ -70,7 +71,8 @@ TEST(Mirror, ReflectionsOfTheSkyShowTheProbe) {
     // The top of the sphere reflects the sky straight up.
     vec2 top;
     ASSERT_TRUE(scene->camera().project(vec3(0, 1.45f, 0.2f), top));
-    SampleResult s = shader.shade_camera(int(top.x), int(top.y), top.x, top.y, rng);
+    PixelSampler ps(1, 0, 0);
+    SampleResult s = shader.shade_camera(int(top.x), int(top.y), top.x, top.y, ps, rng);
     EXPECT_NEAR(s.delta.x, 1.0f, 1e-4f);
     EXPECT_NEAR(s.delta.y, 2.4f, 1e-4f);
     EXPECT_NEAR(s.delta.z, 4.0f, 1e-4f);

@@ -1,0 +1,89 @@
+#include "render/frame_plan.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "image/image_metrics.h"
+#include "render/direct_change.h"
+#include "render/scattering.h"
+
+namespace dp {
+
+double FramePlan::expected_direct_pixels() const {
+    double sum = 0;
+    for (float p : direct_probability) sum += p;
+    return sum;
+}
+
+FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
+    FramePlan plan;
+    const int W = s.photo().width(), H = s.photo().height();
+    const size_t n = size_t(W) * H;
+    plan.width = W;
+    plan.height = H;
+    plan.tiles_x = (W + FramePlan::kTile - 1) / FramePlan::kTile;
+    plan.tiles_y = (H + FramePlan::kTile - 1) / FramePlan::kTile;
+    const size_t tiles = size_t(plan.tiles_x) * plan.tiles_y;
+    plan.kind.assign(n, FramePlan::PixelKind::Nothing);
+    plan.direct_probability.assign(n, 0.0f);
+    plan.tile_direct_max.assign(tiles, 0.0f);
+    plan.tile_has_object.assign(tiles, 0);
+    const Image& photo = s.photo();
+    double mean = 0;
+    for (size_t i = 0; i < n; ++i) mean += std::max(0.0f, luminance(photo[i]));
+    plan.value_floor = float(0.1 * mean / double(std::max<size_t>(1, n))) + 1e-12f;
+    const float floor = plan.value_floor;
+    if (!s.has_virtual()) return plan;
+
+    const DirectChange direct(s);
+    std::vector<uint8_t> sees_virtual(n, 0);
+    tbb::parallel_for(0, H, [&](int y) {
+        for (int x = 0; x < W; ++x) {
+            const size_t i = size_t(y) * W + x;
+            const Ray ray = s.camera_ray(float(x), float(y));
+            const Hit hit = s.intersect(ray);
+            if (!hit) continue;
+            if (hit.surface->is_virtual) {
+                sees_virtual[i] = 1;
+                continue;
+            }
+            plan.kind[i] = FramePlan::PixelKind::Real;
+            if (!direct_by_rays) continue;
+            const vec3 n_facing = facing_normal(hit.ng, ray.dir);
+            const double bound = direct.bound(hit.p, n_facing);
+            if (bound <= 0) continue;
+            const double change = double(luminance(hit.surface->reflectance_at(hit.uv))) * kInvPi * bound;
+            const double value = std::max(luminance(photo[i]), floor);
+            plan.direct_probability[i] = float(std::min(1.0, change / (double(kDirectRouletteLevel) * value)));
+        }
+    });
+    // Jittered samples may cross an object's edge within one pixel of a centre that sees it.
+    tbb::parallel_for(0, H, [&](int y) {
+        for (int x = 0; x < W; ++x) {
+            bool near = false;
+            for (int dy = -1; dy <= 1 && !near; ++dy)
+                for (int dx = -1; dx <= 1 && !near; ++dx) {
+                    const int xx = x + dx, yy = y + dy;
+                    if (xx >= 0 && yy >= 0 && xx < W && yy < H) near = sees_virtual[size_t(yy) * W + xx];
+                }
+            if (near) plan.kind[size_t(y) * W + x] = FramePlan::PixelKind::NearVirtual;
+        }
+    });
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const size_t i = size_t(y) * W + x;
+            const int t = plan.tile_of(x, y);
+            if (plan.kind[i] == FramePlan::PixelKind::NearVirtual) {
+                plan.tile_has_object[t] = 1;
+                plan.direct_probability[i] = 1;  // shaded in full every pass anyway
+            }
+            plan.tile_direct_max[t] = std::max(plan.tile_direct_max[t], plan.direct_probability[i]);
+        }
+    for (size_t t = 0; t < tiles; ++t)
+        if (plan.tile_direct_max[t] > 0) plan.direct_tiles.push_back(uint32_t(t));
+    return plan;
+}
+
+}  // namespace dp

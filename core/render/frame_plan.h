@@ -1,0 +1,47 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "base/math.h"
+#include "render/render_scene.h"
+
+namespace dp {
+
+/// Where a pass can have work, computed once per camera and geometry: what each pixel's centre
+/// ray sees, and how likely a real pixel's direct-light change needs a ray. Work is organised
+/// in tiles so that a pass touches only the tiles the change can reach.
+struct FramePlan {
+    static constexpr int kTile = 8;  ///< tile edge in pixels
+    enum class PixelKind : uint8_t { Nothing, Real, NearVirtual };
+
+    int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
+    /// Pixel values below this (a tenth of the photo's mean luminance) count as this much when
+    /// a change is judged against a pixel's value: a black pixel's change is measured against
+    /// the image, not against zero.
+    float value_floor = 0;
+    std::vector<PixelKind> kind;  ///< per pixel
+    /// Per real pixel: probability that a pass estimates its direct-light change (Russian
+    /// roulette on a bound of that change against the pixel's value; 1 near the objects).
+    std::vector<float> direct_probability;
+    std::vector<float> tile_direct_max;      ///< per tile: its pixels' largest probability
+    std::vector<uint8_t> tile_has_object;    ///< per tile: some pixel is NearVirtual
+    std::vector<uint32_t> direct_tiles;      ///< tiles with a probability above 0
+
+    size_t tiles() const { return tile_has_object.size(); }
+    int tile_of(int x, int y) const { return (y / kTile) * tiles_x + x / kTile; }
+    /// Pixels in the plan with a direct-light probability above 0 and their mean probability:
+    /// the expected next-event work of a pass.
+    double expected_direct_pixels() const;
+};
+
+/// Relative change below which a pixel's direct-light estimate is left to Russian roulette:
+/// a pixel whose bound is this fraction of its value is estimated every pass, one whose bound
+/// is a tenth of it every tenth pass (with ten times the weight).
+inline constexpr float kDirectRouletteLevel = 0.02f;
+
+/// Traces one ray through every pixel centre. With `direct_by_rays`, bounds each real pixel's
+/// direct-light change (DirectChange::bound) for the roulette; otherwise the probabilities
+/// stay 0 (the all-photon estimator has no direct term).
+FramePlan build_frame_plan(const RenderScene& scene, bool direct_by_rays);
+
+}  // namespace dp

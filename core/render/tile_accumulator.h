@@ -1,0 +1,69 @@
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "base/math.h"
+#include "render/shading.h"
+
+namespace dp {
+
+/// Per-pixel sums of the pass samples, in double (shadow and caustic photons nearly cancel, and
+/// a long render adds thousands of passes), kept per tile and allocated when a tile is first
+/// touched: a pass that changes a few pixels costs a few tiles, not the frame. Every live tile
+/// counts every pass (an untouched pixel's sample is zero); a tile stopped by adaptive sampling
+/// keeps the count it had. The odd passes' luminance is summed apart, so that the difference
+/// of the two interleaved halves estimates each pixel's error.
+class TileAccumulator {
+public:
+    TileAccumulator() = default;
+    TileAccumulator(int width, int height, int tile);
+
+    /// Adds one tile's samples of the current pass (tile-local row-major order, tile x tile
+    /// entries; those outside the image are ignored). `odd`: the pass's index is odd. A sample
+    /// with a NaN/Inf channel is dropped whole; returns how many were.
+    size_t add_tile(uint32_t tile, bool odd, const SampleResult* samples);
+    /// Counts one more pass for every live tile.
+    void finish_pass() { ++passes_; }
+    /// Stops counting passes for a tile (adaptive sampling found it converged).
+    void stop(uint32_t tile) { stopped_after_[tile] = passes_; }
+    bool live(uint32_t tile) const { return stopped_after_[tile] == 0; }
+    bool touched(uint32_t tile) const { return bool(blocks_[tile]); }
+
+    int passes() const { return passes_; }
+    int tile_passes(uint32_t tile) const { return stopped_after_[tile] ? stopped_after_[tile] : passes_; }
+    size_t tiles() const { return blocks_.size(); }
+    size_t tiles_touched() const { return touched_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+    int tile_size() const { return tile_; }
+    int tiles_x() const { return tiles_x_; }
+    uint32_t tile_of(size_t pixel) const;
+
+    /// Means over the passes of the pixel's tile (zero before the first pass or if untouched).
+    dvec3 mean_delta(size_t pixel) const;
+    dvec3 mean_dL(size_t pixel) const;
+    double mean_alpha(size_t pixel) const;
+    /// True while no pass has changed the pixel: it keeps the photo bit for bit.
+    bool untouched(size_t pixel) const;
+    /// Squared error estimate of the pixel's mean luminance change from the two interleaved
+    /// halves; infinite before both halves hold a pass.
+    double error2(size_t pixel) const;
+
+private:
+    struct PixelSums {
+        dvec3 delta{0}, dL{0};
+        double alpha = 0;
+        double odd_luminance = 0;  ///< luminance of delta summed over odd passes
+    };
+    const PixelSums* sums(size_t pixel) const;
+
+    int width_ = 0, height_ = 0, tile_ = 8, tiles_x_ = 0;
+    std::vector<std::unique_ptr<PixelSums[]>> blocks_;
+    std::vector<int> stopped_after_;  ///< 0 while live
+    size_t touched_ = 0;
+    int passes_ = 0;
+};
+
+}  // namespace dp
