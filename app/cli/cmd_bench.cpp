@@ -37,8 +37,9 @@ struct BenchOptions {
 /// A scene folder: scene.json (what both methods render) and two independent halves of the
 /// converged truth, truth-a.exr and truth-b.exr (main layer and alpha).
 struct BenchScene {
-    std::string name;
+    std::string name, dir;
     std::shared_ptr<RenderScene> scene;
+    std::shared_ptr<RenderScene> photons_scene;  ///< the same under the all-photon estimator, on demand
     Image truth, alpha;
     std::vector<bool> changed, on_objects, on_real;  ///< changed pixels; split by what they see
     float ceiling = 0;  ///< errors are measured on values clamped here
@@ -49,6 +50,7 @@ BenchScene load_bench_scene(const std::string& dir) {
     BenchScene b;
     b.name = fs::path(dir).filename().string();
     if (b.name.empty()) b.name = fs::path(dir).parent_path().filename().string();
+    b.dir = dir;
     b.scene = load_scene((fs::path(dir) / "scene.json").string());
     const std::string ta = (fs::path(dir) / "truth-a.exr").string(), tb = (fs::path(dir) / "truth-b.exr").string();
     for (const std::string& t : {ta, tb})
@@ -82,8 +84,15 @@ BenchScene load_bench_scene(const std::string& dir) {
     return b;
 }
 
-std::unique_ptr<PassRenderer> make_renderer(const std::string& method, std::shared_ptr<const RenderScene> s) {
+std::unique_ptr<PassRenderer> make_renderer(const std::string& method, BenchScene& b) {
     using Sampling = StandardDifferentialRenderer::Sampling;
+    std::shared_ptr<const RenderScene> s = b.scene;
+    if (method == "differential-photons") {
+        if (!b.photons_scene)
+            b.photons_scene = load_scene((fs::path(b.dir) / "scene.json").string(),
+                                         [](Project& p) { p.render.estimator = Estimator::Photons; });
+        s = b.photons_scene;
+    }
     if (method == "standard") return std::make_unique<StandardDifferentialRenderer>(std::move(s), Sampling::Independent);
     if (method == "standard-correlated")
         return std::make_unique<StandardDifferentialRenderer>(std::move(s), Sampling::Correlated);
@@ -93,10 +102,15 @@ std::unique_ptr<PassRenderer> make_renderer(const std::string& method, std::shar
 
 /// Runs one method on one scene until its time budget is spent, measuring the error at pass
 /// counts spaced by sqrt(2). Only render_pass() is timed; measuring the error is not.
-nlohmann::json run_method(const BenchOptions& o, const BenchScene& b, const std::string& method,
+/// Our photon-mapping methods: the split estimator (the default) and the all-photon one.
+bool is_differential(const std::string& method) {
+    return method == "differential" || method == "differential-photons";
+}
+
+nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::string& method,
                           nlohmann::json& rows) {
-    const double budget = method == "differential" ? o.max_seconds_differential : o.max_seconds_standard;
-    std::unique_ptr<PassRenderer> r = make_renderer(method, b.scene);
+    const double budget = is_differential(method) ? o.max_seconds_differential : o.max_seconds_standard;
+    std::unique_ptr<PassRenderer> r = make_renderer(method, b);
     std::vector<double> pass_seconds;
     double next_snapshot = 1;
     for (;;) {
@@ -123,10 +137,13 @@ nlohmann::json run_method(const BenchOptions& o, const BenchScene& b, const std:
                         {"rmse_changed", changed.rmse},
                         {"rel_rmse_changed", changed.rel_rmse},
                         {"rel_rmse_objects", objects.rel_rmse},
-                        {"rel_rmse_real_changed", real.rel_rmse}});
-        std::printf("%-14s %-12s %8.2fs  passes %5d  rel. RMSE %.4f  changed %.4f (objects %.4f, real %.4f)\n",
+                        {"rel_rmse_real_changed", real.rel_rmse},
+                        {"estimated_rel_error", st.estimated_rel_error},
+                        {"tiles_stopped", st.tiles_stopped}});
+        std::printf("%-14s %-12s %8.2fs  passes %5d  rel. RMSE %.4f  changed %.4f (objects %.4f, real %.4f, "
+                    "estimated %.4f)\n",
                     b.name.c_str(), method.c_str(), st.seconds, st.passes, whole.rel_rmse,
-                    changed.rel_rmse, objects.rel_rmse, real.rel_rmse);
+                    changed.rel_rmse, objects.rel_rmse, real.rel_rmse, st.estimated_rel_error);
         std::fflush(stdout);
         if (last || interrupted()) {
             if (!o.images.empty()) {
@@ -146,9 +163,10 @@ nlohmann::json run_method(const BenchOptions& o, const BenchScene& b, const std:
 
 int run_bench(const BenchOptions& o) {
     for (const std::string& m : o.methods)
-        if (m != "differential" && m != "standard" && m != "standard-correlated")
+        if (!is_differential(m) && m != "standard" && m != "standard-correlated")
             throw InputError("", "--methods",
-                             "unknown method '" + m + "' (differential, standard or standard-correlated)");
+                             "unknown method '" + m +
+                                 "' (differential, differential-photons, standard or standard-correlated)");
     check_output_folder(o.output, "--output");
     if (!o.images.empty()) fs::create_directories(o.images);
     return with_threads(o.threads, [&]() -> int {
@@ -181,7 +199,10 @@ Command add_bench_command(CLI::App& app) {
         ->required()
         ->check(CLI::ExistingDirectory);
     sub->add_option("-o,--output", o->output, "Rows as JSON")->required();
-    sub->add_option("--methods", o->methods, "Comma-separated: differential, standard, standard-correlated")->delimiter(',');
+    sub->add_option("--methods", o->methods,
+                    "Comma-separated: differential (split estimator), differential-photons (all-photon "
+                    "estimator), standard, standard-correlated")
+        ->delimiter(',');
     sub->add_option("--max-seconds-differential", o->max_seconds_differential,
                     "Render-time budget of differential photon mapping per scene")
         ->check(CLI::PositiveNumber & kFinite);

@@ -23,7 +23,7 @@ namespace {
 
 struct RenderOptions {
     std::string project, output, pixel, method = "differential";
-    int passes = 0, pass = 1, threads = 0;
+    int passes = 0, pass = 1, threads = 0, focus_after = 0;
     double time_s = 0;
     int64_t photons = 0;
     uint64_t seed = 0;
@@ -76,6 +76,8 @@ int run_render(const RenderOptions& o) {
     const bool standard = o.method != "differential";
     if (standard && debug)
         throw InputError("", "--pixel", "the per-pixel debugger is for --method differential");
+    if (!standard && o.focus_after > 0)
+        throw InputError("", "--focus-after", "only the path-traced methods (standard, standard-correlated) focus");
     if (standard && o.photons_opt->count())
         warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
 
@@ -90,8 +92,11 @@ int run_render(const RenderOptions& o) {
         if (standard) {
             const auto sampling = o.method == "standard" ? StandardDifferentialRenderer::Sampling::Independent
                                                          : StandardDifferentialRenderer::Sampling::Correlated;
-            session.set_renderer_factory([sampling](std::shared_ptr<const RenderScene> s) {
-                return std::make_unique<StandardDifferentialRenderer>(std::move(s), sampling);
+            const int focus = o.focus_after;
+            session.set_renderer_factory([sampling, focus](std::shared_ptr<const RenderScene> s) {
+                auto r = std::make_unique<StandardDifferentialRenderer>(std::move(s), sampling);
+                r->focus_after(focus);
+                return r;
             });
         }
         session.start(scene);
@@ -147,6 +152,10 @@ Command add_render_command(CLI::App& app) {
                     "path-traced simulations, without and with the objects; one sample per pixel "
                     "a pass) or standard-correlated (both simulations share each sample's rays)")
         ->check(CLI::IsMember({"differential", "standard", "standard-correlated"}));
+    sub->add_option("--focus-after", o->focus_after,
+                    "standard methods: after this many passes, sample only the pixels the objects "
+                    "change (and two pixels around them); for truths with many samples")
+        ->check(CLI::NonNegativeNumber);
     o->pixel_opt = sub->add_option("--pixel", o->pixel,
                                    "Debug: print one pixel of one pass (X,Y) instead of rendering");
     sub->add_option("--pass", o->pass, "Debug: the pass for --pixel (1-based)")

@@ -87,25 +87,9 @@ Probe::Probe(Image latlong, const glm::mat3& rotation, float intensity)
     columns_.resize(image_.size());
     for (size_t k = 0; k < columns_.size(); ++k)
         columns_[k] = Column{table.prob(k), table.alias(k)};
-    build_inverse_cdfs();
-}
-
-void Probe::build_inverse_cdfs() {
-    const int w = width(), h = height();
-    row_cdf_.assign(size_t(h) + 1, 0.0);
-    column_cdf_.assign(size_t(h) * (w + 1), 0.0);
-    if (total_power_ <= 0) return;
-    for (int j = 0; j < h; ++j) {
-        double* cdf = &column_cdf_[size_t(j) * (w + 1)];
-        for (int i = 0; i < w; ++i) cdf[i + 1] = cdf[i] + pixel_weight(size_t(j) * w + i);
-        row_cdf_[j + 1] = row_cdf_[j] + cdf[w];
-        // Dividing by the sum itself ends each table at exactly 1, and a pixel or row of zero
-        // weight keeps an empty interval: it is never picked.
-        const double row_sum = cdf[w];
-        for (int i = 1; i <= w; ++i) cdf[i] = row_sum > 0 ? cdf[i] / row_sum : double(i) / w;
-    }
-    const double total = row_cdf_[h];
-    for (double& c : row_cdf_) c /= total;
+    std::vector<double> all(image_.size());
+    for (size_t k = 0; k < all.size(); ++k) all[k] = pixel_weight(k);
+    table_ = LatLongTable(w, h, all);
 }
 
 double Probe::pixel_weight(size_t pixel) const {
@@ -170,38 +154,28 @@ ProbeSample Probe::sample(float u0, float u1, float u2) const {
     return s;
 }
 
-ProbeSample Probe::sample_inverse(vec2 u) const {
+ProbeSample Probe::sample_table(const LatLongTable& table, vec2 u) const {
     ProbeSample s;
-    if (total_power_ <= 0 || row_cdf_.size() < 2) {
+    if (table.empty() || image_.empty()) {
         s.dir = glm::normalize(to_world(vec3(0, 1, 0)));
         s.radiance = vec3(0);
         return s;
     }
-    const int w = width(), h = height();
-    // The row whose interval holds u.y, then the column whose interval holds u.x (a row or
-    // pixel of zero weight has an empty interval); the fractions inside place the direction.
-    const double uy = std::min(double(u.y), kOneMinusEpsilon);
-    const int j = std::clamp(
-        int(std::upper_bound(row_cdf_.begin(), row_cdf_.end(), uy) - row_cdf_.begin()) - 1, 0, h - 1);
-    const double row_p = row_cdf_[j + 1] - row_cdf_[j];
-    const double fy = row_p > 0 ? std::clamp((uy - row_cdf_[j]) / row_p, 0.0, kOneMinusEpsilon) : 0.5;
-    const double* cdf = &column_cdf_[size_t(j) * (w + 1)];
-    const double ux = std::min(double(u.x), kOneMinusEpsilon);
-    const int i = std::clamp(int(std::upper_bound(cdf, cdf + w + 1, ux) - cdf) - 1, 0, w - 1);
-    const double col_p = cdf[i + 1] - cdf[i];
-    const double fx = col_p > 0 ? std::clamp((ux - cdf[i]) / col_p, 0.0, kOneMinusEpsilon) : 0.5;
-
+    const LatLongTable::Pick pick = table.sample(u);
+    const int w = width();
+    const size_t j = pick.pixel / size_t(w), i = pick.pixel % size_t(w);
     const Row& row = rows_[j];
-    const double cos_theta = row.cos_top + row.cos_span * fy;
+    // Uniform in solid angle inside the pixel, as sample() does.
+    const double cos_theta = row.cos_top + row.cos_span * pick.fy;
     const float sin_theta = float(std::sqrt(std::max(0.0, (1 - cos_theta) * (1 + cos_theta))));
-    const float phi = float(2 * kPiD * ((i + fx) / w - 0.5));
+    const float phi = float(2 * kPiD * ((double(i) + pick.fx) / w - 0.5));
     const vec3 d(sin_theta * std::sin(phi), float(cos_theta), -sin_theta * std::cos(phi));
-    const size_t pixel = size_t(j) * w + i;
-    const PixelData& p = pixels_[pixel];
+    const PixelData& p = pixels_[pick.pixel];
     s.dir = glm::normalize(to_world(d));
     s.radiance = vec3(p.radiance[0], p.radiance[1], p.radiance[2]);
-    s.pdf = p.pdf;
-    s.pixel = pixel;
+    // The full table's pdf is the probe's own, rounded as pdf() rounds it.
+    s.pdf = &table == &table_ ? p.pdf : float(table.pmf(pick.pixel) / row.solid_angle);
+    s.pixel = pick.pixel;
     return s;
 }
 

@@ -7,6 +7,7 @@
 #include "base/math.h"
 #include "image/image.h"
 #include "probe/huge_pages.h"
+#include "probe/latlong_table.h"
 
 namespace dp {
 
@@ -86,7 +87,13 @@ public:
     /// (columns) CDFs: a monotone map of the unit square, so stratified or low-discrepancy
     /// points stay evenly spread over a bright region such as the sun's disk. u.x picks the
     /// column, u.y the row.
-    ProbeSample sample_inverse(vec2 u) const;
+    ProbeSample sample_inverse(vec2 u) const { return sample_table(table_, u); }
+    /// A direction from `table` (a distribution over this probe's pixels, such as a part of
+    /// it): its pixel by inversion, uniform in solid angle inside the pixel; the pdf is the
+    /// table's pmf over the pixel's solid angle.
+    ProbeSample sample_table(const LatLongTable& table, vec2 u) const;
+    /// luminance(L_j) * Omega_j of a pixel as the sampling weights are built (0 unless positive).
+    double pixel_weight(size_t pixel) const;
     /// Solid-angle pdf of sample() and sample_inverse() for a world direction.
     float pdf(const vec3& dir) const;
     /// Probability that sample() picks pixel `pixel`.
@@ -102,9 +109,7 @@ private:
     glm::mat3 rotation_{1.0f}, inverse_rotation_{1.0f};
     float intensity_ = 1.0f;
 
-    /// luminance(L_j) * Omega_j of a pixel as the sampling weights are built (0 unless positive).
-    double pixel_weight(size_t pixel) const;
-    void build_inverse_cdfs();
+
 
     /// One column of the alias table: the coin that sample() flips once it has picked the
     /// column. Only the coin decides the direction, so it is kept apart from the per-pixel data
@@ -131,8 +136,7 @@ private:
     std::vector<PixelData, HugePageAllocator<PixelData>> pixels_;  ///< row-major
     std::vector<float, HugePageAllocator<float>> pdf_;  ///< per pixel, compact for pdf()
     std::vector<Row> rows_;
-    std::vector<double> row_cdf_;  ///< height + 1 entries: the marginal over rows
-    std::vector<double, HugePageAllocator<double>> column_cdf_;  ///< per row, width + 1 entries
+    LatLongTable table_;  ///< the pixel pmf again, for sample_inverse()
     double total_power_ = 0;
 };
 

@@ -29,13 +29,38 @@ StandardDifferentialRenderer::StandardDifferentialRenderer(std::shared_ptr<const
     sum_delta_.assign(n, dvec3(0));
     sum_virtual_.assign(n, dvec3(0));
     virtual_count_.assign(n, 0);
+    samples_.assign(n, 0);
     stats_.pixels_total = n;
+}
+
+void StandardDifferentialRenderer::build_focus() {
+    const Image& photo = scene_->photo();
+    const int W = photo.width(), H = photo.height();
+    double mean = 0;
+    for (size_t i = 0; i < photo.size(); ++i) mean += std::max(0.0f, luminance(photo[i]));
+    const double floor = 0.1 * mean / double(std::max<size_t>(1, photo.size())) + 1e-12;
+    std::vector<uint8_t> changed(photo.size(), 0);
+    for (size_t i = 0; i < photo.size(); ++i) {
+        const double n = std::max<uint32_t>(1, samples_[i]);
+        const double d = luminance((sum_delta_[i] + sum_virtual_[i]) / n) - luminance(photo[i]) * virtual_count_[i] / n;
+        changed[i] = virtual_count_[i] > 0 || std::abs(d) > 0.003 * std::max(double(luminance(photo[i])), floor);
+    }
+    focus_.assign(photo.size(), 0);
+    constexpr int kGrow = 2;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            if (!changed[size_t(y) * W + x]) continue;
+            for (int yy = std::max(0, y - kGrow); yy <= std::min(H - 1, y + kGrow); ++yy)
+                for (int xx = std::max(0, x - kGrow); xx <= std::min(W - 1, x + kGrow); ++xx)
+                    focus_[size_t(yy) * W + xx] = 1;
+        }
 }
 
 bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) {
     const auto t0 = std::chrono::steady_clock::now();
     const RenderScene& s = *scene_;
     const int W = s.camera().width(), H = s.camera().height();
+    if (focus_after_ > 0 && stats_.passes == focus_after_ && focus_.empty()) build_focus();
     const uint64_t first = stats_.samples_per_pixel, last = first + uint64_t(samples_per_pass_);
     // Accumulated into pass-local sums first, so a cancelled pass leaves no partial samples.
     std::vector<dvec3> delta(sum_delta_.size(), dvec3(0)), virt(sum_virtual_.size(), dvec3(0));
@@ -47,6 +72,7 @@ bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) 
             if (cancel && cancel->load(std::memory_order_relaxed)) return;
             for (int x = 0; x < W; ++x) {
                 const uint64_t pixel = uint64_t(y) * W + x;
+                if (!focus_.empty() && !focus_[pixel]) continue;
                 for (uint64_t smp = first; smp < last; ++smp) {
                     // Same camera jitter as the reference path tracer.
                     const Ray ray = reference_camera_ray(s, with_virtual_.seed, x, y, smp);
@@ -72,14 +98,16 @@ bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) 
     });
     if (cancel && cancel->load()) return false;
     for (size_t i = 0; i < delta.size(); ++i) {
+        if (!focus_.empty() && !focus_[i]) continue;
         sum_delta_[i] += delta[i];
         sum_virtual_[i] += virt[i];
         virtual_count_[i] += vcount[i];
+        samples_[i] += uint32_t(samples_per_pass_);
     }
     stats_.passes += 1;
     stats_.samples_per_pixel = last;
     stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    stats_.pixels_gathered = stats_.pixels_total;
+    stats_.pixels_gathered = focus_.empty() ? stats_.pixels_total : size_t(std::count(focus_.begin(), focus_.end(), uint8_t(1)));
     stats_.non_finite_samples += bad.load();
     return true;
 }
@@ -87,9 +115,9 @@ bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) 
 Image StandardDifferentialRenderer::image() const {
     const Image& photo = scene_->photo();
     Image out = photo;
-    const double n = double(stats_.samples_per_pixel);
-    if (n == 0) return out;
     for (size_t i = 0; i < out.size(); ++i) {
+        const double n = double(samples_[i]);
+        if (n == 0) continue;
         const double a = virtual_count_[i] / n;
         out[i] = vec3(dvec3(photo[i]) * (1.0 - a) + (sum_delta_[i] + sum_virtual_[i]) / n);
     }
@@ -98,15 +126,14 @@ Image StandardDifferentialRenderer::image() const {
 
 Image StandardDifferentialRenderer::delta_layer() const {
     Image out(scene_->camera().width(), scene_->camera().height());
-    const double n = double(std::max<uint64_t>(1, stats_.samples_per_pixel));
-    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(sum_delta_[i] / n);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(sum_delta_[i] / double(std::max<uint32_t>(1, samples_[i])));
     return out;
 }
 
 Image StandardDifferentialRenderer::alpha_layer() const {
     Image out(scene_->camera().width(), scene_->camera().height());
-    const double n = double(std::max<uint64_t>(1, stats_.samples_per_pixel));
-    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(float(virtual_count_[i] / n));
+    for (size_t i = 0; i < out.size(); ++i)
+        out[i] = vec3(float(virtual_count_[i] / double(std::max<uint32_t>(1, samples_[i]))));
     return out;
 }
 

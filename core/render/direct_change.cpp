@@ -84,31 +84,31 @@ vec3 DirectChange::blocked_radiance(const Hit& hit, const vec3& n, const vec3& w
     return hr ? photographed_radiance(scene_, hr, w, rng) : scene_.probe().radiance(w);
 }
 
-dvec3 DirectChange::estimate(const Hit& hit, const vec3& n, vec2 u_probe, vec2 u_cone, float u_pick,
-                             Rng& rng) const {
+dvec3 DirectChange::light_sample(const Hit& hit, const vec3& n, const std::vector<ClusterCone>& cones,
+                                 const ProbeSample& s, Rng& rng) const {
+    if (s.pdf <= 0) return dvec3(0);
+    const double pb = cone_pdf(cones, s.dir, n);
+    if (pb <= 0) return dvec3(0);  // outside every cone nothing virtual can block it: no ray
+    const vec3 L = blocked_radiance(hit, n, s.dir, rng);
+    if (L == vec3(0)) return dvec3(0);
+    const double pa = s.pdf, weight = pa * pa / (pa * pa + pb * pb);
+    return -dvec3(L) * (double(glm::dot(n, s.dir)) / pa * weight);
+}
+
+dvec3 DirectChange::estimate(const Hit& hit, const vec3& n, const Samples& u, Rng& rng) const {
     std::vector<ClusterCone>& cs = scratch_cones();
     cones(hit.p, n, cs);
     double total = 0;
     for (const ClusterCone& c : cs) total += c.solid_angle;
     if (total <= 0) return dvec3(0);
-    const Probe& probe = scene_.probe();
-    dvec3 sum(0);
+    const ProbeLights& lights = scene_.probe_lights();
 
-    // Probe sample, by flux: finds a sun that the cone sample would rarely hit.
-    const ProbeSample ps = probe.sample_inverse(u_probe);
-    if (ps.pdf > 0) {
-        const double pb = cone_pdf(cs, ps.dir, n);
-        if (pb > 0) {  // outside every cone nothing virtual can block it: no ray
-            const vec3 L = blocked_radiance(hit, n, ps.dir, rng);
-            if (L != vec3(0)) {
-                const double pa = ps.pdf, weight = pa * pa / (pa * pa + pb * pb);
-                sum -= dvec3(L) * (double(glm::dot(n, ps.dir)) / pa * weight);
-            }
-        }
-    }
+    // The sun and the sky, by flux: they find a sun that the cone sample would rarely hit.
+    dvec3 sum = light_sample(hit, n, cs, lights.sample_sun(u.sun), rng);
+    sum += light_sample(hit, n, cs, lights.sample_sky(u.sky), rng);
 
-    // Cone sample: the sky and the real surfaces behind the objects, evenly over what they hide.
-    double pick = double(u_pick) * total;
+    // The cones: the sky and the real surfaces behind the objects, evenly over what they hide.
+    double pick = double(u.pick) * total;
     size_t k = 0;
     for (size_t i = 0; i < cs.size(); ++i) {
         if (cs[i].solid_angle <= 0) continue;
@@ -117,12 +117,13 @@ dvec3 DirectChange::estimate(const Hit& hit, const vec3& n, vec2 u_probe, vec2 u
         pick -= cs[i].solid_angle;
     }
     const ClusterCone& c = cs[k];
-    const vec3 w = c.inside ? Frame(n).to_world(sample_cosine_hemisphere(u_cone)) : sample_cone(c.axis, c.one_minus_cos, u_cone);
+    const vec3 w = c.inside ? Frame(n).to_world(sample_cosine_hemisphere(u.cone))
+                            : sample_cone(c.axis, c.one_minus_cos, u.cone);
     const double pb = cone_pdf(cs, w, n);
     if (pb > 0) {
         const vec3 L = blocked_radiance(hit, n, w, rng);
         if (L != vec3(0)) {
-            const double pa = probe.pdf(w), weight = pb * pb / (pa * pa + pb * pb);
+            const double pa = lights.pdf(w), weight = pb * pb / (pa * pa + pb * pb);
             sum -= dvec3(L) * (double(glm::dot(n, w)) / pb * weight);
         }
     }

@@ -22,16 +22,21 @@ struct ClusterCone {
 ///   dE(x) = - integral of L_old(x, w) [a virtual object is first along w] cos(theta) dw,
 /// where L_old is the light that arrived before: the probe where no real surface lies along w,
 /// the photographed radiance of the real surface behind the object where one does. Estimated by
-/// next-event estimation: one probe sample (by flux) and one sample of the cones towards the
-/// clusters, combined by the power heuristic. Only directions inside a cone can be blocked, so
-/// samples outside cost no ray.
+/// next-event estimation: a sample of the probe's sun, one of its sky (ProbeLights) and one of
+/// the cones towards the clusters, combined by the power heuristic. Only directions inside a
+/// cone can be blocked, so samples outside cost no ray. Light blocked by glass is left to the
+/// photons, which carry the light it lets through as well.
 class DirectChange {
 public:
     explicit DirectChange(const RenderScene& scene);
 
+    /// The numbers of one estimate: the sun, sky and cone directions and the cone's cluster.
+    struct Samples {
+        vec2 sun{0}, sky{0}, cone{0};
+        float pick = 0;
+    };
     /// One estimate of dE (RGB irradiance, signed) at real hit `hit` whose lit side faces `n`.
-    /// `u_probe` and `u_cone` pick the two directions, `u_pick` the cluster of the cone sample.
-    dvec3 estimate(const Hit& hit, const vec3& n, vec2 u_probe, vec2 u_cone, float u_pick, Rng& rng) const;
+    dvec3 estimate(const Hit& hit, const vec3& n, const Samples& u, Rng& rng) const;
 
     /// Bound of |luminance(dE)| at a point with unit normal n: each cluster's solid angle above
     /// the horizon times the brightest light (probe in the cone, or a photographed real surface)
@@ -46,6 +51,9 @@ private:
     double cone_pdf(const std::vector<ClusterCone>& cones, const vec3& w, const vec3& n) const;
     /// The integrand without the cosine: L_old where a virtual object is first along w, else 0.
     vec3 blocked_radiance(const Hit& hit, const vec3& n, const vec3& w, Rng& rng) const;
+    /// One light sample's weighted contribution -L cos / p, MIS-weighted against the cones.
+    dvec3 light_sample(const Hit& hit, const vec3& n, const std::vector<ClusterCone>& cones,
+                       const ProbeSample& s, Rng& rng) const;
 
     const RenderScene& scene_;
     ProbeMaxGrid probe_max_;

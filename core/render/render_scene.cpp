@@ -81,6 +81,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets)
     sanitize_images();
     camera_ = project_.camera.build(assets_.photo.width(), assets_.photo.height());
     probe_ = Probe(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg), project_.probe.intensity);
+    lights_ = ProbeLights(probe_);
     device_ = rtcNewDevice("");
     if (!device_) throw std::runtime_error("Embree: cannot create device");
     build_virtual();

@@ -9,6 +9,7 @@
 #include "geometry/mesh.h"
 #include "image/image.h"
 #include "probe/probe.h"
+#include "probe/probe_lights.h"
 #include "scene/project.h"
 
 namespace dp {
@@ -78,6 +79,8 @@ public:
     const Project& project() const { return project_; }
     const Image& photo() const { return assets_.photo; }
     const Probe& probe() const { return probe_; }
+    /// The probe split into its sun and sky for next-event estimation.
+    const ProbeLights& probe_lights() const { return lights_; }
     const Camera& camera() const { return camera_; }
     const SceneAssets& assets() const { return assets_; }
     const std::vector<EmissionCluster>& clusters() const { return clusters_; }
@@ -132,6 +135,7 @@ private:
     Project project_;
     SceneAssets assets_;
     Probe probe_;
+    ProbeLights lights_;  ///< refers to probe_
     Camera camera_;
     RTCDevice device_ = nullptr;
     static constexpr unsigned kRealInstance = 0, kVirtualInstance = 1;

@@ -32,7 +32,7 @@ vec3 Shader::real_delta(const Hit& hit, const vec3& dir, Rng& rng, const DirectS
     const vec3 n = facing_normal(hit.ng, dir);
     dvec3 E(0);
     if (direct_ && direct && direct->weight > 0)
-        E += direct_->estimate(hit, n, direct->probe, direct->cone, direct->pick, rng) * direct->weight;
+        E += direct_->estimate(hit, n, direct->u, rng) * direct->weight;
     if (gather && !maps_.real.empty()) E += maps_.real.gather(hit.p, n) * inv_area_;
     if (E == dvec3(0)) return vec3(0);
     return vec3(dvec3(hit.surface->reflectance_at(hit.uv)) * double(kInvPi) * E);
@@ -50,34 +50,41 @@ vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng,
     const vec3 n = facing_normal(hit.ns, dir);
     const vec3 ng = facing_normal(hit.ng, dir);
     const Probe& probe = scene_.probe();
+    const ProbeLights& lights = scene_.probe_lights();
+    const bool bounce = depth < kDiffuseGatherDepth;
     Hit h = hit;
     h.ng = ng;
     h.ns = n;
     vec3 sum(0);
     for (int k = 0; k < samples; ++k) {
-        vec2 u_light, u_bounce;
+        vec2 u_sun, u_sky, u_bounce;
         if (sampler) {
             PixelSampler sk = sampler->with_index(sampler->index() * uint32_t(samples) + uint32_t(k));
-            u_light = sk.next2d();
+            u_sun = sk.next2d();
+            u_sky = sk.next2d();
             u_bounce = sk.next2d();
         } else {
-            u_light = vec2(rng.uniform(), rng.uniform());
+            u_sun = vec2(rng.uniform(), rng.uniform());
+            u_sky = vec2(rng.uniform(), rng.uniform());
             u_bounce = vec2(rng.uniform(), rng.uniform());
         }
-        // Probe light by next-event estimation, MIS-weighted against the cosine bounce below.
-        ProbeSample ls = probe.sample_inverse(u_light);
-        float cos_l = glm::dot(n, ls.dir);
-        if (ls.pdf > 0 && cos_l > 0 && glm::dot(ng, ls.dir) > 0 &&
-            !scene_.occluded(Ray{scene_.offset_origin(h, ls.dir), ls.dir}))
-            sum += ls.radiance * (cos_l / ls.pdf) * power_heuristic(ls.pdf, cos_l * kInvPi) * kInvPi;
-        if (depth >= kDiffuseGatherDepth) continue;
+        // The sun and the sky by next-event estimation, each MIS-weighted against the cosine
+        // bounce below (the only other strategy that reaches their directions).
+        for (const ProbeSample& ls : {lights.sample_sun(u_sun), lights.sample_sky(u_sky)}) {
+            const float cos_l = glm::dot(n, ls.dir);
+            if (ls.pdf <= 0 || cos_l <= 0 || glm::dot(ng, ls.dir) <= 0) continue;
+            if (scene_.occluded(Ray{scene_.offset_origin(h, ls.dir), ls.dir})) continue;
+            const float weight = bounce ? power_heuristic(ls.pdf, cos_l * kInvPi) : 1.0f;
+            sum += ls.radiance * (cos_l / ls.pdf) * weight * kInvPi;
+        }
+        if (!bounce) continue;
         // One cosine-weighted bounce: real surroundings (the photo), other virtual objects, probe.
         vec3 d = sample_diffuse(h, -ng, u_bounce);
         Ray ray{scene_.offset_origin(h, d), d};
         Hit next = scene_.intersect(ray);
         if (!next) {
             float bsdf_pdf = std::max(0.0f, glm::dot(n, d)) * kInvPi;
-            sum += probe.radiance(d) * power_heuristic(bsdf_pdf, probe.pdf(d));
+            sum += probe.radiance(d) * power_heuristic(bsdf_pdf, lights.pdf(d));
         } else {
             sum += radiance_at(next, ray, rng, depth + 1, true, kGlassSplits);
         }

@@ -31,15 +31,24 @@ int camera_diffuse_samples(int64_t photons_per_pass, size_t pixels_near_virtual)
 /// The numbers of one direct-light estimate at a real point (DirectChange::estimate) and its
 /// weight: 1, or 1/p for a pixel that Russian roulette kept with probability p.
 struct DirectSamples {
-    vec2 probe{0}, cone{0};
-    float pick = 0;
+    DirectChange::Samples u;
     double weight = 1;
     static DirectSamples from(Rng& rng) {
-        return {vec2(rng.uniform(), rng.uniform()), vec2(rng.uniform(), rng.uniform()), rng.uniform(), 1.0};
+        DirectSamples d;
+        d.u.sun = vec2(rng.uniform(), rng.uniform());
+        d.u.sky = vec2(rng.uniform(), rng.uniform());
+        d.u.cone = vec2(rng.uniform(), rng.uniform());
+        d.u.pick = rng.uniform();
+        return d;
     }
     static DirectSamples from(PixelSampler& s, double weight) {
-        const vec2 a = s.next2d(), b = s.next2d();
-        return {a, b, s.next1d(), weight};
+        DirectSamples d;
+        d.u.sun = s.next2d();
+        d.u.sky = s.next2d();
+        d.u.cone = s.next2d();
+        d.u.pick = s.next1d();
+        d.weight = weight;
+        return d;
     }
 };
 

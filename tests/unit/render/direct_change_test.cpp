@@ -25,8 +25,12 @@ std::pair<double, double> mean_estimate(const DirectChange& dc, const Hit& hit, 
     Rng rng(seed, 1);
     double sum = 0, sum2 = 0;
     for (int k = 0; k < n; ++k) {
-        const double v = luminance(dc.estimate(hit, vec3(0, 1, 0), vec2(rng.uniform(), rng.uniform()),
-                                               vec2(rng.uniform(), rng.uniform()), rng.uniform(), rng));
+        DirectChange::Samples u;
+        u.sun = vec2(rng.uniform(), rng.uniform());
+        u.sky = vec2(rng.uniform(), rng.uniform());
+        u.cone = vec2(rng.uniform(), rng.uniform());
+        u.pick = rng.uniform();
+        const double v = luminance(dc.estimate(hit, vec3(0, 1, 0), u, rng));
         sum += v;
         sum2 += v * v;
     }
