@@ -71,7 +71,7 @@ def blender_from_ours(probe):
     frame, so that the Environment Texture needs no rotation and Cycles' importance map (one
     cell per texel) lines up with the probe's texels. A Mapping-node rotation instead splits a
     bright texel between two cells: a one-texel sun then arrives as rare, heavy samples (on the
-    city probe turned 35 degrees the ground came out 1.9% dark at 256 spp; docs/cycles.md)."""
+    city probe turned 35 degrees the ground came out about 2% dark at 256 spp; docs/cycles.md)."""
     return ENV_FROM_PROBE @ euler_xyz_deg(probe.get("rotation_deg", [0, 0, 0])).transposed()
 
 
