@@ -6,6 +6,8 @@
         --diffphoton build/app/diffphoton --width 128 --spp 1024 --out /tmp/cyc-real-mirrors
     blender ... -P bench/cycles/check_conversion.py -- composite out/bench/scenes/shadow_hard \\
         --diffphoton build/app/diffphoton --spp 1024 --out /tmp/cyc-composite
+    blender ... -P bench/cycles/check_conversion.py -- materials \\
+        --diffphoton build/app/diffphoton --spp 1024 --lold-spp 4096 --out /tmp/cyc-materials
 
 orientation: probes that are black but one texel, an OpenCV camera aimed near it with an
   off-centre principal point (and, in a second camera, fx != fy): both renderers must put the
@@ -15,6 +17,8 @@ real-only: the real scene alone (proxies as plain diffuse, no catcher, no object
 composite: the shadow-catcher composite against the scene's truth (standard differential
   rendering, truth-a.exr and truth-b.exr) where the camera sees an object, and against ours'
   multiplicative composite on real pixels (see check_composite).
+materials: both of the above on a scene made here with textured proxies, tinted glass, a
+  coloured mirror and a textured non-uniformly scaled sphere (see check_materials).
 
 Each image is the mean of two halves with seeds 1 and 2, so that each renderer's own noise is
 estimated from the halves (RMSE(half 1 - half 2) / 2 is the RMSE of their mean). Reports the
@@ -152,17 +156,32 @@ def pool2(rgb, w, h):
     w2, h2 = w // 2, h // 2
     out = array.array("f", bytes(12 * w2 * h2))
     for y in range(h2):
+        top, bottom = 3 * (2 * y) * w, 3 * (2 * y + 1) * w
         for x in range(w2):
             for c in range(3):
-                i = lambda yy, xx: 3 * (yy * w + xx) + c  # noqa: E731
-                out[3 * (y * w2 + x) + c] = 0.25 * (rgb[i(2 * y, 2 * x)] + rgb[i(2 * y, 2 * x + 1)] +
-                                                    rgb[i(2 * y + 1, 2 * x)] + rgb[i(2 * y + 1, 2 * x + 1)])
+                k = 3 * 2 * x + c
+                out[3 * (y * w2 + x) + c] = 0.25 * (rgb[top + k] + rgb[top + k + 3] +
+                                                    rgb[bottom + k] + rgb[bottom + k + 3])
     return out
 
 
-def compare(ours, cycles, w, h, mask=None, names=("ours", "cycles")):
+def clamped(rgb, ceiling):
+    return array.array("f", (min(x, ceiling) for x in rgb))
+
+
+def bench_ceiling(photo):
+    """`diffphoton bench` clamps every channel at 8 times the photo's 99.9th-percentile
+    luminance before measuring (a few pixels that see the sun in a mirror decide nothing)."""
+    lum = sorted(luminance(photo))
+    return 8.0 * lum[min(len(lum) - 1, int(0.999 * len(lum)))]
+
+
+def compare(ours, cycles, w, h, mask=None, names=("ours", "cycles"), ceiling=None):
     """Relative RMSE between the two means (pixels in `mask`, all if None) against each one's
-    noise from its halves, plain and after a 2x2 box filter, and the ratio of mean luminances."""
+    noise from its halves, plain and after a 2x2 box filter, and the ratio of mean luminances;
+    with `ceiling`, every channel is clamped there first."""
+    if ceiling is not None:
+        ours, cycles = [clamped(x, ceiling) for x in ours], [clamped(x, ceiling) for x in cycles]
     o, c = mean(*ours), mean(*cycles)
     norm = mean_lum(mean(o, c), mask)
     rel = rmse(o, c, mask) / norm
@@ -192,7 +211,8 @@ def mean_ratio_noise(ours, cycles, mask):
     one renderer's mean luminance is std(lum half 1 - lum half 2) / (2 sqrt(pixels)); the two
     renderers' relative errors add in quadrature."""
     def rel_err(pair):
-        d = [a - b for a, b, m in zip(luminance(pair[0]), luminance(pair[1]), mask or iter(lambda: True, None)) if m]
+        everywhere = [True] * (len(pair[0]) // 3)
+        d = [a - b for a, b, m in zip(luminance(pair[0]), luminance(pair[1]), mask or everywhere) if m]
         mu = sum(d) / len(d)
         sd = math.sqrt(sum((x - mu) ** 2 for x in d) / max(len(d) - 1, 1))
         return sd / (2 * math.sqrt(len(d))) / mean_lum(mean(*pair), mask)
@@ -310,6 +330,7 @@ def check_composite(args):
     objects = [c and al >= 0.999 for c, al in zip(changed, a_mean)]
     real = [c and al == 0 for c, al in zip(changed, a_mean)]
     names = ("truth", "cycles")
+    ceiling = bench_ceiling(photo)
     gap = rmse(mean(*mult), mean(*truth), real) / mean_lum(mean(*truth), real)
     result = {"check": "composite", "scene": args.project, "width": w, "height": h, "spp": 2 * half,
               "l_old_spp": 2 * max(1, args.lold_spp // 2), "seconds_cycles": t_cyc,
@@ -318,8 +339,77 @@ def check_composite(args):
               "real_changed_against_multiplicative": compare(mult, cyc, w, h, real, ("multiplicative", "cycles")),
               "real_changed_against_truth": compare(truth, cyc, w, h, real, names),
               "changed_against_truth": compare(truth, cyc, w, h, changed, names),
-              "gap_additive_multiplicative_real_changed": gap}
+              "gap_additive_multiplicative_real_changed": gap,
+              # The same at the bench's ceiling, where caustic fireflies would decide the above.
+              "ceiling": ceiling,
+              "clamped_objects_against_truth": compare(truth, cyc, w, h, objects, names, ceiling),
+              "clamped_real_changed_against_multiplicative": compare(mult, cyc, w, h, real,
+                                                                     ("multiplicative", "cycles"), ceiling),
+              "clamped_changed_against_truth": compare(truth, cyc, w, h, changed, names, ceiling)}
     return report(args, result)
+
+
+MATERIALS_SCENE = {
+    "schema_version": 1,
+    "photo": {"path": "photo.exr"},
+    "probe": {"path": "city-clamped.exr", "rotation_deg": [5, 35, -3], "intensity": 0.8},
+    "camera": {"model": "lookat", "eye": [0.3, 1.5, 4.0], "target": [0, 0.4, 0], "vfov_deg": 40},
+    "real": [
+        {"name": "floor", "shape": {"type": "plane", "size": [8, 8]}, "albedo": {"texture": "ramps.exr"}},
+        {"name": "crate", "shape": {"type": "box", "size": [0.6, 0.5, 0.4]},
+         "transform": {"translation": [1.3, 0.25, -0.6], "rotation_deg": [0, 25, 0]},
+         "albedo": {"texture": "ramps.exr"}},
+        {"name": "ball", "shape": {"type": "sphere", "radius": 0.3},
+         "transform": {"translation": [-1.3, 0.3, -0.5], "rotation_deg": [20, 70, -15]},
+         "albedo": {"texture": "ramps.exr"}}],
+    "objects": [
+        {"name": "glass", "shape": {"type": "sphere", "radius": 0.35}, "transform": {"translation": [-0.4, 0.35, 0.3]},
+         "material": {"type": "glass", "ior": 1.5, "tint": [0.6, 0.8, 1.0]}},
+        {"name": "mirror", "shape": {"type": "box", "size": [0.4, 0.4, 0.4]},
+         "transform": {"translation": [0.5, 0.2, 0.2], "rotation_deg": [0, 30, 0]},
+         "material": {"type": "mirror", "reflectance": [0.9, 0.85, 0.8]}},
+        {"name": "clay", "shape": {"type": "sphere", "radius": 0.25},
+         "transform": {"translation": [0.1, 0.25, -0.7], "scale": [1.2, 1, 1]},
+         "material": {"type": "diffuse", "albedo": {"texture": "ramps.exr"}}}],
+    "render": {"max_depth": 8, "seed": 1},
+}
+
+
+def check_materials(args):
+    """Textures on a plane, a box and an exact (rotated) sphere proxy, a tinted glass ball, a
+    coloured mirror box and a textured, non-uniformly scaled sphere, under a rotated city probe
+    clamped to 4 (its one-texel sun would bury everything in caustic fireflies): the real-only
+    check, then photo and truth made here and the composite check, 128x72."""
+    os.makedirs(args.out, exist_ok=True)
+    w, h = 64, 32
+    ramps = array.array("f", bytes(16 * w * h))
+    for y in range(h):  # rows bottom-up: file row h - 1 - y
+        for x in range(w):
+            row = h - 1 - y
+            ramps[4 * (y * w + x):4 * (y * w + x) + 4] = array.array(
+                "f", [0.1 + 0.8 * (x + 0.5) / w, 0.1 + 0.8 * (row + 0.5) / h, 0.3 + 0.4 * ((x // 8 + row // 8) % 2), 1])
+    save_exr(dp_cycles.float_image("ramps", w, h, ramps), os.path.join(args.out, "ramps.exr"))
+    city = dp_cycles.bpy.data.images.load("/usr/share/blender/datafiles/studiolights/world/city.exr")
+    px = array.array("f", (min(max(x, 0.0), 4.0) for x in dp_cycles.pixels_of(city)))
+    save_exr(dp_cycles.float_image("city", city.size[0], city.size[1], px), os.path.join(args.out, "city-clamped.exr"))
+    run_ours(args.diffphoton, ["make-test-image", os.path.join(args.out, "photo.exr"), "--size", "128", "72",
+                               "--value", "0", "0", "0"])
+    scene = os.path.join(args.out, "scene.json")
+    with open(scene, "w") as f:
+        json.dump(MATERIALS_SCENE, f, indent=1)
+    real = argparse.Namespace(**vars(args))
+    real.project, real.width, real.out = scene, 0, os.path.join(args.out, "real-only")
+    os.makedirs(real.out, exist_ok=True)
+    check_real_only(real)
+    run_ours(args.diffphoton, ["reference", scene, "--real-only", "--spp", "1024", "--seed", "7",
+                               "--threads", str(args.threads), "-o", os.path.join(args.out, "photo.exr")])
+    for part, seed in (("a", 101), ("b", 202)):
+        run_ours(args.diffphoton, ["render", scene, "--method", "standard-correlated", "--passes", "1024",
+                                   "--seed", str(seed), "--threads", str(args.threads), "--layers",
+                                   "-o", os.path.join(args.out, f"truth-{part}.exr")])
+    comp = argparse.Namespace(**vars(args))
+    comp.project, comp.out = args.out, os.path.join(args.out, "composite")
+    return check_composite(comp)
 
 
 def report(args, result):
@@ -411,7 +501,7 @@ def save_exr(img, path):
 def main():
     argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     ap = argparse.ArgumentParser(prog="check_conversion.py", description=__doc__.split("\n\n")[0])
-    ap.add_argument("check", choices=("orientation", "real-only", "composite"))
+    ap.add_argument("check", choices=("orientation", "real-only", "composite", "materials"))
     ap.add_argument("project", nargs="?", help="real-only: a project; composite: a bench scene folder")
     ap.add_argument("--diffphoton", default=shutil.which("diffphoton"), help="diffphoton executable")
     ap.add_argument("--out", required=True, help="folder for the images and check.json")
@@ -423,11 +513,11 @@ def main():
     args = ap.parse_args(argv)
     if not args.diffphoton:
         ap.error("--diffphoton: the diffphoton executable is needed")
-    if args.check != "orientation" and not args.project:
+    if args.check in ("real-only", "composite") and not args.project:
         ap.error(f"{args.check}: a project (real-only) or scene folder (composite) is needed")
     try:
         return {"orientation": check_orientation, "real-only": check_real_only,
-                "composite": check_composite}[args.check](args)
+                "composite": check_composite, "materials": check_materials}[args.check](args)
     except dp_cycles.ConversionError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

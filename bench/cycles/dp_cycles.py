@@ -26,7 +26,7 @@ from mathutils import Matrix, Vector
 # Vertex normals on a sphere mesh are set to the exact radial direction; with 256 x 128 quads
 # the silhouette is within 8e-5 radii of the true sphere (ours intersects an exact sphere).
 SPHERE_SEGMENTS, SPHERE_RINGS = 256, 128
-# ...except for a non-uniformly scaled sphere, which ours also renders as its 96 x 48 UV mesh.
+# ...except for a non-uniformly scaled sphere, which ours renders as its 96 x 48 UV mesh.
 OURS_SPHERE_MESH = (96, 48)
 MAX_ALBEDO = 0.98  # ours clamps every reflectance to [0, 0.98] (Surface::reflectance_at)
 
@@ -238,15 +238,13 @@ def setup_world(scene, probe, base_dir, file):
 
 
 def new_mesh_object(name, verts, faces, uvs=None, normals=None):
-    """A mesh object from vertices and faces in ours' local coordinates. `uvs` (one per vertex)
-    are ours; `normals` (one per vertex) make it smooth-shaded with exactly those normals."""
+    """A mesh object from vertices and faces in ours' local coordinates. `uvs` are ours, one
+    per face corner in face order; `normals` (one per vertex) make it smooth-shaded with
+    exactly those normals."""
     mesh = bpy.data.meshes.new(name)
     mesh.from_pydata([tuple(map(float, v)) for v in verts], [], [tuple(map(int, f)) for f in faces])
     if uvs is not None:
-        layer = mesh.uv_layers.new(name="UVMap")
-        loop_verts = array.array("i", bytes(4 * len(mesh.loops)))
-        mesh.loops.foreach_get("vertex_index", loop_verts)
-        layer.data.foreach_set("uv", [float(c) for k in loop_verts for c in uvs[k]])
+        mesh.uv_layers.new(name="UVMap").data.foreach_set("uv", [float(c) for uv in uvs for c in uv])
     mesh.validate()
     if normals is not None:
         set_vertex_normals(mesh, normals)
@@ -283,9 +281,11 @@ def box_geometry(size):
     return verts, faces, uvs
 
 
-def sphere_geometry(radius, segments, rings):
-    """A UV sphere (as core/geometry make_uv_sphere, poles included) with radial normals."""
-    verts, normals, faces = [(0, radius, 0)], [(0, 1, 0)], []
+def sphere_geometry(radius, segments, rings, triangles=False):
+    """A UV sphere as core/geometry make_uv_sphere builds it: the same vertices, radial normals,
+    corner UVs (u = phi / 2 pi with phi from +X towards +Z, v = 1 at the north pole) and, with
+    `triangles`, the same triangles (otherwise quads)."""
+    verts, normals, faces, uvs = [(0, radius, 0)], [(0, 1, 0)], [], []
     for r in range(1, rings):
         theta = math.pi * r / rings
         for j in range(segments):
@@ -300,15 +300,36 @@ def sphere_geometry(radius, segments, rings):
     def ring(r, j):
         return 1 + (r - 1) * segments + j % segments
 
+    def uv(r, j):
+        return (j / segments, 1 - r / rings)
+
     # With phi growing from +X towards +Z these orders are counter-clockwise from outside.
     for j in range(segments):
         faces.append((0, ring(1, j + 1), ring(1, j)))
+        uvs += [((j + 0.5) / segments, 1.0), uv(1, j + 1), uv(1, j)]
     for r in range(1, rings - 1):
         for j in range(segments):
-            faces.append((ring(r, j), ring(r, j + 1), ring(r + 1, j + 1), ring(r + 1, j)))
+            a, b, c, d = ring(r, j), ring(r, j + 1), ring(r + 1, j + 1), ring(r + 1, j)
+            ua, ub, uc, ud = uv(r, j), uv(r, j + 1), uv(r + 1, j + 1), uv(r + 1, j)
+            if triangles:
+                faces += [(a, b, c), (a, c, d)]
+                uvs += [ua, ub, uc, ua, uc, ud]
+            else:
+                faces.append((a, b, c, d))
+                uvs += [ua, ub, uc, ud]
     for j in range(segments):
         faces.append((south, ring(rings - 1, j), ring(rings - 1, j + 1)))
-    return verts, faces, normals
+        uvs += [((j + 0.5) / segments, 0.0), uv(rings - 1, j), uv(rings - 1, j + 1)]
+    return verts, faces, normals, uvs
+
+
+def is_exact_sphere(shape, transform):
+    """Ours intersects an exact sphere when the scale is uniform (and then computes texture
+    coordinates from the direction); otherwise it renders its 96 x 48 UV mesh."""
+    if shape.get("type") != "sphere":
+        return False
+    scale = (transform or {}).get("scale", [1, 1, 1])
+    return max(scale) - min(scale) <= 1e-6 * max(scale)
 
 
 def import_mesh(path, name, file, field):
@@ -382,11 +403,10 @@ def shape_objects(shape, transform, frame, base_dir, file, field, name):
         verts, faces, uvs = box_geometry(shape["size"])
         objs = [new_mesh_object(name, verts, faces, uvs)]
     elif kind == "sphere":
-        scale = (transform or {}).get("scale", [1, 1, 1])
-        uniform = max(scale) - min(scale) <= 1e-6 * max(scale)
-        seg, rings = (SPHERE_SEGMENTS, SPHERE_RINGS) if uniform else OURS_SPHERE_MESH
-        verts, faces, normals = sphere_geometry(float(shape["radius"]), seg, rings)
-        objs = [new_mesh_object(name, verts, faces, None, normals)]
+        exact = is_exact_sphere(shape, transform)
+        seg, rings = (SPHERE_SEGMENTS, SPHERE_RINGS) if exact else OURS_SPHERE_MESH
+        verts, faces, normals, uvs = sphere_geometry(float(shape["radius"]), seg, rings, triangles=not exact)
+        objs = [new_mesh_object(name, verts, faces, None if exact else uvs, normals)]
     elif kind == "mesh":
         objs = import_mesh(resolve(base_dir, shape["path"]), name, file, field + ".path")
     else:
@@ -409,20 +429,31 @@ def node_material(name):
     return mat, mat.node_tree.nodes, mat.node_tree.links, out
 
 
-def texture_albedo(nodes, links, tex_path, shape_kind, file, field):
-    """A node giving a texture's albedo clamped to [0, 0.98], looked up as ours looks it up."""
+def texture_albedo(nodes, links, tex_path, sphere_frame, file, field):
+    """A node giving a texture's albedo clamped to [0, 0.98], looked up as ours looks it up:
+    by the mesh's UVs, or on an exact sphere (`sphere_frame`: the scene's blender_from_ours) by
+    the direction from its centre."""
     tex = nodes.new("ShaderNodeTexImage")
     tex.image = load_linear_image(tex_path, file, field, os.path.basename(tex_path))
     tex.interpolation = "Linear"  # ours: bilinear between texel centres, clamped at the edges
     tex.extension = "EXTEND"
-    if shape_kind == "sphere":
-        # Ours computes a sphere's UV from its local direction n: u = 1/2 + atan2(n.x, -n.z) / 2 pi,
+    if sphere_frame is not None:
+        # Ours computes an exact sphere's UV from the world direction n of the hit from the
+        # centre (the transform's rotation plays no part): u = 1/2 + atan2(n.x, -n.z) / 2 pi,
         # v = acos(n.y) / pi with v = 0 on the top row; Blender's image v = 0 is the bottom row.
-        coord = nodes.new("ShaderNodeTexCoord")
-        # Object space is ours' local space (the mesh holds ours' local coordinates).
+        geom = nodes.new("ShaderNodeNewGeometry")
+        info = nodes.new("ShaderNodeObjectInfo")
+        rel = nodes.new("ShaderNodeVectorMath")
+        rel.operation = "SUBTRACT"
+        links.new(geom.outputs["Position"], rel.inputs[0])
+        links.new(info.outputs["Location"], rel.inputs[1])
+        to_ours = nodes.new("ShaderNodeMapping")  # Blender's world frame back to ours
+        to_ours.vector_type = "VECTOR"
+        to_ours.inputs["Rotation"].default_value = sphere_frame.transposed().to_euler("XYZ")
+        links.new(rel.outputs["Vector"], to_ours.inputs["Vector"])
         norm = nodes.new("ShaderNodeVectorMath")
         norm.operation = "NORMALIZE"
-        links.new(coord.outputs["Object"], norm.inputs[0])
+        links.new(to_ours.outputs["Vector"], norm.inputs[0])
         sep = nodes.new("ShaderNodeSeparateXYZ")
         links.new(norm.outputs["Vector"], sep.inputs["Vector"])
         neg_z = nodes.new("ShaderNodeMath")
@@ -470,7 +501,7 @@ def texture_albedo(nodes, links, tex_path, shape_kind, file, field):
     return hi.outputs["Vector"]
 
 
-def diffuse_material(name, albedo, base_dir, shape_kind, file, field):
+def diffuse_material(name, albedo, base_dir, sphere_frame, file, field):
     mat, nodes, links, out = node_material(name)
     bsdf = nodes.new("ShaderNodeBsdfDiffuse")
     bsdf.inputs["Roughness"].default_value = 0.0  # Lambertian, two-sided as ours
@@ -479,7 +510,7 @@ def diffuse_material(name, albedo, base_dir, shape_kind, file, field):
         bsdf.inputs["Color"].default_value = (*rgb, 1.0)
     elif isinstance(albedo, dict) and "texture" in albedo:
         path = resolve(base_dir, albedo["texture"])
-        links.new(texture_albedo(nodes, links, path, shape_kind, file, field + ".texture"), bsdf.inputs["Color"])
+        links.new(texture_albedo(nodes, links, path, sphere_frame, file, field + ".texture"), bsdf.inputs["Color"])
     elif albedo == "estimate":
         raise ConversionError(file, field, "'estimate' is resolved by diffphoton at load time; write the "
                               "estimated [r, g, b] into the project for Cycles")
@@ -489,10 +520,11 @@ def diffuse_material(name, albedo, base_dir, shape_kind, file, field):
     return mat
 
 
-def object_material(name, m, base_dir, shape_kind, file, field):
+def object_material(name, m, base_dir, sphere_frame, file, field):
     kind = m.get("type", "diffuse")
     if kind == "diffuse":
-        return diffuse_material(name, m.get("albedo", [0.5, 0.5, 0.5]), base_dir, shape_kind, file, field + ".albedo")
+        return diffuse_material(name, m.get("albedo", [0.5, 0.5, 0.5]), base_dir, sphere_frame, file,
+                                field + ".albedo")
     mat, nodes, links, out = node_material(name)
     if kind == "mirror":
         # Ours: reflectance times a perfect reflection, no Fresnel, two-sided: a sharp Glossy.
@@ -569,7 +601,8 @@ class CyclesScene:
         self.mode = mode
         for i, r in enumerate(p.get("real", [])):
             field = f"real[{i}]"
-            mat = diffuse_material(f"real {i}", r.get("albedo", [0.5, 0.5, 0.5]), base_dir, r["shape"].get("type"),
+            sphere_frame = frame if is_exact_sphere(r["shape"], r.get("transform")) else None
+            mat = diffuse_material(f"real {i}", r.get("albedo", [0.5, 0.5, 0.5]), base_dir, sphere_frame,
                                    project_path, field + ".albedo")
             for o in shape_objects(r["shape"], r.get("transform"), frame, base_dir, project_path, field + ".shape",
                                    f"real {i} {r.get('name', '')}"):
@@ -581,10 +614,11 @@ class CyclesScene:
                 if not ob.get("visible", True):
                     continue
                 field = f"objects[{i}]"
-                mat = object_material(f"object {i}", ob.get("material", {}), base_dir, ob["shape"].get("type"),
-                                      project_path, field + ".material")
-                for o in shape_objects(ob["shape"], ob.get("transform"), frame, base_dir, project_path, field + ".shape",
-                                       f"object {i} {ob.get('name', '')}"):
+                sphere_frame = frame if is_exact_sphere(ob["shape"], ob.get("transform")) else None
+                mat = object_material(f"object {i}", ob.get("material", {}), base_dir, sphere_frame, project_path,
+                                      field + ".material")
+                for o in shape_objects(ob["shape"], ob.get("transform"), frame, base_dir, project_path,
+                                       field + ".shape", f"object {i} {ob.get('name', '')}"):
                     o.data.materials.append(mat)
                     scene.collection.objects.link(o)
         self.setup_render(int(p.get("render", {}).get("max_depth", 8)), threads)
