@@ -3,7 +3,9 @@
 
 Usage: plot_time_vs_error.py rows.json --out DIR
 Writes DIR/<scene>.png (log-log relative RMSE over changed pixels against seconds, each
-method, the truth's noise floor) and DIR/summary.md.
+method, the truth's noise floor) and DIR/summary.md. With rows of the `cycles` method (Blender
+Cycles' shadow catcher), the summary gives each of our methods' speed-up against Cycles: how
+many times sooner it reached the same error.
 """
 import argparse
 import json
@@ -16,9 +18,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 THRESHOLDS = (0.05, 0.02, 0.01)
+CYCLES_THRESHOLDS = (0.05, 0.02, 0.01, 0.005)  # levels of the speed-up against Cycles
 STYLE = {"differential": ("tab:blue", "differential photon mapping"),
          "standard": ("tab:red", "standard (two independent simulations)"),
-         "standard-correlated": ("tab:orange", "standard, correlated sampling")}
+         "standard-correlated": ("tab:orange", "standard, correlated sampling"),
+         "cycles": ("tab:green", "Blender Cycles, shadow catcher")}
 
 
 def error_key(scene):
@@ -57,8 +61,31 @@ def speedup(t_differential, t_other, other_budget):
     return f"{t_other / t_differential:.1f}x"
 
 
+def speedup_against_cycles(t_ours, t_cycles, cycles_final):
+    """How many times sooner one of our methods reached a level than Cycles did."""
+    if t_ours is None or t_ours <= 0:
+        return "n/a" if t_cycles is None else "not reached"
+    if t_cycles is None:
+        return f"> {cycles_final / t_ours:.1f}x"
+    return f"{t_cycles / t_ours:.1f}x"
+
+
 def fmt_time(t):
     return "not reached" if t is None else (f"{t:.2f} s" if t < 100 else f"{t:.0f} s")
+
+
+def cycles_cell(with_cycles, method, reach, levels):
+    """The speed-up-against-Cycles cell of one of our methods' rows ("" when no scene has Cycles
+    rows, so that the table keeps its old columns)."""
+    if not with_cycles:
+        return ""
+    if method == "cycles":
+        return " | "
+    if "cycles" not in levels:
+        return " | n/a"
+    final = reach["cycles"][4]
+    return " | " + " / ".join(speedup_against_cycles(t, tc, final)
+                              for t, tc in zip(levels[method], levels["cycles"]))
 
 
 def main():
@@ -72,16 +99,20 @@ def main():
     doc = json.load(open(args.rows))
     os.makedirs(args.out, exist_ok=True)
     methods = [m for m in STYLE if any(r["method"] == m for r in doc["rows"])]
+    with_cycles = "cycles" in methods
+    cycles_head = (" | speed-up against Cycles at " + " / ".join(f"{100 * t:g}%" for t in CYCLES_THRESHOLDS)
+                   if with_cycles else "")
     lines = ["| scene | changed px | truth noise | method | " +
              " | ".join(f"time to {int(t * 100)}%" for t in THRESHOLDS) +
-             " | time to 2x truth noise | final error (raw) | final time | speed-up at 5% | at 2% | at 2x noise |",
-             "|---|---|---|---|" + "---|" * len(THRESHOLDS) + "---|---|---|---|---|---|"]
+             " | time to 2x truth noise | final error (raw) | final time | speed-up at 5% | at 2% | at 2x noise" +
+             cycles_head + " |",
+             "|---|---|---|---|" + "---|" * len(THRESHOLDS) + "---|---|---|---|---|---|" + ("---|" if with_cycles else "")]
     pass_times = {}
     for scene in doc["scenes"]:
         name, key = scene["scene"], error_key(scene)
         floor = scene["truth_rel_rmse_changed" if key == "rel_rmse_changed" else "truth_rel_rmse"]
         fig, ax = plt.subplots(figsize=(6, 4), dpi=110)
-        reach = {}
+        reach, reach_cycles_levels = {}, {}
         for m in methods:
             rows = [r for r in doc["rows"] if r["scene"] == name and r["method"] == m]
             if not rows:
@@ -94,8 +125,11 @@ def main():
             reach[m] = [time_to_reach(rows, key, x, floor) for x in THRESHOLDS] + [
                 rows[-1][key], rows[-1]["seconds"], time_to_reach(rows, key, 2 * floor),
                 corrected(rows[-1][key], floor)]
+            reach_cycles_levels[m] = [time_to_reach(rows, key, x, floor) for x in CYCLES_THRESHOLDS]
+            if m == "cycles":  # a Cycles "pass" is one render: time per sample of the last one
+                pass_times[(name, m)] = rows[-1]["seconds"] / rows[-1]["passes"]
         for run in doc["runs"]:
-            if run["scene"] == name:
+            if run["scene"] == name and run["method"] != "cycles":
                 pass_times[(name, run["method"])] = run["median_pass_seconds"]
         ax.axhline(floor, color="grey", ls="--", lw=1, label="truth's noise")
         ax.set_xlabel("render time (s)")
@@ -115,11 +149,14 @@ def main():
                          " | ".join(fmt_time(t) for t in r[:3]) + f" | {fmt_time(r[5])}" +
                          f" | {100 * r[6]:.2f}% ({100 * r[3]:.2f}%) | {r[4]:.1f} s | " +
                          " | ".join(speedup(diff[i], r[i], r[4]) if m != "differential" else ""
-                                    for i in (0, 1, 5)) + " |")
+                                    for i in (0, 1, 5)) + cycles_cell(with_cycles, m, reach, reach_cycles_levels) + " |")
     out = ["Relative RMSE over the pixels the virtual objects change (whole image for the no-op "
            "scene) against render time, with the truth's own noise taken out in quadrature "
            "(sqrt(e^2 - noise^2); the raw figure in brackets and dashed in the plots); times "
-           "interpolated log-log between measurements. 'time to 2x truth noise' uses the raw error.", ""]
+           "interpolated log-log between measurements. 'time to 2x truth noise' uses the raw error."
+           + (" 'speed-up against Cycles': Cycles' time to each level over the method's ('> Nx': Cycles "
+              "never reached it within its budget; see docs/cycles.md for its error floor)."
+              if with_cycles else ""), ""]
     out += lines
     if args.note:
         out += ["", "Machine: " + args.note]
@@ -133,7 +170,9 @@ def main():
                 f"without it (`big_proxy` / `shadow_hard`, {len(ratios)} alternating pairs of "
                 f"short runs): median ratio {ratios[len(ratios) // 2]:.2f} (pairs: "
                 + ", ".join(f"{r:.2f}" for r in ratios) + "; target 1.3)."]
-    out += ["", "Median time per pass (s):", "", "| scene | " + " | ".join(methods) + " |",
+    out += ["", "Median time per pass (s)" + ("; for cycles, seconds per sample per pixel of its last render"
+                                             if with_cycles else "") + ":",
+            "", "| scene | " + " | ".join(methods) + " |",
             "|---|" + "---|" * len(methods)]
     for scene in doc["scenes"]:
         n = scene["scene"]

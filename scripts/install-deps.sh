@@ -11,8 +11,8 @@ packages=(
   qt6-base-dev  # the studio (Widgets, Test; pulls libqt6gui6 with the offscreen and xcb platforms)
   xvfb xauth    # xvfb-run for the studio's screenshot test and documentation screenshots
 )
-# `--bench`: also what the benchmark plots need.
-[ "${1:-}" = "--bench" ] && packages+=(python3-matplotlib)
+# `--bench`: also what the benchmark plots need, and Blender for the Cycles method.
+[ "${1:-}" = "--bench" ] && packages+=(python3-matplotlib blender)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

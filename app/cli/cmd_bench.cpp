@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/error.h"
+#include "bench_cycles.h"
 #include "commands.h"
 #include "common.h"
 #include "image/image_io.h"
@@ -29,7 +30,7 @@ constexpr float kCeilingFactor = 8.0f;
 struct BenchOptions {
     std::vector<std::string> scenes;
     std::vector<std::string> methods{"differential", "standard", "standard-correlated"};
-    std::string output, images;
+    std::string output, images, blender;
     double max_seconds_differential = 30, max_seconds_standard = 120;
     int threads = 0;
 };
@@ -100,17 +101,18 @@ std::unique_ptr<PassRenderer> make_renderer(const std::string& method, BenchScen
     return std::make_unique<ProgressiveRenderer>(s, rs.photons_per_pass, rs.seed);
 }
 
-/// Runs one method on one scene until its time budget is spent, measuring the error at pass
-/// counts spaced by sqrt(2). Only render_pass() is timed; measuring the error is not.
 /// Our photon-mapping methods: the split estimator (the default) and the all-photon one.
 bool is_differential(const std::string& method) {
     return method == "differential" || method == "differential-photons";
 }
 
+/// Runs one method on one scene until its time budget is spent, measuring the error at pass
+/// counts spaced by sqrt(2). Only render_pass() is timed; measuring the error is not.
 nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::string& method,
                           nlohmann::json& rows) {
     const double budget = is_differential(method) ? o.max_seconds_differential : o.max_seconds_standard;
-    std::unique_ptr<PassRenderer> r = make_renderer(method, b);
+    std::unique_ptr<PassRenderer> r = method == "cycles" ? make_cycles_renderer(b.scene, {o.blender, budget, o.threads})
+                                                         : make_renderer(method, b);
     std::vector<double> pass_seconds;
     double next_snapshot = 1;
     for (;;) {
@@ -161,13 +163,14 @@ nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::strin
             {"median_pass_seconds", sorted.empty() ? 0.0 : sorted[sorted.size() / 2]}};
 }
 
-int run_bench(const BenchOptions& o) {
+int run_bench(BenchOptions o) {
     for (const std::string& m : o.methods)
-        if (!is_differential(m) && m != "standard" && m != "standard-correlated")
+        if (!is_differential(m) && m != "standard" && m != "standard-correlated" && m != "cycles")
             throw InputError("", "--methods",
                              "unknown method '" + m +
-                                 "' (differential, differential-photons, standard or standard-correlated)");
+                                 "' (differential, differential-photons, standard, standard-correlated or cycles)");
     check_output_folder(o.output, "--output");
+    o.blender = prepare_cycles_method(o.methods, o.blender);
     if (!o.images.empty()) fs::create_directories(o.images);
     return with_threads(o.threads, [&]() -> int {
         install_interrupt_handler();
@@ -201,14 +204,16 @@ Command add_bench_command(CLI::App& app) {
     sub->add_option("-o,--output", o->output, "Rows as JSON")->required();
     sub->add_option("--methods", o->methods,
                     "Comma-separated: differential (split estimator), differential-photons (all-photon "
-                    "estimator), standard, standard-correlated")
+                    "estimator), standard, standard-correlated, cycles (Blender)")
         ->delimiter(',');
     sub->add_option("--max-seconds-differential", o->max_seconds_differential,
                     "Render-time budget of differential photon mapping per scene")
         ->check(CLI::PositiveNumber & kFinite);
     sub->add_option("--max-seconds-standard", o->max_seconds_standard,
-                    "Render-time budget of standard differential rendering per scene")
+                    "Render-time budget of standard differential rendering (and of Cycles) per scene")
         ->check(CLI::PositiveNumber & kFinite);
+    sub->add_option("--blender", o->blender,
+                    "Blender for the cycles method (default: $DP_BLENDER, else blender on PATH)");
     sub->add_option("--images", o->images, "Folder for each run's last image (PNG)");
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
     return {sub, [o] { return run_bench(*o); }};
