@@ -2,7 +2,10 @@
 """Generates the benchmark scenes: for each, a project (scene.json) that both methods render,
 a synthetic photograph path-traced from a possibly more detailed description of the real world
 (detail.json), and two independent halves of a converged ground truth (truth-a.exr,
-truth-b.exr): standard differential rendering of detail.json at many samples per pixel.
+truth-b.exr): standard differential rendering of detail.json at many samples per pixel. Each
+half first samples every pixel, then spends the rest of its samples on the pixels the objects
+change (`render --focus-after`), so the truth's own noise over those pixels stays well below
+the errors it judges.
 
 Where detail.json equals scene.json the real proxies are exact and both methods converge to the
 truth; the mirror scene's photograph has a tiled floor its proxy models as one colour, as a
@@ -21,6 +24,7 @@ import sys
 import time
 
 WIDTH, HEIGHT = 256, 144
+PHOTO_SPP = 8192  # a quiet photograph: Cycles' composite multiplies it, ours adds to it
 BLENDER_PROBES = "/usr/share/blender/datafiles/studiolights/world"
 
 
@@ -123,20 +127,21 @@ def write_terrain_ply(path, n=708, width=40.0, height=8.0):
 
 
 def scenes(out):
-    """name -> (scene project, detail project or None, truth spp, files to make first)."""
+    """name -> (scene project, detail project or None, (samples over every pixel, samples per
+    pixel in all on the changed ones), size)."""
     s = {}
     hard = base_project(sun_probe_spec("sun-hard.exr"))
     hard["objects"] = [sphere("ball", [0, 0.5, 0], 0.5, diffuse([0.7, 0.6, 0.5]))]
-    s["shadow_hard"] = (hard, None, 1024)
+    s["shadow_hard"] = (hard, None, (1024, 65536))
 
     soft = copy.deepcopy(hard)
     soft["probe"] = sun_probe_spec("sun-soft.exr")
-    s["shadow_soft"] = (soft, None, 1024)
+    s["shadow_soft"] = (soft, None, (1024, 65536))
 
     caustic = base_project(sun_probe_spec("sun-caustic.exr"))
     caustic["objects"] = [sphere("glass", [0, 0.45, 0], 0.45,
                                  {"type": "glass", "ior": 1.5, "tint": [1, 1, 1]})]
-    s["caustic"] = (caustic, None, 4096)
+    s["caustic"] = (caustic, None, (4096, 262144))
 
     mirrors = base_project(blender_probe("city", 35))
     mirrors["objects"] = [
@@ -148,7 +153,7 @@ def scenes(out):
     mirrors["real"][0]["albedo"] = [sum(c) / 2 for c in zip(*tiles)]
     detail = copy.deepcopy(mirrors)
     detail["real"][0]["albedo"] = {"texture": "tiles.png"}
-    s["mirrors"] = (mirrors, detail, 1024)
+    s["mirrors"] = (mirrors, detail, (1024, 131072))
 
     bleed = base_project(blender_probe("courtyard", 0))
     bleed["real"].append({"name": "wall", "shape": {"type": "box", "size": [3, 1.6, 0.1]},
@@ -156,7 +161,7 @@ def scenes(out):
     bleed["objects"] = [{"name": "knot", "shape": {"type": "mesh", "path": "knot.obj"},
                          "transform": {"translation": [0, 0.42, -0.2], "scale": [1.3, 1.3, 1.3]},
                          "material": diffuse([0.85, 0.12, 0.08])}]
-    s["bleeding"] = (bleed, None, 1024)
+    s["bleeding"] = (bleed, None, (1024, 32768))
 
     five = base_project(blender_probe("city", 35))
     five["camera"].update({"eye": [0, 3.2, 7.5], "target": [0, 0, 0], "vfov_deg": 55})
@@ -164,16 +169,47 @@ def scenes(out):
     five["objects"] = [sphere(f"ball {i}", [x, 0.15, z], 0.15, diffuse(c)) for i, (x, z, c) in enumerate([
         (-3.2, 0.5, [0.8, 0.3, 0.2]), (-1.5, -2.0, [0.3, 0.7, 0.3]), (0.2, 1.8, [0.2, 0.3, 0.8]),
         (1.9, -1.2, [0.8, 0.8, 0.3]), (3.4, 1.0, [0.7, 0.7, 0.7])])]
-    s["five_objects"] = (five, None, 1024)
+    s["five_objects"] = (five, None, (1024, 65536))
 
     big = copy.deepcopy(hard)
     big["real"].append({"name": "hills", "shape": {"type": "mesh", "path": "hills.ply"},
                         "transform": {"translation": [0, 0, -9]}, "albedo": [0.35, 0.45, 0.3]})
-    s["big_proxy"] = (big, None, 1024)
+    s["big_proxy"] = (big, None, (1024, 65536))
 
     noop = copy.deepcopy(hard)
     noop["objects"] = []
-    s["noop"] = (noop, None, 256)
+    s["noop"] = (noop, None, (256, 256))
+
+    # A diffuse knot standing 0.12 m in front of a white wall: the wall in its shadow and seen
+    # through its holes, and the floor under it, take light the knot hides from other real
+    # surfaces as much as from the probe.
+    knot = base_project(blender_probe("city", 35))
+    knot["camera"].update({"eye": [0.3, 1.1, 3.2], "target": [0, 0.55, -0.5]})
+    knot["real"].append({"name": "wall", "shape": {"type": "box", "size": [4, 2.2, 0.1]},
+                         "transform": {"translation": [0, 1.1, -1.05]}, "albedo": [0.8, 0.8, 0.78]})
+    knot["objects"] = [{"name": "knot", "shape": {"type": "mesh", "path": "knot.obj"},
+                        "transform": {"translation": [0, 0.68, -0.62], "rotation_deg": [90, 0, 0],
+                                      "scale": [1.1, 1.1, 1.1]},
+                        "material": diffuse([0.6, 0.6, 0.6])}]
+    s["knot_wall"] = (knot, None, (1024, 32768))
+
+    # A glass ball on a grey floor before a wall, under a probe with a sun.
+    glass_wall = base_project(blender_probe("city", 35))
+    glass_wall["real"][0]["albedo"] = [0.4, 0.4, 0.4]
+    glass_wall["real"].append({"name": "wall", "shape": {"type": "box", "size": [4, 2, 0.1]},
+                               "transform": {"translation": [0, 1.0, -0.85]}, "albedo": [0.7, 0.7, 0.7]})
+    glass_wall["objects"] = [sphere("glass", [0, 0.4, -0.3], 0.4, {"type": "glass", "ior": 1.5, "tint": [1, 1, 1]})]
+    s["glass_wall"] = (glass_wall, None, (4096, 262144))
+
+    # Production framing: a 1920x1080 photograph in which the object covers about 5% of the
+    # frame, so that skipping the pixels it cannot change counts.
+    prod = base_project(blender_probe("city", 35))
+    prod["camera"].update({"eye": [0, 1.5, 4.5], "target": [0, 0.5, 0], "vfov_deg": 40})
+    prod["real"][0]["shape"]["size"] = [30, 30]
+    prod["real"][0]["albedo"] = [0.45, 0.43, 0.4]
+    prod["objects"] = [sphere("clay", [0, 0.5, 0], 0.5, diffuse([0.7, 0.35, 0.2]))]
+    prod["render"]["photons_per_pass"] = 300000
+    s["production"] = (prod, None, (64, 8192), (1920, 1080))
     return s
 
 
@@ -193,7 +229,7 @@ def make_inputs(name, folder, exe):
     if name == "mirrors":
         run([exe, "make-test-image", os.path.join(folder, "tiles.png"), "--size", "480", "480",
              "--checker", "24", "--value", "0.25", "0.25", "0.25", "--value2", "0.6", "0.55", "0.5"])
-    if name == "bleeding":
+    if name in ("bleeding", "knot_wall"):
         print("knot.obj:", write_torus_knot(os.path.join(folder, "knot.obj")), "triangles", flush=True)
     if name == "big_proxy":
         print("hills.ply:", write_terrain_ply(os.path.join(folder, "hills.ply")), "triangles", flush=True)
@@ -206,9 +242,12 @@ def main():
     ap.add_argument("--only", action="append", help="make only these scenes")
     ap.add_argument("--force", action="store_true", help="remake scenes that are already complete")
     ap.add_argument("--spp-scale", type=float, default=1.0, help="scales every truth's samples")
+    ap.add_argument("--photo-spp", type=int, default=PHOTO_SPP, help="samples per pixel of each photograph")
     args = ap.parse_args()
     exe = os.path.abspath(args.diffphoton)
-    for name, (scene, detail, spp) in scenes(args.out).items():
+    for name, spec in scenes(args.out).items():
+        scene, detail, (base_spp, total_spp) = spec[:3]
+        width, height = spec[3] if len(spec) > 3 else (WIDTH, HEIGHT)
         if args.only and name not in args.only:
             continue
         t0 = time.time()
@@ -224,14 +263,16 @@ def main():
                 json.dump(project, f, indent=1)
         detail_path = os.path.join(folder, "detail.json")
         photo = os.path.join(folder, "photo.exr")
-        run([exe, "make-test-image", photo, "--size", str(WIDTH), str(HEIGHT)])  # sets the size
-        run([exe, "reference", detail_path, "--real-only", "--spp", "256", "--seed", "7", "-o", photo])
-        half = max(1, int(spp * args.spp_scale) // 2)
+        run([exe, "make-test-image", photo, "--size", str(width), str(height)])  # sets the size
+        run([exe, "reference", detail_path, "--real-only", "--spp", str(args.photo_spp), "--seed", "7", "-o", photo])
+        base = max(1, int(base_spp * args.spp_scale) // 2)
+        half = max(base, int(total_spp * args.spp_scale) // 2)
         for part, seed in (("a", 101), ("b", 202)):
             run([exe, "render", detail_path, "--method", "standard-correlated", "--passes", str(half), "--seed",
-                 str(seed), "--layers", "-o", os.path.join(folder, f"truth-{part}.exr")])
+                 str(seed), "--focus-after", str(base), "--layers", "-o", os.path.join(folder, f"truth-{part}.exr")])
         with open(os.path.join(folder, "truth.json"), "w") as f:
-            json.dump({"samples_per_pixel": 2 * half, "seconds": time.time() - t0}, f)
+            json.dump({"samples_per_pixel_everywhere": 2 * base, "samples_per_pixel_changed": 2 * half,
+                       "photo_samples_per_pixel": args.photo_spp, "seconds": time.time() - t0}, f)
         print(f"{name}: {time.time() - t0:.0f} s", flush=True)
 
 
