@@ -30,6 +30,17 @@ inline std::shared_ptr<const RenderScene> sample_scene() {
     return scene;
 }
 
+/// Resamples `src` to width x height with bilinear filtering (pixel centres aligned); a look-at
+/// camera's intrinsics follow the new image size.
+inline Image resize_bilinear(const Image& src, int width, int height) {
+    Image out(width, height);
+    const float sx = float(src.width()) / width, sy = float(src.height()) / height;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            out.at(x, y) = src.bilinear((x + 0.5f) * sx - 0.5f, (y + 0.5f) * sy - 0.5f);
+    return out;
+}
+
 /// A counter reported per second of wall time (the benchmarks use UseRealTime()).
 inline benchmark::Counter rate(double count) {
     return benchmark::Counter(count, benchmark::Counter::kIsRate);

@@ -20,23 +20,13 @@ constexpr int kWidth = 1920, kHeight = 1080;
 constexpr int64_t kPhotonsPerPass = 1'000'000;
 constexpr int kPass = 1;  // the first pass: largest radius, fewest skipped pixels
 
-/// Resamples `src` to width x height with bilinear filtering (pixel centres aligned).
-Image resize_bilinear(const Image& src, int width, int height) {
-    Image out(width, height);
-    const float sx = float(src.width()) / width, sy = float(src.height()) / height;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            out.at(x, y) = src.bilinear((x + 0.5f) * sx - 0.5f, (y + 0.5f) * sy - 0.5f);
-    return out;
-}
-
 /// The sample project with its photograph resampled to 1080p. The camera is look-at, so its
 /// intrinsics follow the new image size.
 std::shared_ptr<const RenderScene> scene_1080p() {
     static std::shared_ptr<const RenderScene> scene = [] {
         Project project = load_project(bench::sample_project_path());
         SceneAssets assets = load_assets(project);
-        assets.photo = resize_bilinear(assets.photo, kWidth, kHeight);
+        assets.photo = bench::resize_bilinear(assets.photo, kWidth, kHeight);
         return std::make_shared<const RenderScene>(project, std::move(assets));
     }();
     return scene;

@@ -29,8 +29,9 @@ std::vector<ClusterCone>& scratch_cones() {
 
 }  // namespace
 
-DirectChange::DirectChange(const RenderScene& scene)
-    : scene_(scene), probe_max_(scene.probe()), real_radiance_max_(luminance_quantile(scene.photo(), 0.999)) {}
+DirectChange::DirectChange(const RenderScene& scene, float real_radiance_max)
+    : scene_(scene), probe_max_(scene.probe()),
+      real_radiance_max_(real_radiance_max > 0 ? real_radiance_max : luminance_quantile(scene.photo(), 0.99)) {}
 
 void DirectChange::cones(const vec3& p, const vec3& n, std::vector<ClusterCone>& out) const {
     const auto& clusters = scene_.clusters();

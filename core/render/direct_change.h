@@ -28,7 +28,9 @@ struct ClusterCone {
 /// photons, which carry the light it lets through as well.
 class DirectChange {
 public:
-    explicit DirectChange(const RenderScene& scene);
+    /// `real_radiance_max`: a high radiance of the real surfaces seen in the photo, the bound's
+    /// stand-in for what a real surface behind an object sends (0: the photo's 99th percentile).
+    explicit DirectChange(const RenderScene& scene, float real_radiance_max = 0);
 
     /// The numbers of one estimate: the sun, sky and cone directions and the cone's cluster.
     struct Samples {
@@ -57,7 +59,7 @@ private:
 
     const RenderScene& scene_;
     ProbeMaxGrid probe_max_;
-    float real_radiance_max_ = 0;  ///< a high photographed luminance (99.9th percentile)
+    float real_radiance_max_ = 0;  ///< a high photographed luminance of real surfaces
 };
 
 }  // namespace dp

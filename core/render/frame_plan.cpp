@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "image/image_metrics.h"
 #include "render/direct_change.h"
 #include "render/scattering.h"
 
@@ -15,6 +14,15 @@ double FramePlan::expected_direct_pixels() const {
     double sum = 0;
     for (float p : direct_probability) sum += p;
     return sum;
+}
+
+double pixels_per_area(const Camera& camera, const vec3& p, const vec3& n) {
+    const Frame f(n);
+    const float delta = 1e-3f * std::max(glm::length(p - camera.position()), 1e-30f);
+    vec2 a, b, c;
+    if (!camera.project(p, a) || !camera.project(p + delta * f.t, b) || !camera.project(p + delta * f.b, c)) return 0;
+    const vec2 u = b - a, v = c - a;
+    return std::abs(double(u.x) * v.y - double(u.y) * v.x) / (double(delta) * delta);
 }
 
 FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
@@ -28,6 +36,7 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
     const size_t tiles = size_t(plan.tiles_x) * plan.tiles_y;
     plan.kind.assign(n, FramePlan::PixelKind::Nothing);
     plan.direct_probability.assign(n, 0.0f);
+    plan.splat_radius.assign(n, 0.0f);
     plan.tile_direct_max.assign(tiles, 0.0f);
     plan.tile_has_object.assign(tiles, 0);
     const Image& photo = s.photo();
@@ -37,7 +46,24 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
     const float floor = plan.value_floor;
     if (!s.has_virtual()) return plan;
 
-    const DirectChange direct(s);
+    // What a real surface behind an object could send, for the bound: the bright end of the
+    // real surfaces in the photo, from every fourth pixel (the sky in the photo's background
+    // belongs to the probe, bounded apart).
+    float real_max = floor;
+    if (direct_by_rays) {
+        std::vector<float> values;
+        for (int y = 0; y < H; y += 4)
+            for (int x = 0; x < W; x += 4) {
+                const Hit hit = s.intersect(s.camera_ray(float(x), float(y)));
+                if (hit && !hit.surface->is_virtual) values.push_back(luminance(photo.at(x, y)));
+            }
+        if (!values.empty()) {
+            const size_t q = std::min(values.size() - 1, size_t(0.99 * double(values.size())));
+            std::nth_element(values.begin(), values.begin() + ptrdiff_t(q), values.end());
+            real_max = std::max(real_max, values[q]);
+        }
+    }
+    const DirectChange direct(s, real_max);
     std::vector<uint8_t> sees_virtual(n, 0);
     tbb::parallel_for(0, H, [&](int y) {
         for (int x = 0; x < W; ++x) {
@@ -50,8 +76,10 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
                 continue;
             }
             plan.kind[i] = FramePlan::PixelKind::Real;
-            if (!direct_by_rays) continue;
             const vec3 n_facing = facing_normal(hit.ng, ray.dir);
+            const double density = pixels_per_area(s.camera(), hit.p, n_facing);
+            if (density > 0) plan.splat_radius[i] = float(std::sqrt(1.0 / (double(kPi) * density)));
+            if (!direct_by_rays) continue;
             const double bound = direct.bound(hit.p, n_facing);
             if (bound <= 0) continue;
             const double change = double(luminance(hit.surface->reflectance_at(hit.uv))) * kInvPi * bound;

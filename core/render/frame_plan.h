@@ -23,6 +23,11 @@ struct FramePlan {
     /// Per real pixel: probability that a pass estimates its direct-light change (Russian
     /// roulette on a bound of that change against the pixel's value; 1 near the objects).
     std::vector<float> direct_probability;
+    /// Per real pixel: the radius of a disk as large as the pixel's footprint on the surface its
+    /// centre sees. While a pass's gather radius is below it, the pass's photons are splatted
+    /// into the pixel (unbiased for the pixel's box filter, and less noisy than a gather over a
+    /// smaller disk) instead of gathered by a camera ray.
+    std::vector<float> splat_radius;
     std::vector<float> tile_direct_max;      ///< per tile: its pixels' largest probability
     std::vector<uint8_t> tile_has_object;    ///< per tile: some pixel is NearVirtual
     std::vector<uint32_t> direct_tiles;      ///< tiles with a probability above 0
@@ -38,6 +43,10 @@ struct FramePlan {
 /// a pixel whose bound is this fraction of its value is estimated every pass, one whose bound
 /// is a tenth of it every tenth pass (with ten times the weight).
 inline constexpr float kDirectRouletteLevel = 0.02f;
+
+/// Image area (pixels^2, lens distortion included) per unit of surface area at p with unit
+/// normal n, as the camera sees it; 0 where p is behind the camera or seen edge-on.
+double pixels_per_area(const Camera& camera, const vec3& p, const vec3& n);
 
 /// Traces one ray through every pixel centre. With `direct_by_rays`, bounds each real pixel's
 /// direct-light change (DirectChange::bound) for the roulette; otherwise the probabilities

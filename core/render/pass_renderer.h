@@ -16,7 +16,8 @@ struct RenderStats {
     uint64_t photons_stored = 0;
     uint64_t rays = 0;             ///< photon rays (Embree queries)
     double photons_per_second = 0;
-    size_t pixels_gathered = 0;    ///< in the last pass
+    size_t pixels_gathered = 0;    ///< pixels the last pass shaded
+    size_t direct_estimates = 0;   ///< real pixels whose direct-light change the last pass estimated
     size_t pixels_total = 0;
     float radius = 0;              ///< gather radius of the last pass
     size_t non_finite_samples = 0; ///< samples discarded because they were NaN/Inf

@@ -139,7 +139,10 @@ struct Tracer {
         const Hit hv = scene.intersect_virtual(Ray{line.origin, down});
         ++out.stats.rays;
         if (!hv) return;
-        const Hit x = scene.intersect_real(Ray{scene.offset_origin(hv, line.w), line.w});
+        // From just inside the object (the search ignores it): a real surface that touches the
+        // object, such as the floor under a box standing on it, is still the emitter.
+        const float eps = scene.ray_epsilon();
+        const Hit x = scene.intersect_real(Ray{hv.p - line.w * eps, line.w});
         ++out.stats.rays;
         if (!x) return;  // the probe: the probe photons carry that light
         // Blocked: the radiance the emitter had (the photograph). Reflected: what it has now, less
@@ -147,7 +150,7 @@ struct Tracer {
         const vec3 old_radiance = photographed_radiance(scene, x, line.w, rng);
         const vec3 new_radiance = old_radiance - shadowed_radiance(x, line.w, rng, out);
         if (!is_finite(old_radiance) || !is_finite(new_radiance)) return;
-        const Hit hr = scene.intersect_real(Ray{scene.offset_origin(hv, down), down});
+        const Hit hr = scene.intersect_real(Ray{hv.p + down * eps, down});
         ++out.stats.rays;
         ++out.stats.surround_hit_virtual;
         if (hr && old_radiance != vec3(0))

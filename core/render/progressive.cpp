@@ -105,8 +105,9 @@ void ProgressiveRenderer::mark_photon_pixels(const PassMaps& maps, PassWork& wor
             const vec3& c = centres[k];
             const float z = (cam.rotation() * c + cam.translation()).z;
             if (z <= 2 * reach) {
-                // Right at the lens: its footprint is unbounded; mark the frame.
-                if (z > -reach) everything.store(true, std::memory_order_relaxed);
+                // At the lens its footprint is unbounded: mark the frame. Elsewhere near the
+                // camera's plane it projects far outside the frame.
+                if (glm::length(c - cam.position()) < 4 * reach) everything.store(true, std::memory_order_relaxed);
                 continue;
             }
             vec2 px;
@@ -115,19 +116,70 @@ void ProgressiveRenderer::mark_photon_pixels(const PassMaps& maps, PassWork& wor
             const float rho = 1.25f * reach * focal / (z - reach) + 1.5f;
             const int x0 = std::max(0, int(std::floor(px.x - rho))), x1 = std::min(W - 1, int(std::ceil(px.x + rho)));
             const int y0 = std::max(0, int(std::floor(px.y - rho))), y1 = std::min(H - 1, int(std::ceil(px.y + rho)));
-            for (int y = y0; y <= y1; ++y) {
-                for (int x = x0; x <= x1; ++x)
-                    std::atomic_ref<uint8_t>(work.photon_pixel[size_t(y) * W + x]).store(1, std::memory_order_relaxed);
-                for (int tx = x0 / kTile; tx <= x1 / kTile && x0 <= x1; ++tx)
-                    std::atomic_ref<uint8_t>(photon_tile[size_t(y / kTile) * plan_.tiles_x + tx])
-                        .store(1, std::memory_order_relaxed);
-            }
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x) {
+                    const size_t i = size_t(y) * W + x;
+                    if (plan_.splat_radius[i] > maps.radius) continue;  // its photons are splatted
+                    std::atomic_ref<uint8_t>(work.photon_pixel[i]).store(1, std::memory_order_relaxed);
+                    std::atomic_ref<uint8_t>(photon_tile[size_t(plan_.tile_of(x, y))]).store(1, std::memory_order_relaxed);
+                }
         }
     });
-    if (everything.load()) {
-        std::fill(work.photon_pixel.begin(), work.photon_pixel.end(), uint8_t(1));
-        std::fill(photon_tile.begin(), photon_tile.end(), uint8_t(1));
+    if (everything.load())
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const size_t i = size_t(y) * W + x;
+                if (plan_.splat_radius[i] > maps.radius) continue;
+                work.photon_pixel[i] = 1;
+                photon_tile[size_t(plan_.tile_of(x, y))] = 1;
+            }
+}
+
+std::vector<ProgressiveRenderer::Splat> ProgressiveRenderer::splat_photons(const PassMaps& maps) const {
+    const std::vector<Photon>& photons = maps.real.photons();
+    if (photons.empty()) return {};
+    const RenderScene& s = *scene_;
+    const Camera& cam = s.camera();
+    const int W = plan_.width, H = plan_.height;
+    constexpr size_t kChunk = 4096;
+    const size_t chunks = (photons.size() + kChunk - 1) / kChunk;
+    std::vector<std::vector<Splat>> out(chunks);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+        for (size_t k = c * kChunk; k < std::min(photons.size(), (c + 1) * kChunk); ++k) {
+            const Photon& ph = photons[k];
+            vec2 px;
+            if (!cam.project(ph.position, px)) continue;
+            const int x = int(std::lround(px.x)), y = int(std::lround(px.y));
+            if (x < 0 || y < 0 || x >= W || y >= H) continue;
+            const size_t i = size_t(y) * W + x;
+            if (plan_.kind[i] != FramePlan::PixelKind::Real || plan_.splat_radius[i] <= maps.radius) continue;
+            const vec3 to = ph.position - cam.position();
+            const float dist = glm::length(to);
+            const vec3 dir = to / dist;
+            if (glm::dot(ph.normal, dir) >= 0) continue;  // the photon is on the far side of its surface
+            // Seen from the camera: the first surface along the ray is the photon's.
+            const Hit hit = s.intersect(Ray{cam.position(), dir}, dist * (1 + 1e-3f) + s.ray_epsilon());
+            if (!hit || hit.surface->is_virtual || hit.t < dist * (1 - 1e-3f) - s.ray_epsilon()) continue;
+            const double density = pixels_per_area(cam, ph.position, ph.normal);
+            if (!(density > 0) || !std::isfinite(density)) continue;
+            const dvec3 value = dvec3(ph.flux) * dvec3(hit.surface->reflectance_at(hit.uv)) * (double(kInvPi) * density);
+            const uint32_t key = uint32_t(plan_.tile_of(x, y)) * uint32_t(kTilePixels) +
+                                 uint32_t((y % kTile) * kTile + x % kTile);
+            out[c].push_back({key, value});
+        }
+    });
+    std::vector<Splat> all;
+    for (const auto& v : out) all.insert(all.end(), v.begin(), v.end());
+    // Stable: within a pixel the photons keep their order, so the sums do not depend on threads.
+    std::stable_sort(all.begin(), all.end(), [](const Splat& a, const Splat& b) { return a.key < b.key; });
+    std::vector<Splat> summed;
+    for (const Splat& e : all) {
+        if (!summed.empty() && summed.back().key == e.key)
+            summed.back().value += e.value;
+        else
+            summed.push_back(e);
     }
+    return summed;
 }
 
 ProgressiveRenderer::PassWork ProgressiveRenderer::plan_pass(int pass, const PassMaps& maps,
@@ -135,6 +187,8 @@ ProgressiveRenderer::PassWork ProgressiveRenderer::plan_pass(int pass, const Pas
     PassWork work;
     std::vector<uint8_t> photon_tile;
     mark_photon_pixels(maps, work, photon_tile);
+    work.splats = splat_photons(maps);
+    for (const Splat& e : work.splats) photon_tile[e.key / kTilePixels] = 1;
     for (uint32_t t = 0; t < plan_.tiles(); ++t) {
         if (respect_stopped && !sums_.live(t)) continue;
         // Roulette on the tile's largest probability; its pixels then keep their share of it.
@@ -146,21 +200,34 @@ ProgressiveRenderer::PassWork ProgressiveRenderer::plan_pass(int pass, const Pas
             work.direct_tile.push_back(direct);
         }
     }
+    // Each work tile's run of splats (both lists are in tile order).
+    work.splat_begin.resize(work.tiles.size() + 1);
+    size_t e = 0;
+    for (size_t k = 0; k < work.tiles.size(); ++k) {
+        while (e < work.splats.size() && work.splats[e].key / kTilePixels < work.tiles[k]) ++e;
+        work.splat_begin[k] = uint32_t(e);
+    }
+    work.splat_begin[work.tiles.size()] = uint32_t(work.splats.size());
     return work;
 }
 
 bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const PassWork& work,
                                       std::vector<SampleResult>& out, const std::atomic<bool>* cancel,
-                                      size_t& shaded) const {
+                                      size_t& shaded, size_t& direct) const {
     out.assign(work.tiles.size() * kTilePixels, SampleResult{});
-    std::atomic<size_t> count{0};
+    std::atomic<size_t> count{0}, direct_count{0};
     const Shader shader(*scene_, maps, diffuse_samples_, direct_ ? &*direct_ : nullptr);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, work.tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return;
-        size_t local = 0;
+        size_t local = 0, local_direct = 0;
         for (size_t k = r.begin(); k < r.end(); ++k) {
             const uint32_t t = work.tiles[k];
             const float tile_p = plan_.tile_direct_max[t];
+            SampleResult* tile_out = &out[k * kTilePixels];
+            for (uint32_t e = work.splat_begin[k]; e < work.splat_begin[k + 1]; ++e) {
+                SampleResult& r0 = tile_out[work.splats[e].key % kTilePixels];
+                r0.dL = r0.delta = vec3(work.splats[e].value);
+            }
             for_tile_pixels(plan_, t, [&](size_t i, int x, int y, size_t slot) {
                 const FramePlan::PixelKind kind = plan_.kind[i];
                 if (kind == FramePlan::PixelKind::Nothing) return;
@@ -170,18 +237,25 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
                     const float p = plan_.direct_probability[i];
                     const bool picked = work.direct_tile[k] && p > 0 && hash_uniform(seed_, uint64_t(pass), i) * tile_p < p;
                     w.direct_weight = picked ? 1.0 / double(p) : 0.0;
-                    if (!w.gather && !picked) return;
+                    if (!w.gather && !picked) return;  // the splat, if any, is the whole sample
+                    local_direct += picked;
                 }
                 PixelSampler sampler(seed_, i, uint32_t(pass - 1));
                 const vec2 j = sampler.next2d() - vec2(0.5f);
                 Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
-                out[k * kTilePixels + slot] = shader.shade_camera(x, y, float(x) + j.x, float(y) + j.y, sampler, rng, w);
+                const SampleResult splat = tile_out[slot];
+                SampleResult r1 = shader.shade_camera(x, y, float(x) + j.x, float(y) + j.y, sampler, rng, w);
+                r1.dL += splat.dL;
+                r1.delta += splat.delta;
+                tile_out[slot] = r1;
                 ++local;
             });
         }
         count += local;
+        direct_count += local_direct;
     });
     shaded = count.load();
+    direct = direct_count.load();
     return !(cancel && cancel->load());
 }
 
@@ -196,9 +270,9 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     const PassWork work = plan_pass(pass, maps, true);
     st.mark_s = seconds_since(t);
     std::vector<SampleResult> samples;
-    size_t shaded = 0;
+    size_t shaded = 0, direct = 0;
     t = std::chrono::steady_clock::now();
-    if (!shade_tiles(pass, maps, work, samples, cancel, shaded)) return false;
+    if (!shade_tiles(pass, maps, work, samples, cancel, shaded, direct)) return false;
     st.shade_s = seconds_since(t);
     t = std::chrono::steady_clock::now();
     std::atomic<size_t> bad{0};
@@ -215,6 +289,7 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     st.rays += photon_stats.rays;
     st.photons_per_second = st.seconds > 0 ? double(st.photons_emitted) / st.seconds : 0;
     st.pixels_gathered = shaded;
+    st.direct_estimates = direct;
     st.tiles_shaded = work.tiles.size();
     st.radius = maps.radius;
     st.non_finite_samples += bad.load();
@@ -266,8 +341,8 @@ void ProgressiveRenderer::render_single_pass(int pass, Image& delta, Image& dL, 
     build_pass_maps(pass, maps, nullptr);
     const PassWork work = plan_pass(pass, maps, false);
     std::vector<SampleResult> samples;
-    size_t shaded = 0;
-    shade_tiles(pass, maps, work, samples, nullptr, shaded);
+    size_t shaded = 0, direct = 0;
+    shade_tiles(pass, maps, work, samples, nullptr, shaded, direct);
     delta = Image(plan_.width, plan_.height);
     dL = Image(plan_.width, plan_.height);
     alpha = Image(plan_.width, plan_.height);

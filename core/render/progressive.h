@@ -63,24 +63,36 @@ public:
     const TileAccumulator& accumulator() const { return sums_; }
 
 private:
+    /// A photon splatted into a pixel: key = tile * kTile^2 + the pixel's place in the tile.
+    struct Splat {
+        uint32_t key = 0;
+        dvec3 value{0};
+    };
     /// One pass's work: the tiles it shades and, per pixel, whether its photons reach it.
     struct PassWork {
         std::vector<uint32_t> tiles;
         std::vector<uint8_t> direct_tile;   ///< per entry of `tiles`: roulette picked its direct light
         std::vector<uint8_t> photon_pixel;  ///< per pixel: some photon cell lies within reach
+        std::vector<Splat> splats;          ///< summed per pixel, in key order
+        std::vector<uint32_t> splat_begin;  ///< per entry of `tiles`, its first splat (and one past)
     };
     /// Traces pass `pass`'s photons and builds its maps with the pass's radius (timed into
     /// `timing` when given).
     PhotonStats build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel,
                                 RenderStats* timing = nullptr) const;
-    /// Marks the pixels (and tiles) that the pass's real photons can reach.
+    /// Marks the pixels (and tiles) whose camera rays gather the pass's real photons: pixels
+    /// within reach of a photon cell, except those the photons are splatted into.
     void mark_photon_pixels(const PassMaps& maps, PassWork& work, std::vector<uint8_t>& photon_tile) const;
+    /// Splats the pass's real photons into the pixels whose footprint exceeds the gather disk
+    /// (FramePlan::splat_radius): rho/pi times the flux times the pixels per unit area, where
+    /// the camera sees the photon's point. Sums in photon order, whatever the threads.
+    std::vector<Splat> splat_photons(const PassMaps& maps) const;
     /// Picks the tiles pass `pass` shades: those its change can reach, skipping tiles adaptive
     /// sampling stopped if `respect_stopped`.
     PassWork plan_pass(int pass, const PassMaps& maps, bool respect_stopped) const;
     /// Shades the pass's tiles into `out` (kTile^2 samples per tile, in work.tiles order).
     bool shade_tiles(int pass, const PassMaps& maps, const PassWork& work, std::vector<SampleResult>& out,
-                     const std::atomic<bool>* cancel, size_t& shaded) const;
+                     const std::atomic<bool>* cancel, size_t& shaded, size_t& direct) const;
     /// Stops converged tiles and refreshes the error estimate.
     void update_convergence();
 
