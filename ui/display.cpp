@@ -62,29 +62,4 @@ QImage to_false_colour(const Image& delta, float exposure) {
     return out;
 }
 
-double estimate_relative_error(const Image& prev, const Image& cur, int passes,
-                               const Image& photo) {
-    if (passes < 2 || prev.empty() || prev.width() != cur.width() || prev.height() != cur.height())
-        return -1;
-    double sum_sq = 0;
-    size_t n = 0;
-    // Every 4th pixel on every 4th row: cheap enough for the UI thread at any size.
-    for (int y = 0; y < cur.height(); y += 4)
-        for (int x = 0; x < cur.width(); x += 4) {
-            const double d = luminance(cur.at(x, y)) - luminance(prev.at(x, y));
-            sum_sq += d * d;
-            ++n;
-        }
-    double mean_photo = 0;
-    size_t m = 0;
-    for (int y = 0; y < photo.height(); y += 8)
-        for (int x = 0; x < photo.width(); x += 8) {
-            mean_photo += luminance(photo.at(x, y));
-            ++m;
-        }
-    mean_photo = m ? mean_photo / double(m) : 0;
-    if (n == 0 || mean_photo <= 0) return -1;
-    return std::sqrt(double(passes)) * std::sqrt(sum_sq / double(n)) / mean_photo;
-}
-
 }  // namespace dp::ui

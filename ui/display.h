@@ -16,10 +16,4 @@ QImage to_display(const Image& image, float exposure);
 /// where they remove it (shadows), black where nothing changed; |dL| * 2^exposure through sRGB.
 QImage to_false_colour(const Image& delta, float exposure);
 
-/// Rough standard error of the running mean between two successive passes of the same run
-/// (n and n - 1 passes): sqrt(n) * RMS(M_n - M_{n-1}), relative to the photo's mean
-/// luminance. Returns -1 when it cannot be estimated (first pass, size mismatch).
-double estimate_relative_error(const Image& previous, const Image& current, int passes,
-                               const Image& photo);
-
 }  // namespace dp::ui

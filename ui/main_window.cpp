@@ -272,7 +272,6 @@ void MainWindow::connectRenderer() {
         renderer_->request(doc_->project(), interactive_);
     });
     connect(doc_, &Document::reloaded, this, [this] {
-        previous_.reset();
         viewport_->setFrame(nullptr);
         viewport_->setRenderSize(options_.renderSize);
         viewport_->fitView();
@@ -290,13 +289,7 @@ void MainWindow::connectRenderer() {
 void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     viewport_->setFrame(f);
     const RenderStats& s = f->update.stats;
-    if (previous_ && previous_->generation == f->generation && previous_->preview == f->preview &&
-        previous_->update.stats.passes + 1 == s.passes)
-        lastError_ = estimate_relative_error(previous_->update.delta, f->update.delta, s.passes,
-                                             f->update.image);
-    else if (s.passes <= 1)
-        lastError_ = -1;
-    previous_ = f;
+    lastError_ = s.estimated_rel_error;
     QString text = f->preview ? tr("Preview pass %1").arg(s.passes)
                    : f->update.target_passes > 0
                        ? tr("Pass %1 / %2").arg(s.passes).arg(f->update.target_passes)

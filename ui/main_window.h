@@ -120,7 +120,6 @@ private:
     QMenu* recentMenu_ = nullptr;
     QActionGroup *viewGroup_ = nullptr, *gizmoGroup_ = nullptr;
     QStringList recent_;
-    std::shared_ptr<const RenderFrame> previous_;
     double lastError_ = -1;
     bool interactive_ = false, editedWhileInteractive_ = false;
 };

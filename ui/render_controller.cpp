@@ -22,8 +22,17 @@ class RenderController::Sink : public RenderSink {
     explicit Sink(RenderController* c) : c_(c) {}
 
     void on_update(const RenderUpdate& update) override {
+        if (update.cancelled) return;  // an edit replaced this run: its pictures are stale
+        {
+            // While the UI has not taken the last frame, a newer one would only replace it:
+            // its pictures are built once the UI is ready for them (the final one always).
+            std::lock_guard<std::mutex> lock(c_->mutex_);
+            if (c_->posted_ && !update.finished) return;
+        }
         auto frame = std::make_shared<RenderFrame>();
         frame->update = update;
+        frame->update.pull_images();
+        frame->update.source = nullptr;
         bool post = false;
         {
             std::lock_guard<std::mutex> lock(c_->mutex_);

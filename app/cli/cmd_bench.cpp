@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "base/error.h"
@@ -22,10 +24,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Errors are measured on pixel values clamped at this multiple of the photograph's 99.9th
-/// percentile luminance: a display of the photo shows nothing brighter, and a few pixels that
-/// see the sun in a mirror (10^4 times brighter) would otherwise decide every figure.
-constexpr float kCeilingFactor = 8.0f;
 
 struct BenchOptions {
     std::vector<std::string> scenes;
@@ -40,7 +38,8 @@ struct BenchOptions {
 struct BenchScene {
     std::string name, dir;
     std::shared_ptr<RenderScene> scene;
-    std::shared_ptr<RenderScene> photons_scene;  ///< the same under the all-photon estimator, on demand
+    /// The same scene under a variant's render settings (differential-photons, ...), on demand.
+    std::map<std::string, std::shared_ptr<RenderScene>> variants;
     Image truth, alpha;
     std::vector<bool> changed, on_objects, on_real;  ///< changed pixels; split by what they see
     float ceiling = 0;  ///< errors are measured on values clamped here
@@ -70,7 +69,9 @@ BenchScene load_bench_scene(const std::string& dir) {
         b.on_objects[i] = b.changed[i] && b.alpha[i].x > 0;
         b.on_real[i] = b.changed[i] && b.alpha[i].x == 0;
     }
-    b.ceiling = kCeilingFactor * luminance_quantile(photo, 0.999);
+    // Errors are measured on pixel values clamped at the renderer's own ceiling (a few pixels
+    // that see the sun in a mirror, 10^4 times brighter, would otherwise decide every figure).
+    b.ceiling = kErrorCeilingFactor * luminance_quantile(photo, 0.999);
     // The mean of two independent halves has half the error of their difference.
     const ImageError whole = image_error(a, bb, {}, b.ceiling), changed = image_error(a, bb, b.changed, b.ceiling);
     b.info = {{"scene", b.name},
@@ -85,14 +86,24 @@ BenchScene load_bench_scene(const std::string& dir) {
     return b;
 }
 
+/// Variants of our method that turn one of its parts off, to show what each buys.
+std::function<void(Project&)> variant_edit(const std::string& method) {
+    if (method == "differential-photons") return [](Project& p) { p.render.estimator = Estimator::Photons; };
+    if (method == "differential-random") return [](Project& p) { p.render.low_discrepancy = false; };
+    if (method == "differential-uniform") return [](Project& p) { p.render.adaptive_threshold = 0; };
+    return {};
+}
+
+/// Our photon-mapping methods: the default and its variants.
+bool is_differential(const std::string& method) { return method == "differential" || bool(variant_edit(method)); }
+
 std::unique_ptr<PassRenderer> make_renderer(const std::string& method, BenchScene& b) {
     using Sampling = StandardDifferentialRenderer::Sampling;
     std::shared_ptr<const RenderScene> s = b.scene;
-    if (method == "differential-photons") {
-        if (!b.photons_scene)
-            b.photons_scene = load_scene((fs::path(b.dir) / "scene.json").string(),
-                                         [](Project& p) { p.render.estimator = Estimator::Photons; });
-        s = b.photons_scene;
+    if (const auto edit = variant_edit(method)) {
+        auto& slot = b.variants[method];
+        if (!slot) slot = load_scene((fs::path(b.dir) / "scene.json").string(), edit);
+        s = slot;
     }
     if (method == "standard") return std::make_unique<StandardDifferentialRenderer>(std::move(s), Sampling::Independent);
     if (method == "standard-correlated")
@@ -101,10 +112,6 @@ std::unique_ptr<PassRenderer> make_renderer(const std::string& method, BenchScen
     return std::make_unique<ProgressiveRenderer>(s, rs.photons_per_pass, rs.seed);
 }
 
-/// Our photon-mapping methods: the split estimator (the default) and the all-photon one.
-bool is_differential(const std::string& method) {
-    return method == "differential" || method == "differential-photons";
-}
 
 /// Runs one method on one scene until its time budget is spent, measuring the error at pass
 /// counts spaced by sqrt(2). Only render_pass() is timed; measuring the error is not.
@@ -168,7 +175,8 @@ int run_bench(BenchOptions o) {
         if (!is_differential(m) && m != "standard" && m != "standard-correlated" && m != "cycles")
             throw InputError("", "--methods",
                              "unknown method '" + m +
-                                 "' (differential, differential-photons, standard, standard-correlated or cycles)");
+                                 "' (differential, differential-photons, differential-random, "
+                                 "differential-uniform, standard, standard-correlated or cycles)");
     check_output_folder(o.output, "--output");
     o.blender = prepare_cycles_method(o.methods, o.blender);
     if (!o.images.empty()) fs::create_directories(o.images);
@@ -204,7 +212,8 @@ Command add_bench_command(CLI::App& app) {
     sub->add_option("-o,--output", o->output, "Rows as JSON")->required();
     sub->add_option("--methods", o->methods,
                     "Comma-separated: differential (split estimator), differential-photons (all-photon "
-                    "estimator), standard, standard-correlated, cycles (Blender)")
+                    "estimator), differential-random (no low-discrepancy points), differential-uniform "
+                    "(no adaptive sampling), standard, standard-correlated, cycles (Blender)")
         ->delimiter(',');
     sub->add_option("--max-seconds-differential", o->max_seconds_differential,
                     "Render-time budget of differential photon mapping per scene")

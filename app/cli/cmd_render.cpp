@@ -23,7 +23,7 @@ namespace {
 
 struct RenderOptions {
     std::string project, output, pixel, method = "differential";
-    int passes = 0, pass = 1, threads = 0, focus_after = 0;
+    int passes = 0, pass = 1, threads = 0, focus_after = 0, samples_per_pass = 1;
     double time_s = 0;
     int64_t photons = 0;
     uint64_t seed = 0;
@@ -78,6 +78,8 @@ int run_render(const RenderOptions& o) {
         throw InputError("", "--pixel", "the per-pixel debugger is for --method differential");
     if (!standard && o.focus_after > 0)
         throw InputError("", "--focus-after", "only the path-traced methods (standard, standard-correlated) focus");
+    if (!standard && o.samples_per_pass != 1)
+        throw InputError("", "--samples-per-pass", "only the path-traced methods take camera samples per pass");
     if (standard && o.photons_opt->count())
         warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
 
@@ -92,9 +94,9 @@ int run_render(const RenderOptions& o) {
         if (standard) {
             const auto sampling = o.method == "standard" ? StandardDifferentialRenderer::Sampling::Independent
                                                          : StandardDifferentialRenderer::Sampling::Correlated;
-            const int focus = o.focus_after;
-            session.set_renderer_factory([sampling, focus](std::shared_ptr<const RenderScene> s) {
-                auto r = std::make_unique<StandardDifferentialRenderer>(std::move(s), sampling);
+            const int focus = o.focus_after, spp = o.samples_per_pass;
+            session.set_renderer_factory([sampling, focus, spp](std::shared_ptr<const RenderScene> s) {
+                auto r = std::make_unique<StandardDifferentialRenderer>(std::move(s), sampling, spp);
                 r->focus_after(focus);
                 return r;
             });
@@ -152,6 +154,9 @@ Command add_render_command(CLI::App& app) {
                     "path-traced simulations, without and with the objects; one sample per pixel "
                     "a pass) or standard-correlated (both simulations share each sample's rays)")
         ->check(CLI::IsMember({"differential", "standard", "standard-correlated"}));
+    sub->add_option("--samples-per-pass", o->samples_per_pass,
+                    "standard methods: camera samples per pixel in each pass (default 1)")
+        ->check(CLI::Range(1, 1 << 20));
     sub->add_option("--focus-after", o->focus_after,
                     "standard methods: after this many passes, sample only the pixels the objects "
                     "change (and two pixels around them); for truths with many samples")

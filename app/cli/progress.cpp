@@ -24,6 +24,11 @@ std::string Progress::format(const ProgressState& s, double elapsed) const {
     std::string line = std::string(s.unit) + " " + std::to_string(s.done);
     if (s.budget_s <= 0 && s.total > 0) line += "/" + std::to_string(s.total);
     if (s.rate_name) line += "  " + std::string(s.rate_name) + " " + sci(s.rate);
+    if (s.estimated_error >= 0) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "  est. error %.2g%%", 100 * s.estimated_error);
+        line += buf;
+    }
     line += "  elapsed " + duration(elapsed);
     if (s.budget_s > 0) line += "/" + duration(s.budget_s);
     double eta = -1;

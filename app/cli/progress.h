@@ -14,11 +14,12 @@ struct ProgressState {
     double budget_s = 0;        ///< > 0: time-limited; the bar and ETA follow the clock
     const char* rate_name = nullptr;  ///< e.g. "photons/s"; null: no rate shown
     double rate = 0;
+    double estimated_error = -1;  ///< relative error left, as the renderer estimates it; < 0: unknown
 };
 
 /// Progress on stderr. On a terminal, one bar redrawn in place with '\r' (at most ten times a
 /// second); otherwise plain lines that log files keep readable:
-///   pass 3/16  photons/s 1.2e6  elapsed 2.1s  eta 9.0s
+///   pass 3/16  photons/s 1.2e6  est. error 2.1%  elapsed 2.1s  eta 9.0s
 /// Safe to call from several threads.
 class Progress {
 public:

@@ -15,11 +15,14 @@ void CliSink::on_update(const RenderUpdate& update) {
         s.rate_name = "spp/s";
         s.rate = update.stats.seconds > 0 ? double(update.stats.samples_per_pixel) / update.stats.seconds : 0;
     }
-    progress_.update(s);
-    // The update is only valid during this call, so it is copied; keeping the latest lets an
-    // interrupted render still write what it has.
+    if (update.stats.estimated_rel_error >= 0) s.estimated_error = update.stats.estimated_rel_error;
+    if (!update.cancelled) progress_.update(s);
+    if (!update.finished) return;  // the pictures of the last pass are all a render writes
+    RenderUpdate last = update;
+    last.pull_images();
+    last.source = nullptr;
     std::lock_guard<std::mutex> lock(mutex_);
-    last_ = update;
+    last_ = std::move(last);
 }
 
 void CliSink::on_stopped(bool cancelled, const std::string& error) {

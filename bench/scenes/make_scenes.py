@@ -132,16 +132,16 @@ def scenes(out):
     s = {}
     hard = base_project(sun_probe_spec("sun-hard.exr"))
     hard["objects"] = [sphere("ball", [0, 0.5, 0], 0.5, diffuse([0.7, 0.6, 0.5]))]
-    s["shadow_hard"] = (hard, None, (1024, 65536))
+    s["shadow_hard"] = (hard, None, (1024, 32768))
 
     soft = copy.deepcopy(hard)
     soft["probe"] = sun_probe_spec("sun-soft.exr")
-    s["shadow_soft"] = (soft, None, (1024, 65536))
+    s["shadow_soft"] = (soft, None, (1024, 32768))
 
     caustic = base_project(sun_probe_spec("sun-caustic.exr"))
     caustic["objects"] = [sphere("glass", [0, 0.45, 0], 0.45,
                                  {"type": "glass", "ior": 1.5, "tint": [1, 1, 1]})]
-    s["caustic"] = (caustic, None, (4096, 262144))
+    s["caustic"] = (caustic, None, (4096, 131072))
 
     mirrors = base_project(blender_probe("city", 35))
     mirrors["objects"] = [
@@ -153,7 +153,7 @@ def scenes(out):
     mirrors["real"][0]["albedo"] = [sum(c) / 2 for c in zip(*tiles)]
     detail = copy.deepcopy(mirrors)
     detail["real"][0]["albedo"] = {"texture": "tiles.png"}
-    s["mirrors"] = (mirrors, detail, (1024, 131072))
+    s["mirrors"] = (mirrors, detail, (1024, 65536))
 
     bleed = base_project(blender_probe("courtyard", 0))
     bleed["real"].append({"name": "wall", "shape": {"type": "box", "size": [3, 1.6, 0.1]},
@@ -161,7 +161,7 @@ def scenes(out):
     bleed["objects"] = [{"name": "knot", "shape": {"type": "mesh", "path": "knot.obj"},
                          "transform": {"translation": [0, 0.42, -0.2], "scale": [1.3, 1.3, 1.3]},
                          "material": diffuse([0.85, 0.12, 0.08])}]
-    s["bleeding"] = (bleed, None, (1024, 32768))
+    s["bleeding"] = (bleed, None, (1024, 16384))
 
     five = base_project(blender_probe("city", 35))
     five["camera"].update({"eye": [0, 3.2, 7.5], "target": [0, 0, 0], "vfov_deg": 55})
@@ -169,12 +169,12 @@ def scenes(out):
     five["objects"] = [sphere(f"ball {i}", [x, 0.15, z], 0.15, diffuse(c)) for i, (x, z, c) in enumerate([
         (-3.2, 0.5, [0.8, 0.3, 0.2]), (-1.5, -2.0, [0.3, 0.7, 0.3]), (0.2, 1.8, [0.2, 0.3, 0.8]),
         (1.9, -1.2, [0.8, 0.8, 0.3]), (3.4, 1.0, [0.7, 0.7, 0.7])])]
-    s["five_objects"] = (five, None, (1024, 65536))
+    s["five_objects"] = (five, None, (1024, 32768))
 
     big = copy.deepcopy(hard)
     big["real"].append({"name": "hills", "shape": {"type": "mesh", "path": "hills.ply"},
                         "transform": {"translation": [0, 0, -9]}, "albedo": [0.35, 0.45, 0.3]})
-    s["big_proxy"] = (big, None, (1024, 65536))
+    s["big_proxy"] = (big, None, (1024, 32768))
 
     noop = copy.deepcopy(hard)
     noop["objects"] = []
@@ -191,7 +191,7 @@ def scenes(out):
                         "transform": {"translation": [0, 0.68, -0.62], "rotation_deg": [90, 0, 0],
                                       "scale": [1.1, 1.1, 1.1]},
                         "material": diffuse([0.6, 0.6, 0.6])}]
-    s["knot_wall"] = (knot, None, (1024, 32768))
+    s["knot_wall"] = (knot, None, (1024, 16384))
 
     # A glass ball on a grey floor before a wall, under a probe with a sun.
     glass_wall = base_project(blender_probe("city", 35))
@@ -199,7 +199,7 @@ def scenes(out):
     glass_wall["real"].append({"name": "wall", "shape": {"type": "box", "size": [4, 2, 0.1]},
                                "transform": {"translation": [0, 1.0, -0.85]}, "albedo": [0.7, 0.7, 0.7]})
     glass_wall["objects"] = [sphere("glass", [0, 0.4, -0.3], 0.4, {"type": "glass", "ior": 1.5, "tint": [1, 1, 1]})]
-    s["glass_wall"] = (glass_wall, None, (4096, 262144))
+    s["glass_wall"] = (glass_wall, None, (4096, 131072))
 
     # Production framing: a 1920x1080 photograph in which the object covers about 5% of the
     # frame, so that skipping the pixels it cannot change counts.
@@ -209,7 +209,7 @@ def scenes(out):
     prod["real"][0]["albedo"] = [0.45, 0.43, 0.4]
     prod["objects"] = [sphere("clay", [0, 0.5, 0], 0.5, diffuse([0.7, 0.35, 0.2]))]
     prod["render"]["photons_per_pass"] = 300000
-    s["production"] = (prod, None, (64, 8192), (1920, 1080))
+    s["production"] = (prod, None, (64, 4096), (1920, 1080))
     return s
 
 
@@ -265,13 +265,17 @@ def main():
         photo = os.path.join(folder, "photo.exr")
         run([exe, "make-test-image", photo, "--size", str(width), str(height)])  # sets the size
         run([exe, "reference", detail_path, "--real-only", "--spp", str(args.photo_spp), "--seed", "7", "-o", photo])
-        base = max(1, int(base_spp * args.spp_scale) // 2)
-        half = max(base, int(total_spp * args.spp_scale) // 2)
+        # Passes of 16 samples: the per-pass overhead would dominate a focused pass of one sample.
+        spp_per_pass = 16
+        base = max(1, int(base_spp * args.spp_scale) // (2 * spp_per_pass))
+        half = max(base, int(total_spp * args.spp_scale) // (2 * spp_per_pass))
         for part, seed in (("a", 101), ("b", 202)):
             run([exe, "render", detail_path, "--method", "standard-correlated", "--passes", str(half), "--seed",
-                 str(seed), "--focus-after", str(base), "--layers", "-o", os.path.join(folder, f"truth-{part}.exr")])
+                 str(seed), "--samples-per-pass", str(spp_per_pass), "--focus-after", str(base), "--layers",
+                 "-o", os.path.join(folder, f"truth-{part}.exr")])
         with open(os.path.join(folder, "truth.json"), "w") as f:
-            json.dump({"samples_per_pixel_everywhere": 2 * base, "samples_per_pixel_changed": 2 * half,
+            json.dump({"samples_per_pixel_everywhere": 2 * base * spp_per_pass,
+                       "samples_per_pixel_changed": 2 * half * spp_per_pass,
                        "photo_samples_per_pixel": args.photo_spp, "seconds": time.time() - t0}, f)
         print(f"{name}: {time.time() - t0:.0f} s", flush=True)
 

@@ -64,12 +64,31 @@ inline vec2 sobol_owen_2d(uint32_t index, uint64_t seed) {
 
 /// A pixel's sample `index` (its pass) as a stream of dimension pairs: each call to next2d()
 /// takes a new pair with its own scramble. Streams for different (seed, pixel) are independent.
+/// A sampler made by independent() returns independent uniform numbers instead (a baseline to
+/// measure what the low-discrepancy points buy).
 class PixelSampler {
 public:
     PixelSampler(uint64_t seed, uint64_t pixel, uint32_t index)
         : key_(hash_combine(hash_combine(seed, 0x736f626f6cull), pixel)), index_(index) {}
 
-    vec2 next2d() { return sobol_owen_2d(index_, hash_combine(key_, pair_++)); }
+    /// The stream of a pixel in pass `pass` (1-based). Odd and even passes are two separately
+    /// scrambled sequences, each low-discrepancy over its own passes: the two interleaved
+    /// halves of a render are then independent estimates, and their difference an honest
+    /// measure of the error (halves of one sequence would share its strata).
+    static PixelSampler for_pass(uint64_t seed, uint64_t pixel, int pass, bool low_discrepancy = true) {
+        PixelSampler s(hash_combine(seed, uint64_t(pass & 1)), pixel, uint32_t((pass - 1) / 2));
+        s.independent_ = !low_discrepancy;
+        return s;
+    }
+
+    vec2 next2d() {
+        const uint64_t pair_key = hash_combine(key_, pair_++);
+        if (independent_) {
+            Rng rng(pair_key, index_);
+            return vec2(rng.uniform(), rng.uniform());
+        }
+        return sobol_owen_2d(index_, pair_key);
+    }
     /// One dimension: the first of a fresh pair (a stratified 1D sequence).
     float next1d() { return next2d().x; }
     /// The same stream at another sample index (several samples of one pixel in one pass).
@@ -84,6 +103,7 @@ private:
     uint64_t key_;
     uint32_t index_;
     uint32_t pair_ = 0;
+    bool independent_ = false;
 };
 
 }  // namespace dp

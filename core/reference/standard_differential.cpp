@@ -43,71 +43,75 @@ void StandardDifferentialRenderer::build_focus() {
     for (size_t i = 0; i < photo.size(); ++i) {
         const double n = std::max<uint32_t>(1, samples_[i]);
         const double d = luminance((sum_delta_[i] + sum_virtual_[i]) / n) - luminance(photo[i]) * virtual_count_[i] / n;
-        changed[i] = virtual_count_[i] > 0 || std::abs(d) > 0.003 * std::max(double(luminance(photo[i])), floor);
+        changed[i] = virtual_count_[i] > 0 || std::abs(d) > 0.006 * std::max(double(luminance(photo[i])), floor);
     }
-    focus_.assign(photo.size(), 0);
+    std::vector<uint8_t> grown(photo.size(), 0);
     constexpr int kGrow = 2;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             if (!changed[size_t(y) * W + x]) continue;
             for (int yy = std::max(0, y - kGrow); yy <= std::min(H - 1, y + kGrow); ++yy)
                 for (int xx = std::max(0, x - kGrow); xx <= std::min(W - 1, x + kGrow); ++xx)
-                    focus_[size_t(yy) * W + xx] = 1;
+                    grown[size_t(yy) * W + xx] = 1;
         }
+    focus_.clear();
+    for (size_t i = 0; i < grown.size(); ++i)
+        if (grown[i]) focus_.push_back(uint32_t(i));
+    if (focus_.empty()) focus_.push_back(0);  // nothing changes: keep sampling one pixel, not all
 }
 
 bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) {
     const auto t0 = std::chrono::steady_clock::now();
     const RenderScene& s = *scene_;
-    const int W = s.camera().width(), H = s.camera().height();
+    const int W = s.camera().width();
     if (focus_after_ > 0 && stats_.passes == focus_after_ && focus_.empty()) build_focus();
     const uint64_t first = stats_.samples_per_pixel, last = first + uint64_t(samples_per_pass_);
+    const size_t count = focus_.empty() ? sum_delta_.size() : focus_.size();
+    auto pixel_at = [&](size_t k) { return focus_.empty() ? k : size_t(focus_[k]); };
     // Accumulated into pass-local sums first, so a cancelled pass leaves no partial samples.
-    std::vector<dvec3> delta(sum_delta_.size(), dvec3(0)), virt(sum_virtual_.size(), dvec3(0));
-    std::vector<uint32_t> vcount(virtual_count_.size(), 0);
+    std::vector<dvec3> delta(count, dvec3(0)), virt(count, dvec3(0));
+    std::vector<uint32_t> vcount(count, 0);
     std::atomic<size_t> bad{0};
-    tbb::parallel_for(tbb::blocked_range<int>(0, H, 1), [&](const tbb::blocked_range<int>& rows) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 64), [&](const tbb::blocked_range<size_t>& r) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return;
         size_t local_bad = 0;
-        for (int y = rows.begin(); y < rows.end(); ++y) {
-            if (cancel && cancel->load(std::memory_order_relaxed)) return;
-            for (int x = 0; x < W; ++x) {
-                const uint64_t pixel = uint64_t(y) * W + x;
-                if (!focus_.empty() && !focus_[pixel]) continue;
-                for (uint64_t smp = first; smp < last; ++smp) {
-                    // Same camera jitter as the reference path tracer.
-                    const Ray ray = reference_camera_ray(s, with_virtual_.seed, x, y, smp);
-                    Hit first_hit = s.intersect(ray);
-                    vec3 L_new = reference_radiance(s, with_virtual_, ray, pixel, int(smp));
-                    if (first_hit && first_hit.surface->is_virtual) {
-                        if (!is_finite(L_new)) { ++local_bad; continue; }
-                        virt[pixel] += dvec3(L_new);
-                        ++vcount[pixel];
-                        continue;
-                    }
-                    const Ray old_ray = sampling_ == Sampling::Correlated
-                                            ? ray
-                                            : reference_camera_ray(s, real_only_.seed, x, y, smp);
-                    vec3 L_old = reference_radiance(s, real_only_, old_ray, pixel, int(smp));
-                    vec3 d = L_new - L_old;
-                    if (!is_finite(d)) { ++local_bad; continue; }
-                    delta[pixel] += dvec3(d);
+        for (size_t k = r.begin(); k < r.end(); ++k) {
+            const uint64_t pixel = pixel_at(k);
+            const int x = int(pixel % uint64_t(W)), y = int(pixel / uint64_t(W));
+            for (uint64_t smp = first; smp < last; ++smp) {
+                // Same camera jitter as the reference path tracer.
+                const Ray ray = reference_camera_ray(s, with_virtual_.seed, x, y, smp);
+                Hit first_hit = s.intersect(ray);
+                vec3 L_new = reference_radiance(s, with_virtual_, ray, pixel, int(smp));
+                if (first_hit && first_hit.surface->is_virtual) {
+                    if (!is_finite(L_new)) { ++local_bad; continue; }
+                    virt[k] += dvec3(L_new);
+                    ++vcount[k];
+                    continue;
                 }
+                const Ray old_ray = sampling_ == Sampling::Correlated
+                                        ? ray
+                                        : reference_camera_ray(s, real_only_.seed, x, y, smp);
+                vec3 L_old = reference_radiance(s, real_only_, old_ray, pixel, int(smp));
+                vec3 d = L_new - L_old;
+                if (!is_finite(d)) { ++local_bad; continue; }
+                delta[k] += dvec3(d);
             }
         }
         bad += local_bad;
     });
     if (cancel && cancel->load()) return false;
-    for (size_t i = 0; i < delta.size(); ++i) {
-        if (!focus_.empty() && !focus_[i]) continue;
-        sum_delta_[i] += delta[i];
-        sum_virtual_[i] += virt[i];
-        virtual_count_[i] += vcount[i];
+    for (size_t k = 0; k < count; ++k) {
+        const size_t i = pixel_at(k);
+        sum_delta_[i] += delta[k];
+        sum_virtual_[i] += virt[k];
+        virtual_count_[i] += vcount[k];
         samples_[i] += uint32_t(samples_per_pass_);
     }
     stats_.passes += 1;
     stats_.samples_per_pixel = last;
     stats_.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    stats_.pixels_gathered = focus_.empty() ? stats_.pixels_total : size_t(std::count(focus_.begin(), focus_.end(), uint8_t(1)));
+    stats_.pixels_gathered = count;
     stats_.non_finite_samples += bad.load();
     return true;
 }

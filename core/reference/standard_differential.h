@@ -26,7 +26,7 @@ public:
                                  int samples_per_pass = 1);
 
     /// After `passes` passes, later passes sample only the pixels the objects change (some
-    /// sample saw an object, or the mean changed by more than 0.3% of the photo), grown by two
+    /// sample saw an object, or the mean changed by more than 0.6% of the photo), grown by two
     /// pixels: a truth spends its samples where the change is. 0 (the default) never focuses.
     void focus_after(int passes) { focus_after_ = passes; }
 
@@ -45,7 +45,7 @@ private:
     std::vector<dvec3> sum_delta_, sum_virtual_;
     std::vector<uint32_t> virtual_count_;
     std::vector<uint32_t> samples_;  ///< per pixel
-    std::vector<uint8_t> focus_;     ///< pixels later passes sample (empty: all)
+    std::vector<uint32_t> focus_;    ///< pixels later passes sample, in order (empty: all)
     int focus_after_ = 0;
     RenderStats stats_;
 

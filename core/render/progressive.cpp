@@ -10,6 +10,7 @@
 
 #include "base/rng.h"
 #include "base/sobol.h"
+#include "image/image_metrics.h"
 
 namespace dp {
 
@@ -46,6 +47,7 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
     const RenderSettings& rs = scene_->project().render;
     alpha_ = rs.alpha;
     split_ = rs.estimator == Estimator::Split;
+    low_discrepancy_ = rs.low_discrepancy;
     if (rs.initial_radius && *rs.initial_radius > 0) {
         r1_ = *rs.initial_radius;
     } else {
@@ -56,6 +58,7 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
         r1_ = rmax * std::clamp(std::sqrt(100.0f / float(photons_per_pass_)), 0.004f, 0.2f);
     }
     if (split_ && scene_->has_virtual()) direct_.emplace(*scene_);
+    ceiling_ = kErrorCeilingFactor * luminance_quantile(scene_->photo(), 0.999);
     plan_ = build_frame_plan(*scene_, split_);
     sums_ = TileAccumulator(plan_.width, plan_.height, kTile);
     stats_.pixels_total = size_t(plan_.width) * plan_.height;
@@ -240,7 +243,7 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
                     if (!w.gather && !picked) return;  // the splat, if any, is the whole sample
                     local_direct += picked;
                 }
-                PixelSampler sampler(seed_, i, uint32_t(pass - 1));
+                PixelSampler sampler = PixelSampler::for_pass(seed_, i, pass, low_discrepancy_);
                 const vec2 j = sampler.next2d() - vec2(0.5f);
                 Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
                 const SampleResult splat = tile_out[slot];
@@ -317,7 +320,7 @@ void ProgressiveRenderer::update_convergence() {
             const dvec3 d = sums_.mean_delta(i);
             const double before = luminance(photo[i]);
             const double value = std::max(before + luminance(d), double(floor));
-            const double e2 = passes >= 2 ? sums_.error2(i) : 0.0;
+            const double e2 = passes >= 2 ? sums_.error2(i, before, ceiling_) : 0.0;
             tile_e2 += e2;
             tile_value += value;
             ++n;

@@ -16,6 +16,10 @@
 
 namespace dp {
 
+/// Errors are estimated on pixel luminances clamped at this multiple of the photo's 99.9th
+/// percentile: a display of the photo shows nothing brighter (the benchmarks measure alike).
+inline constexpr float kErrorCeilingFactor = 8.0f;
+
 /// Shadow-only matte: the fraction of the photo's light the virtual objects remove,
 /// clamp(-lum(dL) / lum(photo), 0, 1), grey RGB; 0 where the photo is black or dL >= 0.
 Image shadow_matte(const Image& photo, const Image& dL);
@@ -101,10 +105,12 @@ private:
     uint64_t seed_;
     float r1_ = 0, alpha_ = 2.0f / 3.0f;
     bool split_ = true;
+    bool low_discrepancy_ = true;
     std::optional<DirectChange> direct_;  ///< present under the split estimator
     FramePlan plan_;  ///< once per camera and geometry
     int diffuse_samples_ = 2;
     TileAccumulator sums_;
+    float ceiling_ = 0;  ///< pixel luminance clamped here when errors are estimated
     RenderStats stats_;
 };
 

@@ -15,6 +15,13 @@ std::unique_ptr<PassRenderer> make_differential(std::shared_ptr<const RenderScen
 
 }  // namespace
 
+void RenderUpdate::pull_images() {
+    if (!source) return;
+    image = source->image();
+    delta = source->delta_layer();
+    alpha = source->alpha_layer();
+}
+
 RenderSession::RenderSession(RenderSink* sink) : sink_(sink), factory_(make_differential) {}
 
 void RenderSession::set_renderer_factory(RendererFactory factory) {
@@ -56,20 +63,27 @@ void RenderSession::run(std::shared_ptr<const RenderScene> scene, const Renderer
             std::unique_ptr<PassRenderer> owned = factory(scene);
             PassRenderer& renderer = *owned;
             auto t0 = std::chrono::steady_clock::now();
-            for (;;) {
-                if (cancel_.load()) { cancelled = true; break; }
-                if (!renderer.render_pass(&cancel_)) { cancelled = true; break; }
-                double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            auto update = [&](bool finished) {
                 RenderUpdate u;
                 u.stats = renderer.stats();
                 u.target_passes = rs.time_budget_s > 0 ? 0 : rs.passes;
                 u.time_budget_s = rs.time_budget_s;
-                u.finished = rs.time_budget_s > 0 ? elapsed >= rs.time_budget_s : renderer.passes() >= rs.passes;
-                u.image = renderer.image();
-                u.delta = renderer.delta_layer();
-                u.alpha = renderer.alpha_layer();
+                u.finished = finished;
+                u.cancelled = cancelled;
+                u.source = &renderer;
                 if (sink_) sink_->on_update(u);
-                if (u.finished) break;
+            };
+            for (;;) {
+                if (cancel_.load() || !renderer.render_pass(&cancel_)) {
+                    cancelled = true;
+                    // One last update, so a sink can still pull what the finished passes made.
+                    if (renderer.passes() > 0) update(true);
+                    break;
+                }
+                const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                const bool finished = rs.time_budget_s > 0 ? elapsed >= rs.time_budget_s : renderer.passes() >= rs.passes;
+                update(finished);
+                if (finished) break;
             }
         });
     } catch (const std::exception& e) {

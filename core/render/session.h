@@ -10,19 +10,28 @@
 
 namespace dp {
 
-/// A progressive image handed to a sink after each pass.
+/// Where a run stands after a pass. The pictures are built only when a sink pulls them
+/// (pull_images(), during on_update): a full-size image per pass is work a CLI render does not
+/// need and a viewer needs only as often as it paints.
 struct RenderUpdate {
-    Image image;        ///< augmented photo (linear)
-    Image delta;        ///< signed dL on real surfaces
-    Image alpha;        ///< virtual-object coverage
     RenderStats stats;
     int target_passes = 0;    ///< 0 when rendering to a time budget
     double time_budget_s = 0; ///< 0 when rendering a number of passes
-    bool finished = false;    ///< last update of this run (budget reached)
+    bool finished = false;    ///< last update of this run (budget reached, or cancelled)
+    bool cancelled = false;   ///< the run was cancelled after this update's passes
+
+    Image image;  ///< augmented photo (linear), after pull_images()
+    Image delta;  ///< signed dL on real surfaces, after pull_images()
+    Image alpha;  ///< virtual-object coverage, after pull_images()
+    /// Builds image, delta and alpha from the renderer. Only during RenderSink::on_update.
+    void pull_images();
+    bool has_images() const { return !image.empty(); }
+
+    const PassRenderer* source = nullptr;  ///< valid only during on_update
 };
 
-/// Receives progressive images from the render thread. Implementations must return quickly
-/// and never call back into the session from on_update (copy the data and hand it on).
+/// Receives progress from the render thread. Implementations must return quickly and never
+/// call back into the session from on_update (pull what they need, copy it and hand it on).
 class RenderSink {
 public:
     virtual ~RenderSink() = default;

@@ -1,5 +1,6 @@
 #include "render/tile_accumulator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -69,13 +70,15 @@ bool TileAccumulator::untouched(size_t pixel) const {
     return !s || s->delta == dvec3(0);
 }
 
-double TileAccumulator::error2(size_t pixel) const {
+double TileAccumulator::error2(size_t pixel, double base, double ceiling) const {
     const int n = tile_passes(tile_of(pixel)), n_odd = (n + 1) / 2, n_even = n / 2;
     if (n_even == 0) return std::numeric_limits<double>::infinity();
     const PixelSums* s = sums(pixel);
     if (!s) return 0;
     const double total = luminance(s->delta);
-    const double diff = s->odd_luminance / n_odd - (total - s->odd_luminance) / n_even;
+    const double odd = std::clamp(base + s->odd_luminance / n_odd, 0.0, ceiling);
+    const double even = std::clamp(base + (total - s->odd_luminance) / n_even, 0.0, ceiling);
+    const double diff = odd - even;
     // Var(half difference) = v (1/n_odd + 1/n_even) for a per-pass variance v; the mean's is v / n.
     return diff * diff / (double(n) * (1.0 / n_odd + 1.0 / n_even));
 }

@@ -47,9 +47,11 @@ public:
     double mean_alpha(size_t pixel) const;
     /// True while no pass has changed the pixel: it keeps the photo bit for bit.
     bool untouched(size_t pixel) const;
-    /// Squared error estimate of the pixel's mean luminance change from the two interleaved
-    /// halves; infinite before both halves hold a pass.
-    double error2(size_t pixel) const;
+    /// Squared error estimate of the pixel's mean luminance from the two interleaved halves,
+    /// each half's luminance (the photo's `base` plus its mean change) clamped to [0, ceiling]
+    /// first, so that a sun seen in a mirror does not stand for the whole image's noise;
+    /// infinite before both halves hold a pass.
+    double error2(size_t pixel, double base = 0, double ceiling = INFINITY) const;
 
 private:
     struct PixelSums {

@@ -125,6 +125,9 @@ struct RenderSettings {
     /// camera samples (0: every tile takes every pass).
     float adaptive_threshold = 0.002f;
     int adaptive_min_passes = 16;  ///< no tile stops before this many passes
+    /// Sub-pixel positions and first-bounce directions from Owen-scrambled Sobol' points
+    /// (false: independent random numbers, to measure what the points buy).
+    bool low_discrepancy = true;
     bool operator==(const RenderSettings&) const = default;
 };
 

@@ -404,7 +404,7 @@ CameraSpec parse_camera(const Reader& r, const json& j) {
 RenderSettings parse_render(const Reader& r, const json& j) {
     r.object(j, "render", {"photons_per_pass", "passes", "time_budget_s", "initial_radius", "alpha",
                            "max_depth", "seed", "threads", "estimator", "adaptive_threshold",
-                           "adaptive_min_passes"});
+                           "adaptive_min_passes", "low_discrepancy"});
     constexpr int64_t kIntMax = std::numeric_limits<int>::max();
     constexpr int64_t kInt64Max = std::numeric_limits<int64_t>::max();
     RenderSettings s;
@@ -442,6 +442,7 @@ RenderSettings parse_render(const Reader& r, const json& j) {
     }
     if (auto* v = r.optional(j, "adaptive_min_passes"))
         s.adaptive_min_passes = int(r.integer(*v, "render.adaptive_min_passes", 2, kIntMax));
+    if (auto* v = r.optional(j, "low_discrepancy")) s.low_discrepancy = r.boolean(*v, "render.low_discrepancy");
     return s;
 }
 
@@ -561,6 +562,7 @@ J write_project(const Project& p) {
     render["estimator"] = s.estimator == Estimator::Split ? "split" : "photons";
     render["adaptive_threshold"] = num(s.adaptive_threshold);
     render["adaptive_min_passes"] = s.adaptive_min_passes;
+    render["low_discrepancy"] = s.low_discrepancy;
     doc["render"] = render;
     return doc;
 }

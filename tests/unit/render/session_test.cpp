@@ -19,7 +19,9 @@ public:
         std::lock_guard<std::mutex> lock(m_);
         passes_.push_back(u.stats.passes);
         finished_.push_back(u.finished);
-        last_size_ = u.image.size();
+        RenderUpdate copy = u;
+        copy.pull_images();
+        last_size_ = copy.image.size();
         cv_.notify_all();
     }
     void on_stopped(bool cancelled, const std::string& error) override {
