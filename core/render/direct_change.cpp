@@ -72,7 +72,7 @@ double DirectChange::cone_pdf(const std::vector<ClusterCone>& cones, const vec3&
     return pdf;
 }
 
-vec3 DirectChange::blocked_radiance(const Hit& hit, const vec3& n, const vec3& w, Rng& rng) const {
+vec3 DirectChange::blocked_radiance(const Hit& hit, const vec3& n, const vec3& w, Rng& rng, bool real_only) const {
     if (glm::dot(n, w) <= 0) return vec3(0);
     Hit at = hit;
     at.ng = n;
@@ -82,21 +82,22 @@ vec3 DirectChange::blocked_radiance(const Hit& hit, const vec3& n, const vec3& w
     if (!hv || hv.surface->transmits()) return vec3(0);
     const Hit hr = scene_.intersect_real(ray);
     if (hr && hr.t < hv.t) return vec3(0);  // a real surface already stood in the way
-    return hr ? photographed_radiance(scene_, hr, w, rng) : scene_.probe().radiance(w);
+    if (!hr) return real_only ? vec3(0) : scene_.probe().radiance(w);
+    return photographed_radiance(scene_, hr, w, rng);
 }
 
 dvec3 DirectChange::light_sample(const Hit& hit, const vec3& n, const std::vector<ClusterCone>& cones,
-                                 const ProbeSample& s, Rng& rng) const {
+                                 const ProbeSample& s, Rng& rng, bool real_only) const {
     if (s.pdf <= 0) return dvec3(0);
     const double pb = cone_pdf(cones, s.dir, n);
     if (pb <= 0) return dvec3(0);  // outside every cone nothing virtual can block it: no ray
-    const vec3 L = blocked_radiance(hit, n, s.dir, rng);
+    const vec3 L = blocked_radiance(hit, n, s.dir, rng, real_only);
     if (L == vec3(0)) return dvec3(0);
     const double pa = s.pdf, weight = pa * pa / (pa * pa + pb * pb);
     return -dvec3(L) * (double(glm::dot(n, s.dir)) / pa * weight);
 }
 
-dvec3 DirectChange::estimate(const Hit& hit, const vec3& n, const Samples& u, Rng& rng) const {
+dvec3 DirectChange::estimate(const Hit& hit, const vec3& n, const Samples& u, Rng& rng, bool real_only) const {
     std::vector<ClusterCone>& cs = scratch_cones();
     cones(hit.p, n, cs);
     double total = 0;
@@ -105,8 +106,8 @@ dvec3 DirectChange::estimate(const Hit& hit, const vec3& n, const Samples& u, Rn
     const ProbeLights& lights = scene_.probe_lights();
 
     // The sun and the sky, by flux: they find a sun that the cone sample would rarely hit.
-    dvec3 sum = light_sample(hit, n, cs, lights.sample_sun(u.sun), rng);
-    sum += light_sample(hit, n, cs, lights.sample_sky(u.sky), rng);
+    dvec3 sum = light_sample(hit, n, cs, lights.sample_sun(u.sun), rng, real_only);
+    sum += light_sample(hit, n, cs, lights.sample_sky(u.sky), rng, real_only);
 
     // The cones: the sky and the real surfaces behind the objects, evenly over what they hide.
     double pick = double(u.pick) * total;
@@ -122,7 +123,7 @@ dvec3 DirectChange::estimate(const Hit& hit, const vec3& n, const Samples& u, Rn
                             : sample_cone(c.axis, c.one_minus_cos, u.cone);
     const double pb = cone_pdf(cs, w, n);
     if (pb > 0) {
-        const vec3 L = blocked_radiance(hit, n, w, rng);
+        const vec3 L = blocked_radiance(hit, n, w, rng, real_only);
         if (L != vec3(0)) {
             const double pa = lights.pdf(w), weight = pb * pb / (pa * pa + pb * pb);
             sum -= dvec3(L) * (double(glm::dot(n, w)) / pb * weight);

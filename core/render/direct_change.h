@@ -38,7 +38,9 @@ public:
         float pick = 0;
     };
     /// One estimate of dE (RGB irradiance, signed) at real hit `hit` whose lit side faces `n`.
-    dvec3 estimate(const Hit& hit, const vec3& n, const Samples& u, Rng& rng) const;
+    /// `real_only`: only the light of real surfaces behind the objects (the all-photon
+    /// estimator's photons carry the probe's).
+    dvec3 estimate(const Hit& hit, const vec3& n, const Samples& u, Rng& rng, bool real_only = false) const;
 
     /// Bound of |luminance(dE)| at a point with unit normal n: each cluster's solid angle above
     /// the horizon times the brightest light (probe in the cone, or a photographed real surface)
@@ -52,10 +54,10 @@ private:
     /// Cone-sampling pdf of direction w given the cones (mixture over clusters by solid angle).
     double cone_pdf(const std::vector<ClusterCone>& cones, const vec3& w, const vec3& n) const;
     /// The integrand without the cosine: L_old where a virtual object is first along w, else 0.
-    vec3 blocked_radiance(const Hit& hit, const vec3& n, const vec3& w, Rng& rng) const;
+    vec3 blocked_radiance(const Hit& hit, const vec3& n, const vec3& w, Rng& rng, bool real_only) const;
     /// One light sample's weighted contribution -L cos / p, MIS-weighted against the cones.
     dvec3 light_sample(const Hit& hit, const vec3& n, const std::vector<ClusterCone>& cones,
-                       const ProbeSample& s, Rng& rng) const;
+                       const ProbeSample& s, Rng& rng, bool real_only) const;
 
     const RenderScene& scene_;
     ProbeMaxGrid probe_max_;

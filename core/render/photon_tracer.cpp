@@ -29,10 +29,13 @@ struct Tracer {
     int max_depth = 8;
 
     bool store_first_shadow = true;  ///< false: next-event estimation takes the first landing
+    const DirectChange* direct = nullptr;
+    PhotonMap probe_map;     ///< this pass's probe photons on real surfaces, for the emitters
+    double inv_area = 0;     ///< 1 / (pi r^2) of probe_map's gathers
 
     Tracer(const RenderScene& s, int64_t count, int64_t surround_count, const PhotonPassOptions& o)
         : scene(s), emitter(s, count, surround_count), max_depth(std::max(1, s.project().render.max_depth)),
-          store_first_shadow(!o.direct_by_rays) {}
+          store_first_shadow(!o.direct_by_rays), direct(o.direct) {}
 
     /// Whether a shadow photon landing at `hr` (travelling along `dir`) is stored there: always
     /// without the split; under it only where the object nearest to `hr` on the line is glass
@@ -114,15 +117,25 @@ struct Tracer {
         follow(hv, -w, flux, false, rng, out);
     }
 
-    /// The probe light a real point no longer reflects towards -dir because a virtual object
-    /// blocks it (one probe sample): the photo shows the point unshadowed, and a floor in the
-    /// object's own shadow must not light the object's underside as if it were sunlit.
-    vec3 shadowed_radiance(const Hit& x, const vec3& dir, Rng& rng, Block& out) const {
-        const ProbeLightSample ls = sample_probe_light(scene, x, dir, rng);
-        if (!ls.valid) return vec3(0);
-        out.stats.rays += 2;
-        if (!scene.intersect_virtual(ls.ray) || scene.occluded_real(ls.ray)) return vec3(0);
-        return ls.reflected;
+    /// How much a real point's radiance towards -dir has changed: the direct light the objects
+    /// block there (rays, one estimate), and what the pass's probe photons changed there. The
+    /// photo shows a floor under an object unshadowed, and it must not light the object's
+    /// underside as if it were sunlit, nor a glass ball's caustic be left out.
+    vec3 emitter_change(const Hit& x, const vec3& dir, Rng& rng, Block& out) const {
+        const vec3 n = facing_normal(x.ng, dir);
+        dvec3 E(0);
+        if (direct) {
+            DirectChange::Samples u;
+            u.sun = vec2(rng.uniform(), rng.uniform());
+            u.sky = vec2(rng.uniform(), rng.uniform());
+            u.cone = vec2(rng.uniform(), rng.uniform());
+            u.pick = rng.uniform();
+            E += direct->estimate(x, n, u, rng, store_first_shadow);
+            out.stats.rays += 4;  // about: the samples that reach a cone cost one or two rays
+        }
+        if (!probe_map.empty()) E += probe_map.gather(x.p, n) * inv_area;
+        if (E == dvec3(0)) return vec3(0);
+        return vec3(dvec3(x.surface->reflectance_at(x.uv)) * double(kInvPi) * E);
     }
 
     /// Light from a real surface at the objects: reflected on (positive photons) and blocked
@@ -145,10 +158,9 @@ struct Tracer {
         const Hit x = scene.intersect_real(Ray{hv.p - line.w * eps, line.w});
         ++out.stats.rays;
         if (!x) return;  // the probe: the probe photons carry that light
-        // Blocked: the radiance the emitter had (the photograph). Reflected: what it has now, less
-        // the probe light the object takes from it.
+        // Blocked: the radiance the emitter had (the photograph). Reflected: what it has now.
         const vec3 old_radiance = photographed_radiance(scene, x, line.w, rng);
-        const vec3 new_radiance = old_radiance - shadowed_radiance(x, line.w, rng, out);
+        const vec3 new_radiance = old_radiance + emitter_change(x, line.w, rng, out);
         if (!is_finite(old_radiance) || !is_finite(new_radiance)) return;
         const Hit hr = scene.intersect_real(Ray{hv.p + down * eps, down});
         ++out.stats.rays;
@@ -243,24 +255,40 @@ PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass,
     const int64_t surround = options.from_surroundings ? count / kSurroundPhotonDivisor : 0;
     const int64_t total = count + surround;
     Tracer tracer(scene, count, surround, options);
-    const int64_t blocks = (total + kBlock - 1) / kBlock;
-    std::vector<Block> out(blocks);
-    tbb::parallel_for(tbb::blocked_range<int64_t>(0, blocks, 1), [&](const tbb::blocked_range<int64_t>& r) {
-        for (int64_t b = r.begin(); b < r.end(); ++b) {
-            if (cancel && cancel->load(std::memory_order_relaxed)) return;
-            int64_t end = std::min(total, (b + 1) * kBlock);
-            for (int64_t i = b * kBlock; i < end; ++i) {
-                Rng rng = Rng::keyed(seed, pass * 2 + 0, uint64_t(i));
-                if (i < count)
-                    tracer.trace_one(rng, out[b]);
-                else
-                    tracer.trace_surround(rng, out[b]);
+    const int64_t probe_blocks = (count + kBlock - 1) / kBlock;  // probe and surroundings never share a block
+    std::vector<Block> out(size_t(probe_blocks + (surround + kBlock - 1) / kBlock));
+    // Block b of the probe photons covers photons [b kBlock, ...); block probe_blocks + c covers
+    // the surroundings' photons [c kBlock, ...), numbered after the probe photons.
+    auto run = [&](int64_t first_block, int64_t last_block) {
+        tbb::parallel_for(tbb::blocked_range<int64_t>(first_block, last_block, 1), [&](const tbb::blocked_range<int64_t>& r) {
+            for (int64_t b = r.begin(); b < r.end(); ++b) {
+                if (cancel && cancel->load(std::memory_order_relaxed)) return;
+                const bool probe = b < probe_blocks;
+                const int64_t begin = probe ? b * kBlock : count + (b - probe_blocks) * kBlock;
+                const int64_t end = probe ? std::min(count, begin + kBlock) : std::min(total, begin + kBlock);
+                for (int64_t i = begin; i < end; ++i) {
+                    Rng rng = Rng::keyed(seed, pass * 2 + 0, uint64_t(i));
+                    if (probe)
+                        tracer.trace_one(rng, out[b]);
+                    else
+                        tracer.trace_surround(rng, out[b]);
+                }
             }
-        }
-    });
+        });
+    };
+    run(0, probe_blocks);
+    if (surround > 0 && options.emitter_radius > 0) {
+        // The probe photons first: the surroundings' emitters see the change they make.
+        std::vector<Photon> probe_real;
+        for (int64_t b = 0; b < probe_blocks; ++b) probe_real.insert(probe_real.end(), out[b].real.begin(), out[b].real.end());
+        tracer.probe_map.build(std::move(probe_real), options.emitter_radius);
+        tracer.inv_area = 1.0 / (double(kPi) * options.emitter_radius * options.emitter_radius);
+    }
+    run(probe_blocks, int64_t(out.size()));
     // Merge blocks in order (deterministic), copying in parallel into precomputed offsets.
-    std::vector<size_t> real_at(blocks + 1, 0), caustic_at(blocks + 1, 0);
-    for (int64_t b = 0; b < blocks; ++b) {
+    const int64_t merged = int64_t(out.size());
+    std::vector<size_t> real_at(merged + 1, 0), caustic_at(merged + 1, 0);
+    for (int64_t b = 0; b < merged; ++b) {
         real_at[b + 1] = real_at[b] + out[b].real.size();
         caustic_at[b + 1] = caustic_at[b] + out[b].caustic.size();
         result.stats.emitted += out[b].stats.emitted;
@@ -270,9 +298,9 @@ PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass,
         result.stats.stored_caustic += out[b].stats.stored_caustic;
         result.stats.rays += out[b].stats.rays;
     }
-    result.real.resize(real_at[blocks]);
-    result.caustic.resize(caustic_at[blocks]);
-    tbb::parallel_for(int64_t(0), blocks, [&](int64_t b) {
+    result.real.resize(real_at[merged]);
+    result.caustic.resize(caustic_at[merged]);
+    tbb::parallel_for(int64_t(0), merged, [&](int64_t b) {
         std::copy(out[b].real.begin(), out[b].real.end(), result.real.begin() + real_at[b]);
         std::copy(out[b].caustic.begin(), out[b].caustic.end(), result.caustic.begin() + caustic_at[b]);
     });

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "base/rng.h"
+#include "render/direct_change.h"
 #include "render/photon_map.h"
 #include "render/render_scene.h"
 
@@ -82,11 +83,20 @@ struct PhotonPassOptions {
     /// surface behind it is left to next-event estimation (DirectChange), so shadow photons are
     /// not stored where they first land; they still bounce on, carrying the indirect change.
     bool direct_by_rays = false;
+    /// The light a real surface sends at the objects is its radiance now, not as photographed:
+    /// the photograph plus the change the pass's probe photons make there (gathered with this
+    /// radius; 0 leaves them out) and, with `direct`, the direct change by rays (under the
+    /// all-photon estimator only the light of real surfaces the objects block, the probe's
+    /// being in the probe photons).
+    float emitter_radius = 0;
+    const DirectChange* direct = nullptr;
 };
 
 /// Shoots `count` photons from the probe at the emission clusters and traces their change to
 /// the light (method.md, "Photon distribution"), then count / kSurroundPhotonDivisor photons
-/// of light from the real surroundings (their photographed radiance) at the same clusters.
+/// of light from the real surroundings at the same clusters (their photographed radiance where
+/// they are blocked, their radiance as the probe photons and rays change it where an object
+/// reflects it on).
 /// The result depends only on (seed, pass), not on the number of threads. Checks `cancel`
 /// between blocks of photons.
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,

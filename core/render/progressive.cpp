@@ -57,7 +57,7 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
         if (rmax <= 0) rmax = scene_->scale();
         r1_ = rmax * std::clamp(std::sqrt(100.0f / float(photons_per_pass_)), 0.004f, 0.2f);
     }
-    if (split_ && scene_->has_virtual()) direct_.emplace(*scene_);
+    if (scene_->has_virtual()) direct_.emplace(*scene_);
     ceiling_ = kErrorCeilingFactor * luminance_quantile(scene_->photo(), 0.999);
     plan_ = build_frame_plan(*scene_, split_);
     sums_ = TileAccumulator(plan_.width, plan_.height, kTile);
@@ -78,6 +78,8 @@ PhotonStats ProgressiveRenderer::build_pass_maps(int pass, PassMaps& maps, const
                                                  RenderStats* timing) const {
     PhotonPassOptions options;
     options.direct_by_rays = split_;
+    options.direct = direct_ ? &*direct_ : nullptr;
+    options.emitter_radius = radius_for_pass(pass);
     auto t = std::chrono::steady_clock::now();
     PhotonPass photons = trace_photons(*scene_, seed_, uint64_t(pass), photons_per_pass_, cancel, options);
     if (timing) timing->trace_s = seconds_since(t);
@@ -219,7 +221,7 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
                                       size_t& shaded, size_t& direct) const {
     out.assign(work.tiles.size() * kTilePixels, SampleResult{});
     std::atomic<size_t> count{0}, direct_count{0};
-    const Shader shader(*scene_, maps, diffuse_samples_, direct_ ? &*direct_ : nullptr);
+    const Shader shader(*scene_, maps, diffuse_samples_, split_ && direct_ ? &*direct_ : nullptr);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, work.tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return;
         size_t local = 0, local_direct = 0;

@@ -106,7 +106,7 @@ private:
     float r1_ = 0, alpha_ = 2.0f / 3.0f;
     bool split_ = true;
     bool low_discrepancy_ = true;
-    std::optional<DirectChange> direct_;  ///< present under the split estimator
+    std::optional<DirectChange> direct_;  ///< the direct change by rays (with virtual objects)
     FramePlan plan_;  ///< once per camera and geometry
     int diffuse_samples_ = 2;
     TileAccumulator sums_;
