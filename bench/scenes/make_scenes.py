@@ -141,7 +141,7 @@ def scenes(out):
     caustic = base_project(sun_probe_spec("sun-caustic.exr"))
     caustic["objects"] = [sphere("glass", [0, 0.45, 0], 0.45,
                                  {"type": "glass", "ior": 1.5, "tint": [1, 1, 1]})]
-    s["caustic"] = (caustic, None, (4096, 131072))
+    s["caustic"] = (caustic, None, (4096, 65536))
 
     mirrors = base_project(blender_probe("city", 35))
     mirrors["objects"] = [
@@ -153,7 +153,7 @@ def scenes(out):
     mirrors["real"][0]["albedo"] = [sum(c) / 2 for c in zip(*tiles)]
     detail = copy.deepcopy(mirrors)
     detail["real"][0]["albedo"] = {"texture": "tiles.png"}
-    s["mirrors"] = (mirrors, detail, (1024, 65536))
+    s["mirrors"] = (mirrors, detail, (1024, 32768))
 
     bleed = base_project(blender_probe("courtyard", 0))
     bleed["real"].append({"name": "wall", "shape": {"type": "box", "size": [3, 1.6, 0.1]},
@@ -161,7 +161,7 @@ def scenes(out):
     bleed["objects"] = [{"name": "knot", "shape": {"type": "mesh", "path": "knot.obj"},
                          "transform": {"translation": [0, 0.42, -0.2], "scale": [1.3, 1.3, 1.3]},
                          "material": diffuse([0.85, 0.12, 0.08])}]
-    s["bleeding"] = (bleed, None, (1024, 16384))
+    s["bleeding"] = (bleed, None, (1024, 8192))
 
     five = base_project(blender_probe("city", 35))
     five["camera"].update({"eye": [0, 3.2, 7.5], "target": [0, 0, 0], "vfov_deg": 55})
@@ -169,12 +169,12 @@ def scenes(out):
     five["objects"] = [sphere(f"ball {i}", [x, 0.15, z], 0.15, diffuse(c)) for i, (x, z, c) in enumerate([
         (-3.2, 0.5, [0.8, 0.3, 0.2]), (-1.5, -2.0, [0.3, 0.7, 0.3]), (0.2, 1.8, [0.2, 0.3, 0.8]),
         (1.9, -1.2, [0.8, 0.8, 0.3]), (3.4, 1.0, [0.7, 0.7, 0.7])])]
-    s["five_objects"] = (five, None, (1024, 32768))
+    s["five_objects"] = (five, None, (1024, 16384))
 
     big = copy.deepcopy(hard)
     big["real"].append({"name": "hills", "shape": {"type": "mesh", "path": "hills.ply"},
                         "transform": {"translation": [0, 0, -9]}, "albedo": [0.35, 0.45, 0.3]})
-    s["big_proxy"] = (big, None, (1024, 32768))
+    s["big_proxy"] = (big, None, (1024, 16384))
 
     noop = copy.deepcopy(hard)
     noop["objects"] = []
@@ -191,7 +191,7 @@ def scenes(out):
                         "transform": {"translation": [0, 0.68, -0.62], "rotation_deg": [90, 0, 0],
                                       "scale": [1.1, 1.1, 1.1]},
                         "material": diffuse([0.6, 0.6, 0.6])}]
-    s["knot_wall"] = (knot, None, (1024, 16384))
+    s["knot_wall"] = (knot, None, (1024, 8192))
 
     # A glass ball on a grey floor before a wall, under a probe with a sun.
     glass_wall = base_project(blender_probe("city", 35))
@@ -199,7 +199,7 @@ def scenes(out):
     glass_wall["real"].append({"name": "wall", "shape": {"type": "box", "size": [4, 2, 0.1]},
                                "transform": {"translation": [0, 1.0, -0.85]}, "albedo": [0.7, 0.7, 0.7]})
     glass_wall["objects"] = [sphere("glass", [0, 0.4, -0.3], 0.4, {"type": "glass", "ior": 1.5, "tint": [1, 1, 1]})]
-    s["glass_wall"] = (glass_wall, None, (4096, 131072))
+    s["glass_wall"] = (glass_wall, None, (4096, 65536))
 
     # Production framing: a 1920x1080 photograph in which the object covers about 5% of the
     # frame, so that skipping the pixels it cannot change counts.
@@ -209,7 +209,7 @@ def scenes(out):
     prod["real"][0]["albedo"] = [0.45, 0.43, 0.4]
     prod["objects"] = [sphere("clay", [0, 0.5, 0], 0.5, diffuse([0.7, 0.35, 0.2]))]
     prod["render"]["photons_per_pass"] = 300000
-    s["production"] = (prod, None, (64, 4096), (1920, 1080))
+    s["production"] = (prod, None, (64, 2048), (1920, 1080))
     return s
 
 

@@ -38,6 +38,7 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
     plan.direct_probability.assign(n, 0.0f);
     plan.splat_radius.assign(n, 0.0f);
     plan.tile_direct_max.assign(tiles, 0.0f);
+    plan.tile_splat_min.assign(tiles, INFINITY);
     plan.tile_has_object.assign(tiles, 0);
     const Image& photo = s.photo();
     double mean = 0;
@@ -108,6 +109,8 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
                 plan.direct_probability[i] = 1;  // shaded in full every pass anyway
             }
             plan.tile_direct_max[t] = std::max(plan.tile_direct_max[t], plan.direct_probability[i]);
+            if (plan.kind[i] == FramePlan::PixelKind::Real)
+                plan.tile_splat_min[t] = std::min(plan.tile_splat_min[t], plan.splat_radius[i]);
         }
     for (size_t t = 0; t < tiles; ++t)
         if (plan.tile_direct_max[t] > 0) plan.direct_tiles.push_back(uint32_t(t));

@@ -28,6 +28,7 @@ struct FramePlan {
     /// into the pixel (unbiased for the pixel's box filter, and less noisy than a gather over a
     /// smaller disk) instead of gathered by a camera ray.
     std::vector<float> splat_radius;
+    std::vector<float> tile_splat_min;       ///< per tile: its real pixels' smallest splat radius
     std::vector<float> tile_direct_max;      ///< per tile: its pixels' largest probability
     std::vector<uint8_t> tile_has_object;    ///< per tile: some pixel is NearVirtual
     std::vector<uint32_t> direct_tiles;      ///< tiles with a probability above 0

@@ -121,12 +121,18 @@ void ProgressiveRenderer::mark_photon_pixels(const PassMaps& maps, PassWork& wor
             const float rho = 1.25f * reach * focal / (z - reach) + 1.5f;
             const int x0 = std::max(0, int(std::floor(px.x - rho))), x1 = std::min(W - 1, int(std::ceil(px.x + rho)));
             const int y0 = std::max(0, int(std::floor(px.y - rho))), y1 = std::min(H - 1, int(std::ceil(px.y + rho)));
-            for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x) {
-                    const size_t i = size_t(y) * W + x;
-                    if (plan_.splat_radius[i] > maps.radius) continue;  // its photons are splatted
-                    std::atomic_ref<uint8_t>(work.photon_pixel[i]).store(1, std::memory_order_relaxed);
-                    std::atomic_ref<uint8_t>(photon_tile[size_t(plan_.tile_of(x, y))]).store(1, std::memory_order_relaxed);
+            for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
+                for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) {
+                    const size_t t = size_t(ty) * plan_.tiles_x + tx;
+                    // A tile whose real pixels all splat gathers nothing.
+                    if (plan_.tile_splat_min[t] > maps.radius) continue;
+                    std::atomic_ref<uint8_t>(photon_tile[t]).store(1, std::memory_order_relaxed);
+                    for (int y = std::max(y0, ty * kTile); y <= std::min(y1, ty * kTile + kTile - 1); ++y)
+                        for (int x = std::max(x0, tx * kTile); x <= std::min(x1, tx * kTile + kTile - 1); ++x) {
+                            const size_t i = size_t(y) * W + x;
+                            if (plan_.splat_radius[i] > maps.radius) continue;  // its photons are splatted
+                            std::atomic_ref<uint8_t>(work.photon_pixel[i]).store(1, std::memory_order_relaxed);
+                        }
                 }
         }
     });
