@@ -9,7 +9,7 @@
 #include <memory>
 #include <string>
 
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 #include "scene/project_io.h"
 
 namespace dp::bench {

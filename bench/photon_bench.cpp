@@ -15,7 +15,7 @@
 #include "render/photon_map.h"
 #include "render/photon_tracer.h"
 #include "render/progressive.h"
-#include "render/scattering.h"
+#include "assets/scattering.h"
 
 namespace dp {
 namespace {

@@ -5,7 +5,7 @@
 #include "geometry/mesh.h"
 #include "image/image_io.h"
 #include "probe/probe.h"
-#include "render/scene_checks.h"
+#include "assets/scene_checks.h"
 
 namespace dp::ui {
 

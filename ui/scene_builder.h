@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp::ui {
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "render/pass_renderer.h"
+#include "assets/pass_renderer.h"
 
 namespace dp::cli {
 

@@ -12,7 +12,7 @@
 
 #include "base/error.h"
 #include "image/image_io.h"
-#include "render/scene_checks.h"
+#include "assets/scene_checks.h"
 #include "scene/project_io.h"
 
 namespace dp::cli {

@@ -9,7 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include "image/image.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 #include "scene/project.h"
 
 namespace dp::cli {

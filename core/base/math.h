@@ -12,6 +12,12 @@ using glm::vec3;
 inline constexpr float kPi = std::numbers::pi_v<float>;
 inline constexpr float kInvPi = 1.0f / kPi;
 
+/// A ray in world space; `dir` is unit length.
+struct Ray {
+    vec3 org;
+    vec3 dir;
+};
+
 /// Rec. 709 luminance of linear RGB.
 inline float luminance(const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 inline double luminance(const dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }

@@ -11,12 +11,6 @@ struct Distortion {
     bool is_zero() const { return k1 == 0 && k2 == 0 && p1 == 0 && p2 == 0 && k3 == 0; }
 };
 
-/// A ray in world space; `dir` is unit length.
-struct Ray {
-    vec3 org;
-    vec3 dir;
-};
-
 /// Pinhole camera with OpenCV intrinsics, distortion and a world-to-camera pose
 /// (x_cam = R * x_world + t; camera looks along +Z, +X right, +Y down in the image).
 /// Continuous pixel coordinates put pixel (i, j)'s centre at (i, j), as OpenCV does.

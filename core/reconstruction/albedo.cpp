@@ -11,7 +11,7 @@
 #include "base/error.h"
 #include "base/rng.h"
 #include "base/sampling.h"
-#include "render/irradiance.h"
+#include "assets/irradiance.h"
 
 namespace dp {
 

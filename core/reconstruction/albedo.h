@@ -3,7 +3,7 @@
 #include <cstdint>
 
 #include "image/image.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

@@ -8,7 +8,7 @@
 #include "base/rng.h"
 #include "probe/probe.h"
 #include "reconstruction/proxies.h"
-#include "render/irradiance.h"
+#include "assets/irradiance.h"
 
 namespace dp {
 

@@ -8,7 +8,7 @@
 
 #include "base/rng.h"
 #include "base/sampling.h"
-#include "render/scattering.h"
+#include "assets/scattering.h"
 
 namespace dp {
 

@@ -4,7 +4,7 @@
 #include <functional>
 
 #include "image/image.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

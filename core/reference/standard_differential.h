@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "reference/path_tracer.h"
-#include "render/pass_renderer.h"
+#include "assets/pass_renderer.h"
 
 namespace dp {
 

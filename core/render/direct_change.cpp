@@ -6,7 +6,7 @@
 #include "base/sampling.h"
 #include "image/image_metrics.h"
 #include "render/photographed_radiance.h"
-#include "render/scattering.h"
+#include "assets/scattering.h"
 
 namespace dp {
 

@@ -3,7 +3,7 @@
 
 #include "base/rng.h"
 #include "probe/probe_bounds.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "render/direct_change.h"
-#include "render/scattering.h"
+#include "assets/scattering.h"
 
 namespace dp {
 

@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "base/math.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

@@ -1,6 +1,6 @@
 #include "render/photographed_radiance.h"
 
-#include "render/scattering.h"
+#include "assets/scattering.h"
 
 namespace dp {
 
@@ -19,16 +19,11 @@ ProbeLightSample sample_probe_light(const RenderScene& scene, const Hit& hit, co
 }
 
 vec3 photographed_radiance(const RenderScene& scene, const Hit& hit, const vec3& dir, Rng& rng) {
-    const Camera& cam = scene.camera();
-    const vec3 to_cam = cam.position() - hit.p;
-    vec2 px;
+    const vec3 to_cam = scene.camera().position() - hit.p;
+    // The viewer (looking along dir) and the camera on the same side of the surface.
     const bool same_side = glm::dot(hit.ng, to_cam) * glm::dot(hit.ng, -dir) > 0;
-    if (same_side && cam.project(hit.p, px) && cam.in_image(px)) {
-        const float dist = glm::length(to_cam);
-        const vec3 d = to_cam / dist;
-        if (!scene.occluded_real(Ray{scene.offset_origin(hit, d), d}, dist * (1 - 1e-4f)))
-            return scene.photo().bilinear(px.x, px.y);
-    }
+    vec2 px;
+    if (same_side && scene.camera_sees(hit.p, hit.ng, &px)) return scene.photo().bilinear(px.x, px.y);
     const ProbeLightSample ls = sample_probe_light(scene, hit, dir, rng);
     if (!ls.valid || scene.occluded_real(ls.ray)) return vec3(0);
     return ls.reflected;

@@ -1,6 +1,6 @@
 #pragma once
 #include "base/rng.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

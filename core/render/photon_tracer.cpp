@@ -9,7 +9,7 @@
 #include "base/rng.h"
 #include "base/sampling.h"
 #include "render/photographed_radiance.h"
-#include "render/scattering.h"
+#include "assets/scattering.h"
 
 namespace dp {
 

@@ -6,7 +6,7 @@
 #include "base/rng.h"
 #include "render/direct_change.h"
 #include "render/photon_map.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

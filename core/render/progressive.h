@@ -8,9 +8,9 @@
 #include "image/image.h"
 #include "render/direct_change.h"
 #include "render/frame_plan.h"
-#include "render/pass_renderer.h"
+#include "assets/pass_renderer.h"
 #include "render/photon_tracer.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 #include "render/shading.h"
 #include "render/tile_accumulator.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "render/photographed_radiance.h"
-#include "render/scattering.h"
+#include "assets/scattering.h"
 
 namespace dp {
 

@@ -3,7 +3,7 @@
 #include "base/sobol.h"
 #include "render/direct_change.h"
 #include "render/photon_map.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

@@ -4,7 +4,7 @@
 
 #include "probe/probe.h"
 #include "probe/synthetic_probe.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 #include "scene/project.h"
 
 namespace dp::test {

@@ -6,7 +6,7 @@
 
 #include "render/photon_tracer.h"
 #include "render/progressive.h"
-#include "render/scattering.h"
+#include "assets/scattering.h"
 #include "common/test_scenes.h"
 
 using namespace dp;

@@ -26,7 +26,7 @@
 #include "proxy_panel.h"
 #include "reconstruction/albedo.h"
 #include "reconstruction/probe_align.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 #include "document.h"
 #include "scene/project_io.h"
 #include "ui_test_support.h"

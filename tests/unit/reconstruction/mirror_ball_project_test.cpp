@@ -8,7 +8,7 @@
 #include "base/error.h"
 #include "image/image_io.h"
 #include "probe/probe.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 #include "scene/project_io.h"
 
 using namespace dp;

@@ -1,4 +1,4 @@
-#include "render/scattering.h"
+#include "assets/scattering.h"
 
 #include <algorithm>
 #include <cmath>

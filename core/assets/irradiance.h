@@ -2,7 +2,7 @@
 #include <vector>
 
 #include "base/rng.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

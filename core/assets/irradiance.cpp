@@ -1,4 +1,4 @@
-#include "render/irradiance.h"
+#include "assets/irradiance.h"
 
 #include <algorithm>
 #include <cmath>

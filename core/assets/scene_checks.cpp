@@ -1,4 +1,4 @@
-#include "render/scene_checks.h"
+#include "assets/scene_checks.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,8 +5,8 @@
 #include "base/error.h"
 #include "base/rng.h"
 #include "image/image_io.h"
-#include "render/irradiance.h"
-#include "render/render_scene.h"
+#include "assets/irradiance.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 
@@ -156,7 +156,7 @@ void RenderScene::compute_clusters() {
     for (EmissionCluster& c : clusters_) {
         for (int& o : c.objects) o = ids[o];
         c.radius *= 1.0f + 1e-4f;  // the disk must cover the silhouette despite rounding
-        c.radius += epsilon_;
+        c.radius += ray_epsilon();
     }
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

@@ -1,12 +1,11 @@
 #pragma once
-#include <embree3/rtcore.h>
-
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "camera/camera.h"
 #include "geometry/mesh.h"
+#include "geometry/scene_bvh.h"
 #include "image/image.h"
 #include "probe/probe.h"
 #include "probe/probe_lights.h"
@@ -49,12 +48,8 @@ struct Surface {
     bool transmits() const { return is_virtual && material.kind == Material::Kind::Glass; }
 };
 
-/// A ray-surface intersection. `ng` is the unit geometric normal as stored (not flipped);
-/// `ns` the shading normal, flipped to the same side as `ng`.
-struct Hit {
-    float t = 0;
-    vec3 p{0}, ng{0}, ns{0};
-    vec2 uv{0};
+/// A ray-surface intersection (ShapeHit) and the surface it found.
+struct Hit : ShapeHit {
     const Surface* surface = nullptr;
     explicit operator bool() const { return surface != nullptr; }
 };
@@ -66,13 +61,11 @@ struct EmissionCluster {
     std::vector<int> objects;
 };
 
-/// The scene compiled for rendering: real and virtual geometry in separate Embree BVHs (a
-/// top-level scene instances both for queries against everything), the photo, the probe, the
-/// camera, and the emission clusters.
+/// The scene compiled for rendering: the surfaces of real and virtual geometry and their BVHs
+/// (SceneBVH), the photo, the probe, the camera, and the emission clusters.
 class RenderScene {
 public:
     RenderScene(const Project& project, SceneAssets assets);
-    ~RenderScene();
     RenderScene(const RenderScene&) = delete;
     RenderScene& operator=(const RenderScene&) = delete;
 
@@ -85,7 +78,6 @@ public:
     const SceneAssets& assets() const { return assets_; }
     const std::vector<EmissionCluster>& clusters() const { return clusters_; }
     bool has_virtual() const { return !clusters_.empty(); }
-    bool has_specular() const { return has_specular_; }
     /// Some virtual object transmits light (glass): its shadow and the light through it are
     /// left to photons together (docs/method-notes.md, "The split").
     bool has_transmissive() const { return has_transmissive_; }
@@ -93,8 +85,8 @@ public:
     /// Characteristic length (metres) from the virtual objects and the camera (the real proxies
     /// and the camera when there is no virtual object); ray offsets scale with it so millimetre
     /// and kilometre scenes behave alike.
-    float scale() const { return scale_; }
-    float ray_epsilon() const { return epsilon_; }
+    float scale() const { return bvh_->scale(); }
+    float ray_epsilon() const { return bvh_->epsilon(); }
 
     Hit intersect_real(const Ray& ray, float tmax = INFINITY) const;
     Hit intersect_virtual(const Ray& ray, float tmax = INFINITY) const;
@@ -109,43 +101,38 @@ public:
     Ray camera_ray(float px, float py) const;
 
     /// Origin for a new ray leaving `hit` towards `dir`, offset off the surface.
-    vec3 offset_origin(const Hit& hit, const vec3& dir) const;
+    vec3 offset_origin(const Hit& hit, const vec3& dir) const { return bvh_->offset_origin(hit.p, hit.ng, dir); }
+
+    /// True if the camera sees real point `p` (geometric normal `ng`) directly: on the side of
+    /// the surface facing the camera, inside the frame, and not hidden by real geometry. The
+    /// photograph shows the point there, at the returned pixel.
+    bool camera_sees(const vec3& p, const vec3& ng, vec2* pixel = nullptr) const;
 
     /// Replaces virtual materials in place (no BVH rebuild). Shapes and transforms must match.
     void update_materials(const Project& project);
 
     const std::vector<Surface>& real_surfaces() const { return real_surfaces_; }
-    const std::vector<Surface>& virtual_surfaces() const { return virtual_surfaces_; }
 
 private:
     /// Replaces NaN/Inf in the photo and textures by 0, counting them in assets_.
     void sanitize_images();
-    void build_real();
-    void build_virtual();
+    /// The world-space surfaces of project.real and project.objects, and their shapes.
+    void place_surfaces();
     void compute_scale();
     void compute_clusters();
     void estimate_albedos();
-    void build_top_level();
-    Hit finish_hit(const RTCRayHit& rh, const std::vector<Surface>& surfaces, const Ray& ray) const;
-    Hit intersect_in(RTCScene scene, const std::vector<Surface>& surfaces, const Ray& ray,
-                     float tmax) const;
-    bool occluded_in(RTCScene scene, const Ray& ray, float tmax) const;
-    unsigned attach(RTCScene scene, const Surface& s, const TriangleMesh* mesh);
+    Hit to_hit(const ShapeHit& h) const;
 
     Project project_;
     SceneAssets assets_;
     Probe probe_;
     ProbeLights lights_;  ///< refers to probe_
     Camera camera_;
-    RTCDevice device_ = nullptr;
-    static constexpr unsigned kRealInstance = 0, kVirtualInstance = 1;
-    RTCScene real_ = nullptr, virtual_ = nullptr;
-    RTCScene all_ = nullptr;  ///< instances real_ and virtual_: one traversal for both
     std::vector<Surface> real_surfaces_, virtual_surfaces_;
     std::vector<TriangleMesh> real_world_meshes_, virtual_world_meshes_;
+    std::unique_ptr<SceneBVH> bvh_;
     std::vector<EmissionCluster> clusters_;
-    bool has_specular_ = false, has_transmissive_ = false;
-    float scale_ = 1, epsilon_ = 1e-4f;
+    bool has_transmissive_ = false;
 };
 
 /// Groups virtual objects into bounding spheres, merging two when one sphere around both has a

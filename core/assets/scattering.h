@@ -1,7 +1,7 @@
 #pragma once
 #include "base/math.h"
 #include "base/rng.h"
-#include "render/render_scene.h"
+#include "assets/render_scene.h"
 
 namespace dp {
 

@@ -1,0 +1,176 @@
+#include "assets/render_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace dp {
+
+namespace {
+
+bool is_uniform(const vec3& s) {
+    return std::abs(s.x - s.y) <= 1e-6f * std::abs(s.x) && std::abs(s.x - s.z) <= 1e-6f * std::abs(s.x);
+}
+
+/// Places a proxy's or object's shape in the world: an exact sphere when the scale is
+/// uniform, otherwise a triangle mesh stored in `mesh_slot`.
+void place_shape(const Shape& shape, const Transform& transform, const TriangleMesh* loaded, Surface& s,
+                 TriangleMesh& mesh_slot) {
+    glm::mat4 m = transform.matrix();
+    if (shape.kind == Shape::Kind::Sphere && is_uniform(transform.scale)) {
+        s.analytic_sphere = true;
+        s.sphere_center = vec3(m * glm::vec4(0, 0, 0, 1));
+        s.sphere_radius = shape.radius * std::abs(transform.scale.x);
+        return;
+    }
+    TriangleMesh mesh;
+    switch (shape.kind) {
+        case Shape::Kind::Plane: mesh = make_plane(shape.size.x, shape.size.z); break;
+        case Shape::Kind::Box: mesh = make_box(shape.size); break;
+        case Shape::Kind::Sphere: mesh = make_uv_sphere(shape.radius); break;
+        case Shape::Kind::Mesh:
+            if (loaded) mesh = *loaded;
+            break;
+    }
+    mesh.transform(m);
+    mesh_slot = std::move(mesh);
+    s.mesh = &mesh_slot;
+}
+
+PlacedShape placed(const Surface& s, bool present) {
+    PlacedShape p;
+    p.sphere = s.analytic_sphere;
+    p.center = s.sphere_center;
+    p.radius = s.sphere_radius;
+    p.mesh = s.mesh;
+    p.present = present;
+    p.needs_uv = s.texture != nullptr;
+    return p;
+}
+
+}  // namespace
+
+vec3 Surface::reflectance_at(const vec2& uv) const {
+    vec3 rho = albedo;
+    if (texture && !texture->empty()) {
+        float u = uv.x - std::floor(uv.x), v = uv.y - std::floor(uv.y);
+        rho = texture->bilinear(u * texture->width() - 0.5f, v * texture->height() - 0.5f);
+    }
+    return glm::clamp(rho, vec3(0.0f), vec3(0.98f));
+}
+
+RenderScene::RenderScene(const Project& project, SceneAssets assets)
+    : project_(project), assets_(std::move(assets)) {
+    if (assets_.photo.empty()) throw std::invalid_argument("RenderScene: empty photograph");
+    sanitize_images();
+    camera_ = project_.camera.build(assets_.photo.width(), assets_.photo.height());
+    probe_ = Probe(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg), project_.probe.intensity);
+    lights_ = ProbeLights(probe_);
+    place_surfaces();
+    std::vector<PlacedShape> real, virt;
+    for (const Surface& s : real_surfaces_) real.push_back(placed(s, true));
+    for (size_t i = 0; i < virtual_surfaces_.size(); ++i)
+        virt.push_back(placed(virtual_surfaces_[i], project_.objects[i].visible));
+    bvh_ = std::make_unique<SceneBVH>(real, virt);
+    compute_scale();  // epsilons for everything after
+    compute_clusters();
+    estimate_albedos();
+}
+
+void RenderScene::place_surfaces() {
+    const auto& objs = project_.objects;
+    virtual_world_meshes_.resize(objs.size());
+    for (size_t i = 0; i < objs.size(); ++i) {
+        const VirtualObject& o = objs[i];
+        Surface s;
+        s.is_virtual = true;
+        s.index = int(i);
+        s.material = o.material;
+        s.albedo = o.material.albedo.rgb;
+        if (i < assets_.object_textures.size() && !assets_.object_textures[i].empty())
+            s.texture = &assets_.object_textures[i];
+        const TriangleMesh* loaded = i < assets_.object_meshes.size() ? &assets_.object_meshes[i] : nullptr;
+        place_shape(o.shape, o.transform, loaded, s, virtual_world_meshes_[i]);
+        if (s.transmits()) has_transmissive_ = true;
+        virtual_surfaces_.push_back(s);
+    }
+    const auto& real = project_.real;
+    real_world_meshes_.resize(real.size());
+    for (size_t i = 0; i < real.size(); ++i) {
+        const RealProxy& r = real[i];
+        Surface s;
+        s.index = int(i);
+        s.albedo = r.albedo.rgb;
+        if (i < assets_.real_textures.size() && !assets_.real_textures[i].empty())
+            s.texture = &assets_.real_textures[i];
+        const TriangleMesh* loaded = i < assets_.real_meshes.size() ? &assets_.real_meshes[i] : nullptr;
+        place_shape(r.shape, r.transform, loaded, s, real_world_meshes_[i]);
+        real_surfaces_.push_back(s);
+    }
+}
+
+void RenderScene::compute_scale() {
+    // The virtual objects' extent and their distance to the camera. Without a virtual object
+    // (a synthetic photograph) the real proxies' extent stands in: offsets must never fall to
+    // the float rounding of the points alone.
+    vec3 lo = camera_.position(), hi = lo;
+    auto grow = [&](vec3 a, vec3 b) {
+        lo = glm::min(lo, a);
+        hi = glm::max(hi, b);
+    };
+    bool any = false;
+    for (const Surface& s : virtual_surfaces_) {
+        vec3 a, b;
+        if (s.analytic_sphere) {
+            grow(s.sphere_center - s.sphere_radius, s.sphere_center + s.sphere_radius);
+            any = true;
+        } else if (s.mesh && s.mesh->bounds(a, b)) {
+            grow(a, b);
+            any = true;
+        }
+    }
+    vec3 a, b;
+    if (!any && bvh_->real_bounds(a, b)) grow(a, b);
+    bvh_->set_scale(glm::length(hi - lo));
+}
+
+void RenderScene::update_materials(const Project& project) {
+    if (project.objects.size() != project_.objects.size())
+        throw std::invalid_argument("update_materials: object count changed");
+    for (size_t i = 0; i < project.objects.size(); ++i) {
+        project_.objects[i].material = project.objects[i].material;
+        virtual_surfaces_[i].material = project.objects[i].material;
+        virtual_surfaces_[i].albedo = project.objects[i].material.albedo.rgb;
+    }
+    has_transmissive_ = std::any_of(virtual_surfaces_.begin(), virtual_surfaces_.end(),
+                                    [](const Surface& s) { return s.transmits(); });
+}
+
+Hit RenderScene::to_hit(const ShapeHit& h) const {
+    Hit hit;
+    static_cast<ShapeHit&>(hit) = h;
+    if (h) hit.surface = h.is_virtual ? &virtual_surfaces_[size_t(h.index)] : &real_surfaces_[size_t(h.index)];
+    return hit;
+}
+
+Hit RenderScene::intersect_real(const Ray& ray, float tmax) const { return to_hit(bvh_->intersect_real(ray, tmax)); }
+Hit RenderScene::intersect_virtual(const Ray& ray, float tmax) const { return to_hit(bvh_->intersect_virtual(ray, tmax)); }
+Hit RenderScene::intersect(const Ray& ray, float tmax) const { return to_hit(bvh_->intersect(ray, tmax)); }
+bool RenderScene::occluded_real(const Ray& ray, float tmax) const { return bvh_->occluded_real(ray, tmax); }
+bool RenderScene::occluded(const Ray& ray, float tmax) const { return bvh_->occluded(ray, tmax); }
+
+Ray RenderScene::camera_ray(float px, float py) const { return bvh_->near_clipped(camera_.generate_ray(px, py)); }
+
+bool RenderScene::camera_sees(const vec3& p, const vec3& ng, vec2* pixel) const {
+    const vec3 to_cam = camera_.position() - p;
+    vec2 px;
+    if (glm::dot(ng, to_cam) == 0 || !camera_.project(p, px) || !camera_.in_image(px)) return false;
+    const float dist = glm::length(to_cam);
+    const vec3 d = to_cam / dist;
+    const vec3 n = glm::dot(ng, d) > 0 ? ng : -ng;
+    if (bvh_->occluded_real(Ray{bvh_->offset_origin(p, n, d), d}, dist * (1 - 1e-4f))) return false;
+    if (pixel) *pixel = px;
+    return true;
+}
+
+}  // namespace dp
