@@ -20,6 +20,19 @@ inline std::string sample_project_path() {
     return std::string(DP_SOURCE_DIR) + "/resources/sample/sample.json";
 }
 
+/// The sample project's render settings (the scene does not keep them).
+inline const RenderSettings& sample_settings() {
+    static const RenderSettings settings = load_project(sample_project_path()).render;
+    return settings;
+}
+
+/// The sample's render settings with another photon count (and seed).
+inline RenderSettings sample_settings(int64_t photons_per_pass) {
+    RenderSettings s = sample_settings();
+    s.photons_per_pass = photons_per_pass;
+    return s;
+}
+
 /// The sample scene exactly as the CLI loads it, built once per process.
 inline std::shared_ptr<const RenderScene> sample_scene() {
     static std::shared_ptr<const RenderScene> scene = [] {
@@ -48,8 +61,8 @@ inline benchmark::Counter rate(double count) {
 
 /// Threads for a benchmark argument: 0 means the project's setting (0 there: all cores), as
 /// RenderSession does; anything else is an explicit count.
-inline int arena_threads(const RenderScene& scene, int64_t arg) {
-    int t = arg > 0 ? int(arg) : scene.project().render.threads;
+inline int arena_threads(int64_t arg) {
+    int t = arg > 0 ? int(arg) : sample_settings().threads;
     return t > 0 ? t : tbb::task_arena::automatic;
 }
 

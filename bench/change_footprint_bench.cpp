@@ -47,12 +47,12 @@ void BM_WorkFollowsTheChange(benchmark::State& state) {
     const float radius = float(state.range(0)) * 1e-3f;
     const int height = int(state.range(1)), width = height * 16 / 9;
     auto scene = ball_scene(radius, width, height);
-    tbb::task_arena arena(bench::arena_threads(*scene, 0));
+    tbb::task_arena arena(bench::arena_threads(0));
     std::vector<double> pass_s, trace_s, shaded, tiles, direct, shade_s, mark_s;
     double skipped = 0;
     for (auto _ : state) {
         arena.execute([&] {
-            ProgressiveRenderer r(scene, kPhotons, scene->project().render.seed);
+            ProgressiveRenderer r(scene, bench::sample_settings(kPhotons));
             for (int p = 0; p < kPasses; ++p) {
                 const double before = r.stats().seconds;
                 r.render_pass();

@@ -32,10 +32,6 @@ std::shared_ptr<const RenderScene> scene_1080p() {
     return scene;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // ProgressiveRenderer::render_pass for pass 1 (the largest gather radius, so the fewest skipped
 // pixels): photon tracing, both map builds, the gather over the image, accumulation. Each
 // repetition uses a fresh renderer; its per-camera pixel cache is built outside the timing.
@@ -43,11 +39,10 @@ void BM_OnePass1080p(benchmark::State& state) {
     // Report this benchmark's own peak, not that of whatever ran earlier in the process.
     const bool reset = bench::reset_peak_rss();
     auto scene = scene_1080p();
-    tbb::task_arena arena(bench::arena_threads(*scene, 0));
-    const uint64_t seed = scene->project().render.seed;
+    tbb::task_arena arena(bench::arena_threads(0));
     std::unique_ptr<ProgressiveRenderer> renderer;
     arena.execute([&] {
-        renderer = std::make_unique<ProgressiveRenderer>(scene, kPhotonsPerPass, seed);
+        renderer = std::make_unique<ProgressiveRenderer>(scene, bench::sample_settings(kPhotonsPerPass));
     });
     for (auto _ : state) arena.execute([&] { renderer->render_pass(); });
     const RenderStats& st = renderer->stats();
@@ -72,14 +67,13 @@ BENCHMARK(BM_OnePass1080p)
 // adding them up (with the convergence check).
 void BM_OnePass1080pPhases(benchmark::State& state) {
     auto scene = scene_1080p();
-    tbb::task_arena arena(bench::arena_threads(*scene, 0));
-    const uint64_t seed = scene->project().render.seed;
+    tbb::task_arena arena(bench::arena_threads(0));
     RenderStats sum;
     double tiles = 0, pixels = 0;
     for (auto _ : state) {
         arena.execute([&] {
             state.PauseTiming();
-            ProgressiveRenderer r(scene, kPhotonsPerPass, seed);
+            ProgressiveRenderer r(scene, bench::sample_settings(kPhotonsPerPass));
             state.ResumeTiming();
             r.render_pass();
             const RenderStats& st = r.stats();

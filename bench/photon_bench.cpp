@@ -59,7 +59,7 @@ void set_thread_counter(benchmark::State& state, tbb::task_arena& arena) {
 void BM_EmbreeRaysSampleScene(benchmark::State& state) {
     auto scene = bench::sample_scene();
     const std::vector<Ray>& rays = sample_rays();
-    tbb::task_arena arena(bench::arena_threads(*scene, state.range(0)));
+    tbb::task_arena arena(bench::arena_threads(state.range(0)));
     const int64_t n = int64_t(rays.size()), blocks = (n + kRayBlock - 1) / kRayBlock;
     std::atomic<uint64_t> hits_virtual{0}, hits_real{0};
     auto body = [&](const tbb::blocked_range<int64_t>& r) {
@@ -90,8 +90,8 @@ BENCHMARK(BM_EmbreeRaysSampleScene)->ArgName("threads")->Arg(0)->Arg(1)->Apply(r
 // its ratio to (a)'s rays_per_s is the tracer's overhead over raw Embree.
 void BM_PhotonTracingSampleScene(benchmark::State& state) {
     auto scene = bench::sample_scene();
-    const int64_t count = scene->project().render.photons_per_pass;
-    tbb::task_arena arena(bench::arena_threads(*scene, state.range(0)));
+    const int64_t count = bench::sample_settings().photons_per_pass;
+    tbb::task_arena arena(bench::arena_threads(state.range(0)));
     PhotonStats total;
     uint64_t pass = 0;
     for (auto _ : state) {
@@ -126,9 +126,11 @@ const SamplePhotons& sample_photons() {
     static const SamplePhotons s = [] {
         auto scene = bench::sample_scene();
         SamplePhotons out;
-        ProgressiveRenderer renderer(scene, scene->project().render.photons_per_pass, kSeed);
+        RenderSettings settings = bench::sample_settings();
+        settings.seed = kSeed;
+        ProgressiveRenderer renderer(scene, settings);
         out.radius = renderer.radius_for_pass(1);
-        out.pass = trace_photons(*scene, kSeed, 1, scene->project().render.photons_per_pass);
+        out.pass = trace_photons(*scene, kSeed, 1, bench::sample_settings().photons_per_pass);
         return out;
     }();
     return s;
@@ -140,7 +142,7 @@ const SamplePhotons& sample_photons() {
 void BM_PhotonMapBuild(benchmark::State& state) {
     auto scene = bench::sample_scene();
     const SamplePhotons& s = sample_photons();
-    tbb::task_arena arena(bench::arena_threads(*scene, state.range(0)));
+    tbb::task_arena arena(bench::arena_threads(state.range(0)));
     for (auto _ : state) {
         state.PauseTiming();
         std::vector<Photon> photons = s.pass.real;
@@ -177,7 +179,7 @@ void BM_Gather(benchmark::State& state) {
             if (hit && !hit.surface->is_virtual && map.reaches(hit.p))
                 queries.push_back({hit.p, facing_normal(hit.ng, ray.dir)});
         }
-    tbb::task_arena arena(bench::arena_threads(*scene, state.range(0)));
+    tbb::task_arena arena(bench::arena_threads(state.range(0)));
     const int64_t n = int64_t(queries.size());
     auto body = [&](const tbb::blocked_range<int64_t>& r) {
         dvec3 sum(0);

@@ -18,8 +18,7 @@ Change classify(const Project& a, const Project& b) {
     if (a.photo != b.photo || a.probe.path != b.probe.path || a.probe.format != b.probe.format ||
         a.base_dir != b.base_dir)
         return Change::Assets;
-    if (!(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real ||
-        a.render != b.render || a.objects.size() != b.objects.size())
+    if (!(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real || a.objects.size() != b.objects.size())
         return Change::Scene;
     bool material = false;
     for (size_t i = 0; i < a.objects.size(); ++i) {
@@ -30,7 +29,8 @@ Change classify(const Project& a, const Project& b) {
             return Change::Scene;
         material |= !(ma == mb);
     }
-    return material ? Change::Material : Change::None;
+    if (material) return Change::Material;
+    return a.render != b.render ? Change::Settings : Change::None;
 }
 
 VirtualObject make_object(Shape::Kind kind, const vec3& position, const std::string& name) {

@@ -9,8 +9,9 @@ namespace dp::ui {
 /// What an edit changed, from cheapest to dearest for the renderer.
 enum class Change {
     None,      ///< names only: nothing to render
+    Settings,  ///< render settings only: the session restarts with them, nothing is rebuilt
     Material,  ///< virtual materials only: RenderScene::update_materials, no BVH rebuild
-    Scene,     ///< geometry, transforms, camera, probe pose or render settings: rebuild the scene
+    Scene,     ///< geometry, transforms, camera or probe pose: rebuild the scene
     Assets,    ///< photo or probe file: reload images, then rebuild
 };
 

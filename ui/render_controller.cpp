@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/preview.h"
 #include "scene_builder.h"
 
 namespace dp::ui {
@@ -157,29 +158,23 @@ void RenderController::handle(const Request& r) {
     Timings timings;
     const Project& p = r.project;
     Change change = haveScenes_ ? classify(built_, p) : Change::Assets;
-    if (change != Change::None && change != Change::Material) builder_->load(p);
+    if (change >= Change::Scene) builder_->load(p);
 
     const Image& photo = *builder_->photo();
     QSize full = r.size.isValid() ? r.size : QSize(photo.width(), photo.height());
     if (full != fullSize_) change = std::max(change, Change::Scene);
-    // The quick pass's cost is mostly per pixel: keep it under kQuickPixels whatever the size.
-    constexpr double kQuickPixels = 100000;
-    const double scale =
-        std::min(r.previewScale, std::sqrt(kQuickPixels / double(full.width() * full.height())));
-    const QSize quick(std::max(1, int(full.width() * scale)),
-                      std::max(1, int(full.height() * scale)));
-
-    RenderSettings quickSettings = p.render;
-    quickSettings.photons_per_pass =
-        std::max<int64_t>(2000, int64_t(double(p.render.photons_per_pass) * r.previewFraction));
-    quickSettings.time_budget_s = 0;
-    quickSettings.passes = 1 << 20;  // refines at quick size until replaced
-    if (quickSettings.initial_radius) *quickSettings.initial_radius *= 2.0f;
+    PreviewPolicy policy;
+    policy.photon_fraction = r.previewFraction;
+    policy.scale = r.previewScale;
+    int quick_w = 0, quick_h = 0;
+    policy.size(full.width(), full.height(), quick_w, quick_h);
+    const QSize quick(quick_w, quick_h);
+    const RenderSettings quickSettings = policy.settings(p.render);
 
     if (change >= Change::Scene) {
         full_.reset();
         t0 = std::chrono::steady_clock::now();
-        quick_ = builder_->build(p, quick.width(), quick.height(), quickSettings);
+        quick_ = builder_->build(p, quick.width(), quick.height());
         timings.buildQuick = ms_since(t0);
         ++scenesBuilt_;
         fullSize_ = full;
@@ -193,7 +188,7 @@ void RenderController::handle(const Request& r) {
     built_ = p;
     haveScenes_ = true;
 
-    auto run = [&](std::shared_ptr<RenderScene> scene, bool preview) {
+    auto run = [&](std::shared_ptr<RenderScene> scene, const RenderSettings& settings, bool preview) {
         session_->cancel();
         t0 = std::chrono::steady_clock::now();
         session_->wait();
@@ -208,10 +203,10 @@ void RenderController::handle(const Request& r) {
             if (preview) timings_ = timings;
             runStart_ = std::chrono::steady_clock::now();
         }
-        session_->start(std::move(scene));
+        session_->start(std::move(scene), settings);
     };
 
-    run(quick_, true);
+    run(quick_, quickSettings, true);
     if (r.interactive) return;
     {
         // The quick pass shows the edit at once; the full-size scene is built meanwhile.
@@ -223,13 +218,13 @@ void RenderController::handle(const Request& r) {
     if (superseded()) return;
     if (!full_) {
         t0 = std::chrono::steady_clock::now();
-        full_ = builder_->build(p, full.width(), full.height(), p.render);
+        full_ = builder_->build(p, full.width(), full.height());
         ++scenesBuilt_;
         std::lock_guard<std::mutex> lock(mutex_);
         timings_.buildFull = ms_since(t0);
     }
     if (superseded()) return;
-    run(full_, false);
+    run(full_, p.render, false);
 }
 
 void RenderController::deliver() {

@@ -1,41 +1,36 @@
 #pragma once
-// Builds RenderScenes for the studio: the photo and probe are loaded once and kept, meshes are
-// kept by path, and a scene can be built at another resolution than the photo's (previews).
-#include <map>
+// Builds RenderScenes for the studio through the core's asset library: files are decoded once
+// and kept; a scene can be built at another resolution than the photo's (previews).
 #include <memory>
 #include <string>
+#include <vector>
 
-#include "assets/render_scene.h"
+#include "assets/asset_library.h"
 
 namespace dp::ui {
 
-/// Resamples an image bilinearly to width x height (pixel centres mapped onto each other).
-Image resample(const Image& image, int width, int height);
-
-/// The project's camera for an image of `width` x `height` when the photo is `photo_w` x
-/// `photo_h`: intrinsics (in pixels) are scaled; a look-at camera follows the size by itself.
-CameraSpec scaled_camera(const CameraSpec& camera, int photo_w, int photo_h, int width, int height);
-
-/// Not thread-safe: one builder per thread.
+/// Not thread-safe: one builder per thread (the library under it is shared and thread-safe).
 class SceneBuilder {
 public:
+    explicit SceneBuilder(std::shared_ptr<AssetLibrary> library = std::make_shared<AssetLibrary>())
+        : library_(std::move(library)) {}
+
     /// Loads what `project` names, reusing what is already loaded. Throws InputError.
     void load(const Project& project);
-    /// Full-resolution photo, after the project's photo exposure (as load_assets applies it).
+    /// Full-resolution photo, after the project's photo exposure.
     const std::shared_ptr<const Image>& photo() const { return photo_; }
+    /// What loading the project's files found (NaN/Inf replaced, an LDR probe, ...).
+    const std::vector<std::string>& warnings() const { return warnings_; }
 
-    /// A scene for `project` with its photo resampled to `width` x `height` (0: photo size) and
-    /// `render` replacing the project's render settings. Call load() first.
-    std::shared_ptr<RenderScene> build(const Project& project, int width, int height,
-                                       const RenderSettings& render);
+    /// A scene for `project` with its photo resampled to `width` x `height` (0: photo size).
+    /// Call load() first.
+    std::shared_ptr<RenderScene> build(const Project& project, int width, int height);
+
+    AssetLibrary& library() { return *library_; }
 
 private:
-    std::string photo_key_, probe_key_;
+    std::shared_ptr<AssetLibrary> library_;
     std::shared_ptr<const Image> photo_;
-    std::map<std::pair<int, int>, Image> resampled_;  ///< the photo at the sizes built so far
-    Image probe_;
-    std::map<std::string, TriangleMesh> meshes_;
-    std::map<std::string, Image> textures_;
     std::vector<std::string> warnings_;
 };
 

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <map>
 #include <nlohmann/json.hpp>
 
 #include "base/error.h"
@@ -38,8 +37,7 @@ struct BenchOptions {
 struct BenchScene {
     std::string name, dir;
     std::shared_ptr<RenderScene> scene;
-    /// The same scene under a variant's render settings (differential-photons, ...), on demand.
-    std::map<std::string, std::shared_ptr<RenderScene>> variants;
+    RenderSettings settings;
     Image truth, alpha;
     std::vector<bool> changed, on_objects, on_real;  ///< changed pixels; split by what they see
     float ceiling = 0;  ///< errors are measured on values clamped here
@@ -51,7 +49,9 @@ BenchScene load_bench_scene(const std::string& dir) {
     b.name = fs::path(dir).filename().string();
     if (b.name.empty()) b.name = fs::path(dir).parent_path().filename().string();
     b.dir = dir;
-    b.scene = load_scene((fs::path(dir) / "scene.json").string());
+    LoadedScene loaded = load_scene((fs::path(dir) / "scene.json").string());
+    b.scene = loaded.scene;
+    b.settings = loaded.settings;
     const std::string ta = (fs::path(dir) / "truth-a.exr").string(), tb = (fs::path(dir) / "truth-b.exr").string();
     for (const std::string& t : {ta, tb})
         if (!fs::exists(t))
@@ -87,10 +87,10 @@ BenchScene load_bench_scene(const std::string& dir) {
 }
 
 /// Variants of our method that turn one of its parts off, to show what each buys.
-std::function<void(Project&)> variant_edit(const std::string& method) {
-    if (method == "differential-photons") return [](Project& p) { p.render.estimator = Estimator::Photons; };
-    if (method == "differential-random") return [](Project& p) { p.render.low_discrepancy = false; };
-    if (method == "differential-uniform") return [](Project& p) { p.render.adaptive_threshold = 0; };
+std::function<void(RenderSettings&)> variant_edit(const std::string& method) {
+    if (method == "differential-photons") return [](RenderSettings& s) { s.estimator = Estimator::Photons; };
+    if (method == "differential-random") return [](RenderSettings& s) { s.low_discrepancy = false; };
+    if (method == "differential-uniform") return [](RenderSettings& s) { s.adaptive_threshold = 0; };
     return {};
 }
 
@@ -99,17 +99,13 @@ bool is_differential(const std::string& method) { return method == "differential
 
 std::unique_ptr<PassRenderer> make_renderer(const std::string& method, BenchScene& b) {
     using Sampling = StandardDifferentialRenderer::Sampling;
-    std::shared_ptr<const RenderScene> s = b.scene;
-    if (const auto edit = variant_edit(method)) {
-        auto& slot = b.variants[method];
-        if (!slot) slot = load_scene((fs::path(b.dir) / "scene.json").string(), edit);
-        s = slot;
-    }
-    if (method == "standard") return std::make_unique<StandardDifferentialRenderer>(std::move(s), Sampling::Independent);
+    RenderSettings settings = b.settings;
+    if (const auto edit = variant_edit(method)) edit(settings);
+    if (method == "standard")
+        return std::make_unique<StandardDifferentialRenderer>(b.scene, settings, Sampling::Independent);
     if (method == "standard-correlated")
-        return std::make_unique<StandardDifferentialRenderer>(std::move(s), Sampling::Correlated);
-    const RenderSettings& rs = s->project().render;
-    return std::make_unique<ProgressiveRenderer>(s, rs.photons_per_pass, rs.seed);
+        return std::make_unique<StandardDifferentialRenderer>(b.scene, settings, Sampling::Correlated);
+    return std::make_unique<ProgressiveRenderer>(b.scene, settings);
 }
 
 

@@ -143,8 +143,9 @@ struct AlbedoOptions {
 
 void run_albedo(const AlbedoOptions& o) {
     with_threads(o.threads, [&] {
-        auto scene = load_scene(o.project);
-        Project p = scene->project();
+        LoadedScene loaded = load_scene(o.project);
+        auto scene = loaded.scene;
+        Project p = loaded.project;
         // Which proxies: the named ones, else every one that has a texture layout.
         std::vector<size_t> chosen;
         for (const std::string& want : o.proxies) {

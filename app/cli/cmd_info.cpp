@@ -90,8 +90,9 @@ void print_render_settings(const RenderSettings& r) {
 }
 
 int run_info(const std::string& project_path) {
-    auto scene = load_scene(project_path);
-    const Project& p = scene->project();
+    LoadedScene loaded = load_scene(project_path);
+    auto scene = loaded.scene;
+    const Project& p = loaded.project;
     const SceneAssets& a = scene->assets();
     std::printf("project: %s\n", project_path.c_str());
     std::printf("photo: '%s' -> %s, %s, exposure %g stops\n", p.photo.path.c_str(),

@@ -23,11 +23,12 @@ struct ReferenceCliOptions {
 int run_reference(const ReferenceCliOptions& o) {
     check_output_path(o.output, "--output");
     return with_threads(o.threads, [&]() -> int {
-        auto scene = load_scene(o.project);
+        LoadedScene loaded = load_scene(o.project);
+        auto scene = loaded.scene;
         ReferenceOptions ro;
         ro.samples_per_pixel = o.spp;
-        ro.max_depth = scene->project().render.max_depth;
-        ro.seed = o.seed_opt->count() ? o.seed : scene->project().render.seed;
+        ro.max_depth = loaded.settings.max_depth;
+        ro.seed = o.seed_opt->count() ? o.seed : loaded.settings.seed;
         ro.include_virtual = !o.real_only;
 
         install_interrupt_handler();

@@ -84,8 +84,9 @@ int run_render(const RenderOptions& o) {
         warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
 
     return with_threads(o.threads, [&]() -> int {
-        auto scene = load_scene(o.project, [&](Project& p) { apply_overrides(o, p); });
-        if (debug) return debug_pixel(scene, o.project, px, py, o.pass);
+        LoadedScene loaded = load_scene(o.project, [&](Project& p) { apply_overrides(o, p); });
+        auto scene = loaded.scene;
+        if (debug) return debug_pixel(scene, loaded.settings, o.project, px, py, o.pass);
 
         install_interrupt_handler();
         Progress progress;
@@ -95,13 +96,14 @@ int run_render(const RenderOptions& o) {
             const auto sampling = o.method == "standard" ? StandardDifferentialRenderer::Sampling::Independent
                                                          : StandardDifferentialRenderer::Sampling::Correlated;
             const int focus = o.focus_after, spp = o.samples_per_pass;
-            session.set_renderer_factory([sampling, focus, spp](std::shared_ptr<const RenderScene> s) {
-                auto r = std::make_unique<StandardDifferentialRenderer>(std::move(s), sampling, spp);
+            session.set_renderer_factory([sampling, focus, spp](std::shared_ptr<const RenderScene> s,
+                                                                const RenderSettings& settings) {
+                auto r = std::make_unique<StandardDifferentialRenderer>(std::move(s), settings, sampling, spp);
                 r->focus_after(focus);
                 return r;
             });
         }
-        session.start(scene);
+        session.start(scene, loaded.settings);
         while (!sink.wait_stopped(std::chrono::milliseconds(100)))
             if (interrupted()) session.cancel();
         session.wait();

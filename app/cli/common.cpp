@@ -10,9 +10,10 @@
 #include <filesystem>
 #include <iostream>
 
+#include "assets/asset_library.h"
+#include "assets/scene_checks.h"
 #include "base/error.h"
 #include "image/image_io.h"
-#include "assets/scene_checks.h"
 #include "scene/project_io.h"
 
 namespace dp::cli {
@@ -30,11 +31,11 @@ const CLI::Validator kFinite(
 
 void warn(const std::string& text) { std::cerr << "warning: " << text << "\n"; }
 
-std::shared_ptr<RenderScene> load_scene(const std::string& project_path,
-                                        const std::function<void(Project&)>& edit) {
+LoadedScene load_scene(const std::string& project_path, const std::function<void(Project&)>& edit) {
     Project project = load_project(project_path);
     if (edit) edit(project);
-    SceneAssets assets = load_assets(project);
+    AssetLibrary library;
+    SceneAssets assets = library.load(project);
     for (const std::string& w : assets.warnings) warn(w);
     const size_t printed = assets.warnings.size();
     auto scene = std::make_shared<RenderScene>(project, std::move(assets));
@@ -42,7 +43,7 @@ std::shared_ptr<RenderScene> load_scene(const std::string& project_path,
     const auto& all = scene->assets().warnings;
     for (size_t i = printed; i < all.size(); ++i) warn(all[i]);
     check_scene(*scene, project_path);
-    return scene;
+    return {scene, project, project.render};
 }
 
 ImageKind check_output_path(const std::string& path, const std::string& option) {

@@ -28,10 +28,16 @@ auto with_threads(int threads, F&& work) {
     return arena.execute(std::forward<F>(work));
 }
 
+/// A compiled scene, and the project as loaded (its render settings are not in the scene).
+struct LoadedScene {
+    std::shared_ptr<RenderScene> scene;
+    Project project;
+    RenderSettings settings;
+};
+
 /// Loads a project and every file it names, lets `edit` override settings, builds the scene
 /// and checks it (check_scene). Asset and scene warnings go to stderr. Throws InputError.
-std::shared_ptr<RenderScene> load_scene(const std::string& project_path,
-                                        const std::function<void(Project&)>& edit = {});
+LoadedScene load_scene(const std::string& project_path, const std::function<void(Project&)>& edit = {});
 
 enum class ImageKind { Exr, Ldr };
 

@@ -20,16 +20,15 @@ void parse_pixel(const std::string& text, int& x, int& y) {
         throw InputError("", "--pixel", "expected X,Y (two integers), got '" + text + "'");
 }
 
-int debug_pixel(std::shared_ptr<const RenderScene> scene, const std::string& project_path,
-                int x, int y, int pass) {
+int debug_pixel(std::shared_ptr<const RenderScene> scene, const RenderSettings& rs,
+                const std::string& project_path, int x, int y, int pass) {
     const Image& photo = scene->photo();
     if (x < 0 || y < 0 || x >= photo.width() || y >= photo.height())
         throw InputError(project_path, "--pixel",
                          "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                              ") is outside the " + std::to_string(photo.width()) + "x" +
                              std::to_string(photo.height()) + " photo");
-    const RenderSettings& rs = scene->project().render;
-    ProgressiveRenderer renderer(scene, rs.photons_per_pass, rs.seed);
+    ProgressiveRenderer renderer(scene, rs);
     Image delta, dL, alpha;
     renderer.render_single_pass(pass, delta, dL, alpha);
 

@@ -51,7 +51,8 @@ public:
     virtual Image alpha_layer() const = 0;
 };
 
-/// Makes the renderer a session runs on a scene (the project's render settings included).
-using RendererFactory = std::function<std::unique_ptr<PassRenderer>(std::shared_ptr<const RenderScene>)>;
+/// Makes the renderer a session runs on a scene with its settings.
+using RendererFactory =
+    std::function<std::unique_ptr<PassRenderer>(std::shared_ptr<const RenderScene>, const RenderSettings&)>;
 
 }  // namespace dp

@@ -61,6 +61,7 @@ vec3 Surface::reflectance_at(const vec2& uv) const {
 
 RenderScene::RenderScene(const Project& project, SceneAssets assets)
     : project_(project), assets_(std::move(assets)) {
+    project_.render = RenderSettings{};
     if (assets_.photo.empty()) throw std::invalid_argument("RenderScene: empty photograph");
     sanitize_images();
     camera_ = project_.camera.build(assets_.photo.width(), assets_.photo.height());

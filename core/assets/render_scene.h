@@ -65,6 +65,8 @@ struct EmissionCluster {
 /// (SceneBVH), the photo, the probe, the camera, and the emission clusters.
 class RenderScene {
 public:
+    /// The project's render settings are not kept: a scene holds geometry, materials and
+    /// assets; how to render it is the renderer's RenderSettings.
     RenderScene(const Project& project, SceneAssets assets);
     RenderScene(const RenderScene&) = delete;
     RenderScene& operator=(const RenderScene&) = delete;

@@ -1,10 +1,9 @@
-// Scene set-up work beside the BVHs: loading assets, emission clusters, albedo estimation.
+// Scene set-up work beside the BVHs: image sanitising, emission clusters, albedo estimation.
 #include <algorithm>
 #include <cmath>
 
 #include "base/error.h"
 #include "base/rng.h"
-#include "image/image_io.h"
 #include "assets/irradiance.h"
 #include "assets/render_scene.h"
 
@@ -16,63 +15,7 @@ std::string indexed(const char* list, size_t i, const char* field) {
     return std::string(list) + "[" + std::to_string(i) + "]." + field;
 }
 
-Image load_scaled(const Project& p, const std::string& path, const std::string& field, SceneAssets& a,
-                  ImageLoadReport* out = nullptr) {
-    ImageLoadReport report;
-    Image img = load_image(p.resolve(path).string(), field, &report);
-    if (report.non_finite_replaced > 0) {
-        a.non_finite_replaced += report.non_finite_replaced;
-        a.warnings.push_back(p.resolve(path).string() + ": " + std::to_string(report.non_finite_replaced) +
-                             " NaN/Inf values replaced by 0 (field '" + field + "')");
-    }
-    if (out) *out = report;
-    return img;
-}
-
 }  // namespace
-
-SceneAssets load_assets(const Project& project) {
-    SceneAssets a;
-    a.photo = load_scaled(project, project.photo.path, "photo.path", a);
-    float gain = std::exp2(project.photo.exposure);
-    if (gain != 1.0f)
-        for (size_t i = 0; i < a.photo.size(); ++i) a.photo[i] *= gain;
-
-    ImageLoadReport probe_report;
-    Image probe = load_scaled(project, project.probe.path, "probe.path", a, &probe_report);
-    if (!probe_report.linear_source)
-        a.warnings.push_back("probe.path: the light probe is not an HDR image (EXR/HDR); "
-                             "bright lights are clipped and shadows will be too weak");
-    if (project.probe.format == ProbeSpec::Format::MirrorBall) {
-        int h = std::max(16, probe.height() / 2);
-        probe = unwrap_mirror_ball(probe, 2 * h, h, project.probe.mirror_ball_fov_deg);
-    }
-    a.probe_latlong = std::move(probe);
-
-    auto load_meshes = [&](auto const& list, const char* name, std::vector<TriangleMesh>& meshes,
-                           std::vector<Image>& textures, auto albedo_of) {
-        meshes.resize(list.size());
-        textures.resize(list.size());
-        for (size_t i = 0; i < list.size(); ++i) {
-            if (list[i].shape.kind == Shape::Kind::Mesh) {
-                LoadedMesh m = load_mesh(project.resolve(list[i].shape.mesh_path).string(),
-                                         indexed(name, i, "shape.path"));
-                a.degenerate_triangles_dropped += m.dropped_degenerate;
-                meshes[i] = std::move(m.mesh);
-            }
-            const Albedo& alb = albedo_of(list[i]);
-            if (alb.kind == Albedo::Kind::Texture)
-                textures[i] = load_scaled(project, alb.texture_path, indexed(name, i, "albedo.texture"), a);
-        }
-    };
-    load_meshes(project.real, "real", a.real_meshes, a.real_textures,
-                [](const RealProxy& r) -> const Albedo& { return r.albedo; });
-    load_meshes(project.objects, "objects", a.object_meshes, a.object_textures,
-                [](const VirtualObject& o) -> const Albedo& { return o.material.albedo; });
-    if (a.degenerate_triangles_dropped > 0)
-        a.warnings.push_back(std::to_string(a.degenerate_triangles_dropped) + " zero-area triangles dropped");
-    return a;
-}
 
 void RenderScene::sanitize_images() {
     // Images made in memory never went through load_image: the same rule applies to them.

@@ -16,4 +16,23 @@ vec3 Image::bilinear(float x, float y) const {
     return glm::mix(top, bottom, fy);
 }
 
+Image resample(const Image& image, int width, int height) {
+    if (width == image.width() && height == image.height()) return image;
+    Image out(width, height);
+    const float sx = float(image.width()) / float(width), sy = float(image.height()) / float(height);
+    const int taps = std::max(1, int(std::ceil(std::max(sx, sy))));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            vec3 sum(0);
+            for (int j = 0; j < taps; ++j)
+                for (int i = 0; i < taps; ++i) {
+                    const float fx = (x + (i + 0.5f) / taps) * sx - 0.5f;
+                    const float fy = (y + (j + 0.5f) / taps) * sy - 0.5f;
+                    sum += image.bilinear(fx, fy);
+                }
+            out.at(x, y) = sum / float(taps * taps);
+        }
+    return out;
+}
+
 }  // namespace dp

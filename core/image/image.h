@@ -37,4 +37,8 @@ private:
     std::vector<vec3> pixels_;
 };
 
+/// Resamples an image bilinearly to width x height (pixel centres mapped onto each other),
+/// averaging a small footprint when shrinking so that previews do not alias.
+Image resample(const Image& image, int width, int height);
+
 }  // namespace dp

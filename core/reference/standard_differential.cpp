@@ -15,9 +15,9 @@ constexpr uint64_t kIndependentSeed = 0x9e3779b97f4a7c15ull;
 }  // namespace
 
 StandardDifferentialRenderer::StandardDifferentialRenderer(std::shared_ptr<const RenderScene> scene,
-                                                           Sampling sampling, int samples_per_pass)
+                                                           const RenderSettings& rs, Sampling sampling,
+                                                           int samples_per_pass)
     : scene_(std::move(scene)), sampling_(sampling), samples_per_pass_(std::max(1, samples_per_pass)) {
-    const RenderSettings& rs = scene_->project().render;
     with_virtual_.max_depth = rs.max_depth;
     with_virtual_.seed = rs.seed;
     with_virtual_.include_virtual = true;

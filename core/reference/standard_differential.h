@@ -21,9 +21,9 @@ namespace dp {
 class StandardDifferentialRenderer final : public PassRenderer {
 public:
     enum class Sampling { Independent, Correlated };
-    /// Path depth and seed come from the project's render settings.
-    StandardDifferentialRenderer(std::shared_ptr<const RenderScene> scene, Sampling sampling,
-                                 int samples_per_pass = 1);
+    /// Path depth and seed come from `settings`.
+    StandardDifferentialRenderer(std::shared_ptr<const RenderScene> scene, const RenderSettings& settings,
+                                 Sampling sampling, int samples_per_pass = 1);
 
     /// After `passes` passes, later passes sample only the pixels the objects change (some
     /// sample saw an object, or the mean changed by more than 0.6% of the photo), grown by two

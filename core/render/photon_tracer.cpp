@@ -34,7 +34,7 @@ struct Tracer {
     double inv_area = 0;     ///< 1 / (pi r^2) of probe_map's gathers
 
     Tracer(const RenderScene& s, int64_t count, int64_t surround_count, const PhotonPassOptions& o)
-        : scene(s), emitter(s, count, surround_count), max_depth(std::max(1, s.project().render.max_depth)),
+        : scene(s), emitter(s, count, surround_count), max_depth(std::max(1, o.max_depth)),
           store_first_shadow(!o.direct_by_rays), direct(o.direct) {}
 
     /// Whether a shadow photon landing at `hr` (travelling along `dir`) is stored there: always

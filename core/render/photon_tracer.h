@@ -77,6 +77,7 @@ inline constexpr int64_t kSurroundPhotonDivisor = 4;
 
 /// What a photon pass carries.
 struct PhotonPassOptions {
+    int max_depth = 8;  ///< segments a photon path may have
     /// False leaves the surroundings' photons out (tests of the probe photons).
     bool from_surroundings = true;
     /// True under the split estimator: the light a virtual object blocks from the first real

@@ -41,10 +41,10 @@ void for_tile_pixels(const FramePlan& plan, uint32_t t, F&& f) {
 
 }  // namespace
 
-ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, int64_t photons_per_pass,
-                                         uint64_t seed)
-    : scene_(std::move(scene)), photons_per_pass_(std::max<int64_t>(1, photons_per_pass)), seed_(seed) {
-    const RenderSettings& rs = scene_->project().render;
+ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, const RenderSettings& settings)
+    : scene_(std::move(scene)), settings_(settings),
+      photons_per_pass_(std::max<int64_t>(1, settings.photons_per_pass)), seed_(settings.seed) {
+    const RenderSettings& rs = settings_;
     alpha_ = rs.alpha;
     split_ = rs.estimator == Estimator::Split;
     low_discrepancy_ = rs.low_discrepancy;
@@ -77,6 +77,7 @@ float ProgressiveRenderer::radius_for_pass(int pass) const {
 PhotonStats ProgressiveRenderer::build_pass_maps(int pass, PassMaps& maps, const std::atomic<bool>* cancel,
                                                  RenderStats* timing) const {
     PhotonPassOptions options;
+    options.max_depth = settings_.max_depth;
     options.direct_by_rays = split_;
     options.direct = direct_ ? &*direct_ : nullptr;
     options.emitter_radius = radius_for_pass(pass);
@@ -227,7 +228,7 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
                                       size_t& shaded, size_t& direct) const {
     out.assign(work.tiles.size() * kTilePixels, SampleResult{});
     std::atomic<size_t> count{0}, direct_count{0};
-    const Shader shader(*scene_, maps, diffuse_samples_, split_ && direct_ ? &*direct_ : nullptr);
+    const Shader shader(*scene_, maps, diffuse_samples_, split_ && direct_ ? &*direct_ : nullptr, settings_.max_depth);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, work.tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return;
         size_t local = 0, local_direct = 0;
@@ -311,7 +312,7 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
 }
 
 void ProgressiveRenderer::update_convergence() {
-    const RenderSettings& rs = scene_->project().render;
+    const RenderSettings& rs = settings_;
     const Image& photo = scene_->photo();
     const int passes = sums_.passes();
     const bool judge = rs.adaptive_threshold > 0 && passes >= rs.adaptive_min_passes &&

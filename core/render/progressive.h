@@ -35,10 +35,10 @@ Image shadow_matte(const Image& photo, const Image& dL);
 /// whose direct-light change Russian roulette picks (FramePlan).
 class ProgressiveRenderer final : public PassRenderer {
 public:
-    /// Estimator and adaptive sampling come from the scene's project render settings.
-    ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, int64_t photons_per_pass, uint64_t seed);
+    ProgressiveRenderer(std::shared_ptr<const RenderScene> scene, const RenderSettings& settings);
 
     const RenderScene& scene() const { return *scene_; }
+    const RenderSettings& settings() const { return settings_; }
     /// Gather radius of pass i (1-based): r_i^2 = r_1^2 prod_{k<i} (k + alpha) / (k + 1).
     float radius_for_pass(int pass) const;
     float initial_radius() const { return r1_; }
@@ -101,6 +101,7 @@ private:
     void update_convergence();
 
     std::shared_ptr<const RenderScene> scene_;
+    RenderSettings settings_;
     int64_t photons_per_pass_;
     uint64_t seed_;
     float r1_ = 0, alpha_ = 2.0f / 3.0f;

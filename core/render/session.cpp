@@ -8,9 +8,8 @@ namespace dp {
 
 namespace {
 
-std::unique_ptr<PassRenderer> make_differential(std::shared_ptr<const RenderScene> scene) {
-    const RenderSettings& rs = scene->project().render;
-    return std::make_unique<ProgressiveRenderer>(std::move(scene), rs.photons_per_pass, rs.seed);
+std::unique_ptr<PassRenderer> make_differential(std::shared_ptr<const RenderScene> scene, const RenderSettings& rs) {
+    return std::make_unique<ProgressiveRenderer>(std::move(scene), rs);
 }
 
 }  // namespace
@@ -41,26 +40,26 @@ void RenderSession::wait() {
     if (thread_.joinable()) thread_.join();
 }
 
-void RenderSession::start(std::shared_ptr<const RenderScene> scene) {
+void RenderSession::start(std::shared_ptr<const RenderScene> scene, const RenderSettings& settings) {
     std::lock_guard<std::mutex> lock(mutex_);
     cancel_.store(true);
     if (thread_.joinable()) thread_.join();
     cancel_.store(false);
     running_.store(true);
-    thread_ = std::thread([this, scene = std::move(scene), factory = factory_]() mutable {
-        run(std::move(scene), factory);
+    thread_ = std::thread([this, scene = std::move(scene), settings, factory = factory_]() mutable {
+        run(std::move(scene), settings, factory);
     });
 }
 
-void RenderSession::run(std::shared_ptr<const RenderScene> scene, const RendererFactory& factory) {
-    const RenderSettings& rs = scene->project().render;
+void RenderSession::run(std::shared_ptr<const RenderScene> scene, const RenderSettings& rs,
+                        const RendererFactory& factory) {
     bool cancelled = false;
     std::string error;
     try {
         int threads = rs.threads > 0 ? rs.threads : tbb::task_arena::automatic;
         tbb::task_arena arena(threads);
         arena.execute([&] {
-            std::unique_ptr<PassRenderer> owned = factory(scene);
+            std::unique_ptr<PassRenderer> owned = factory(scene, rs);
             PassRenderer& renderer = *owned;
             auto t0 = std::chrono::steady_clock::now();
             auto update = [&](bool finished) {

@@ -48,22 +48,24 @@ public:
     RenderSession(const RenderSession&) = delete;
     RenderSession& operator=(const RenderSession&) = delete;
 
-    /// Starts rendering `scene` with its project's render settings (cancelling any run);
-    /// project.render.threads <= 0 uses all cores.
-    void start(std::shared_ptr<const RenderScene> scene);
+    /// Starts rendering `scene` with `settings` (cancelling any run); settings.threads <= 0
+    /// uses all cores.
+    void start(std::shared_ptr<const RenderScene> scene, const RenderSettings& settings);
     /// Asks the render thread to stop at the next check; returns at once.
     void cancel();
     /// Blocks until the current run has finished its budget or was cancelled.
     void wait();
     /// Restarts refinement from pass zero on a (possibly edited) scene.
-    void reset(std::shared_ptr<const RenderScene> scene) { start(std::move(scene)); }
+    void reset(std::shared_ptr<const RenderScene> scene, const RenderSettings& settings) {
+        start(std::move(scene), settings);
+    }
     bool running() const { return running_.load(); }
-    /// Chooses the renderer of later runs (default: differential photon mapping with the
-    /// project's photons per pass and seed). Takes effect at the next start().
+    /// Chooses the renderer of later runs (default: differential photon mapping). Takes effect
+    /// at the next start().
     void set_renderer_factory(RendererFactory factory);
 
 private:
-    void run(std::shared_ptr<const RenderScene> scene, const RendererFactory& factory);
+    void run(std::shared_ptr<const RenderScene> scene, const RenderSettings& settings, const RendererFactory& factory);
 
     RenderSink* sink_;
     RendererFactory factory_;

@@ -22,9 +22,9 @@ int camera_diffuse_samples(int64_t photons_per_pass, size_t pixels_near_virtual)
 }
 
 Shader::Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples,
-               const DirectChange* direct)
+               const DirectChange* direct, int max_depth)
     : scene_(scene), maps_(maps), direct_(direct), camera_diffuse_samples_(std::max(1, camera_diffuse_samples)),
-      max_depth_(std::max(1, scene.project().render.max_depth)) {
+      max_depth_(std::max(1, max_depth)) {
     inv_area_ = maps.radius > 0 ? 1.0 / (double(kPi) * maps.radius * maps.radius) : 0.0;
 }
 

@@ -66,7 +66,7 @@ public:
     /// `camera_diffuse_samples`: estimates averaged per camera sample on a virtual diffuse
     /// surface (see camera_diffuse_samples()).
     Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples = 2,
-           const DirectChange* direct = nullptr);
+           const DirectChange* direct = nullptr, int max_depth = 8);
 
     /// One jittered sample at continuous pixel coordinates (px, py) of pixel (x, y). The first
     /// bounce's numbers come from `sampler` (the pixel's low-discrepancy stream for this pass),

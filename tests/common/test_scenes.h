@@ -88,6 +88,13 @@ inline Image analytic_ground_photo(const Project& p, int w, int h, const SunProb
     return photo;
 }
 
+/// Render settings: `base` (a project's, or the defaults) with a photon count and a seed.
+inline RenderSettings settings(int64_t photons, uint64_t seed, RenderSettings base = {}) {
+    base.photons_per_pass = photons;
+    base.seed = seed;
+    return base;
+}
+
 inline std::shared_ptr<RenderScene> build(const Project& p, Image photo, Image probe) {
     SceneAssets a;
     a.photo = std::move(photo);

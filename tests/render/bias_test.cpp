@@ -48,6 +48,7 @@ double rms_over(const std::vector<double>& v, const std::vector<bool>& mask) {
 
 struct Scene {
     std::shared_ptr<RenderScene> scene;
+    RenderSettings settings;  ///< the project's
     Image truth_a, truth_b, truth;
     std::vector<bool> changed;
     double mean = 0;  ///< mean luminance of the truth over the changed pixels
@@ -57,6 +58,7 @@ struct Scene {
 /// rendering with correlated sampling, its samples focused on the changed pixels.
 Scene make_scene(const Project& p, const Image& probe, int half_passes) {
     Scene s;
+    s.settings = p.render;
     SceneAssets a;
     a.photo = Image(kW, kH);
     a.probe_latlong = probe;
@@ -67,10 +69,8 @@ Scene make_scene(const Project& p, const Image& probe, int half_passes) {
     real_only.seed = 5;
     s.scene = build(p, render_reference(tmp, real_only), probe);
     auto half = [&](uint64_t seed) {
-        Project q = p;
-        q.render.seed = seed;
-        auto scene = build(q, s.scene->photo(), probe);
-        StandardDifferentialRenderer r(scene, StandardDifferentialRenderer::Sampling::Correlated, 16);
+        auto scene = build(p, s.scene->photo(), probe);
+        StandardDifferentialRenderer r(scene, settings(1, seed, p.render), StandardDifferentialRenderer::Sampling::Correlated, 16);
         r.focus_after(16);
         for (int i = 0; i < half_passes; ++i) r.render_pass();
         return std::pair{r.image(), r.alpha_layer()};
@@ -98,7 +98,7 @@ Scene make_scene(const Project& p, const Image& probe, int half_passes) {
 /// that the mean signed error over the changed real pixels stays under 1%.
 void expect_no_bias(const std::string& name, const Scene& s) {
     const double truth_noise = rms_over(smoothed_difference(s.truth_a, s.truth_b, 2), s.changed) / 2 / s.mean;
-    ProgressiveRenderer r(s.scene, 60000, 9);
+    ProgressiveRenderer r(s.scene, settings(60000, 9, s.settings));
     double at8 = 0, at64 = 0;
     for (int pass = 1; pass <= 64; ++pass) {
         ASSERT_TRUE(r.render_pass());

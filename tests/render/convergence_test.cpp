@@ -21,11 +21,17 @@ double rmse(const Image& a, const Image& b) {
     return std::sqrt(s / a.size());
 }
 
+/// A soft shadow's first gather radius, as the project gives it.
+const RenderSettings project_settings = [] {
+    RenderSettings s;
+    s.initial_radius = 0.08f;
+    return s;
+}();
+
 std::shared_ptr<RenderScene> soft_shadow_scene() {
     Project p = look_at_project(vec3(0, 2.2f, 3), vec3(-0.3f, 0.2f, 0), 40);
     p.real.push_back(ground_plane(vec3(0.5f)));
     p.objects.push_back(sphere(vec3(0, 0.5f, 0), 0.5f, diffuse(vec3(0.6f))));
-    p.render.initial_radius = 0.08f;
     Image probe = make_sun_sky_probe(256, 128, glm::normalize(vec3(1, 1.5f, 0.3f)), vec3(800.0f), 3.0f,
                                      vec3(0.2f, 0.35f, 0.8f), vec3(0.7f, 0.8f, 0.9f));
     return build(p, Image(64, 48, vec3(0.5f)), probe);
@@ -35,11 +41,11 @@ std::shared_ptr<RenderScene> soft_shadow_scene() {
 
 TEST(Convergence, ErrorAgainstAHighPhotonReferenceFallsAsPassesGrow) {
     auto scene = soft_shadow_scene();
-    ProgressiveRenderer reference(scene, 400000, 1000);
+    ProgressiveRenderer reference(scene, settings(400000, 1000, project_settings));
     for (int i = 0; i < 48; ++i) ASSERT_TRUE(reference.render_pass());
     Image truth = reference.image();
 
-    ProgressiveRenderer r(scene, 50000, 7);
+    ProgressiveRenderer r(scene, settings(50000, 7, project_settings));
     std::vector<double> log_n, log_e;
     for (int pass = 1; pass <= 32; ++pass) {
         ASSERT_TRUE(r.render_pass());

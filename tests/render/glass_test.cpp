@@ -93,7 +93,7 @@ TEST(Glass, FluxReachingTheFloorMatchesDeterministicSplittingWithinNoise) {
 
 TEST(Glass, GlassWithAnIndexOfOneIsInvisible) {
     GlassScene s(1.0f, vec3(0.5f));
-    ProgressiveRenderer r(s.scene, 200000, 3);
+    ProgressiveRenderer r(s.scene, settings(200000, 3));
     for (int i = 0; i < 3; ++i) ASSERT_TRUE(r.render_pass());
     Image out = r.image();
     const Image& photo = s.scene->photo();

@@ -34,7 +34,7 @@ Comparison compare(const Project& p, const Image& probe, int w, int h, int spp, 
     Image truth = render_reference(*tmp, with_virtual);
 
     auto scene = build(p, photo, probe);
-    ProgressiveRenderer r(scene, photons, 3);
+    ProgressiveRenderer r(scene, settings(photons, 3));
     for (int i = 0; i < passes; ++i) r.render_pass();
     Image out = r.image();
     Comparison c;

@@ -42,7 +42,7 @@ struct ShadowScene {
 
 TEST(DirectionalShadow, InsideTheUmbraTheChangeCancelsThePhotoWithinTwoPercent) {
     ShadowScene s;
-    ProgressiveRenderer renderer(s.scene, 200000, 7);
+    ProgressiveRenderer renderer(s.scene, settings(200000, 7, s.project.render));
     for (int i = 0; i < 4; ++i) ASSERT_TRUE(renderer.render_pass());
     Image out = renderer.image();
     Image dL = renderer.delta_layer();

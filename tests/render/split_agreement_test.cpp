@@ -31,9 +31,9 @@ struct RegionSums {
     double photo[4] = {0, 0, 0, 0};
 };
 
-RegionSums region_sums(std::shared_ptr<RenderScene> scene, int passes, uint64_t seed) {
+RegionSums region_sums(std::shared_ptr<RenderScene> scene, const RenderSettings& base, int passes, uint64_t seed) {
     RegionSums out;
-    ProgressiveRenderer r(scene, 60000, seed);
+    ProgressiveRenderer r(scene, settings(60000, seed, base));
     const Image& photo = scene->photo();
     for (int pass = 1; pass <= passes; ++pass) {
         Image delta, dL, alpha;
@@ -74,8 +74,8 @@ void expect_agreement(const std::string& name, const Project& base, const Image&
     Project split = base, photons = base;
     split.render.estimator = Estimator::Split;
     photons.render.estimator = Estimator::Photons;
-    const RegionSums a = region_sums(build(split, photo, probe), passes, 11);
-    const RegionSums b = region_sums(build(photons, photo, probe), passes, 23);
+    const RegionSums a = region_sums(build(split, photo, probe), split.render, passes, 11);
+    const RegionSums b = region_sums(build(photons, photo, probe), photons.render, passes, 23);
     const char* names[4] = {"real left", "real right", "objects", "all"};
     for (int g = 0; g < 4; ++g) {
         double ma, ea, mb, eb;

@@ -64,7 +64,7 @@ inline TruthAndRender render_against_truth(const Project& p, const Image& probe,
     with_virtual.seed = 12;
     out.truth = render_reference(tmp, with_virtual);
     out.scene = build(p, out.photo, probe);
-    ProgressiveRenderer r(out.scene, photons, seed);
+    ProgressiveRenderer r(out.scene, settings(photons, seed));
     for (int i = 0; i < passes; ++i) r.render_pass();
     out.render = r.image();
     out.alpha = r.alpha_layer();

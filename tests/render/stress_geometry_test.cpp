@@ -105,7 +105,7 @@ TriangleMesh sliver_box(float size) {
 
 Image render_with_meshes(const Project& p, SceneAssets assets, int passes) {
     auto scene = std::make_shared<RenderScene>(p, std::move(assets));
-    ProgressiveRenderer r(scene, 100000, 6);
+    ProgressiveRenderer r(scene, settings(100000, 6));
     for (int i = 0; i < passes; ++i) EXPECT_TRUE(r.render_pass());
     EXPECT_EQ(r.stats().non_finite_samples, 0u);
     return r.image();

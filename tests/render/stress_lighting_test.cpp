@@ -117,7 +117,7 @@ TEST(ExtremeLight, ASunOneDegreeAboveTheHorizonCastsTheWholeLongShadowAndNoLeaks
     // Check 2: deep in the umbra (tens of metres away) the output is black, so -dL / photo is
     // 1 on average and no pixel keeps more than 15% of the photo (a leak; the photon noise
     // per pixel is ~3%).
-    ProgressiveRenderer r(g.scene, 200000, 4);
+    ProgressiveRenderer r(g.scene, settings(200000, 4, g.project.render));
     for (int i = 0; i < 4; ++i) ASSERT_TRUE(r.render_pass());
     Image out = r.image(), dL = r.delta_layer();
     EXPECT_EQ(count_non_finite(out), 0u);

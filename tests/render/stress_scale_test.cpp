@@ -47,7 +47,7 @@ Project scaled_project(float s) {
 /// Differential render of the scene at scale `s` on a photograph shared by all scales.
 Image render_at_scale(float s, const Image& photo, const Image& probe, Image* alpha = nullptr) {
     auto scene = build(scaled_project(s), photo, probe);
-    ProgressiveRenderer r(scene, 100000, 5);
+    ProgressiveRenderer r(scene, settings(100000, 5));
     for (int i = 0; i < 4; ++i) EXPECT_TRUE(r.render_pass());
     EXPECT_EQ(r.stats().non_finite_samples, 0u) << "scale " << s;
     if (alpha) *alpha = r.alpha_layer();

@@ -28,7 +28,7 @@ TEST(SurroundLight, TheUmbraUnderABallIsLitByTheFloorViaTheBallAsInThePathTracer
     ro.samples_per_pixel = 512;
     ro.seed = 3;
     const Image truth = render_reference(*scene, ro);
-    ProgressiveRenderer r(scene, 200000, 5);
+    ProgressiveRenderer r(scene, settings(200000, 5, p.render));
     for (int i = 0; i < 24; ++i) ASSERT_TRUE(r.render_pass());
     const Image out = r.image();
 

@@ -17,7 +17,7 @@ TEST(CameraContact, ACameraInsideADiffuseSphereSeesExactlyBlack) {
     p.real.push_back(ground_plane(vec3(0.5f)));
     p.objects.push_back(sphere(vec3(0, 1, 0.2f), 0.5f, diffuse(vec3(0.8f))));
     auto scene = build(p, Image(48, 36, vec3(0.3f)), sun.image());
-    ProgressiveRenderer r(scene, 50000, 2);
+    ProgressiveRenderer r(scene, settings(50000, 2));
     for (int i = 0; i < 3; ++i) ASSERT_TRUE(r.render_pass());
     Image out = r.image(), alpha = r.alpha_layer();
     // Check: every pixel exactly 0 and fully covered by the object.
@@ -41,7 +41,7 @@ TEST(CameraContact, ACameraOnASpheresSurfaceLookingOutwardDoesNotSeeIt) {
         p.real.push_back(ground_plane(vec3(0.5f), 40 * s));
         p.objects.push_back(sphere(c, radius, diffuse(vec3(0.8f))));
         auto scene = build(p, analytic_ground_photo(p, 48, 36, sun, vec3(0.5f)), sun.image());
-        ProgressiveRenderer r(scene, 50000, 2);
+        ProgressiveRenderer r(scene, settings(50000, 2));
         for (int i = 0; i < 2; ++i) ASSERT_TRUE(r.render_pass());
         Image out = r.image(), alpha = r.alpha_layer();
         // Check: no pixel sees the sphere (no self-hit at the eye), and all are finite.

@@ -13,7 +13,7 @@ Image render_with_threads(const std::shared_ptr<RenderScene>& scene, int threads
     Image out;
     tbb::task_arena arena(threads);
     arena.execute([&] {
-        ProgressiveRenderer r(scene, 60000, seed);
+        ProgressiveRenderer r(scene, settings(60000, seed));
         for (int i = 0; i < 2; ++i) r.render_pass();
         out = r.image();
     });

@@ -22,7 +22,7 @@ TEST(Identity, WithoutVirtualObjectsTheOutputIsThePhotoBitForBit) {
     p.real.push_back(ground_plane(vec3(0.4f)));
     Image photo = noisy_photo(64, 48);
     auto scene = build(p, photo, sun.image());
-    ProgressiveRenderer r(scene, 10000, 1);
+    ProgressiveRenderer r(scene, settings(10000, 1));
     ASSERT_TRUE(r.render_pass());
     ASSERT_TRUE(r.render_pass());
     EXPECT_TRUE(r.image() == photo);
@@ -41,7 +41,7 @@ TEST(Identity, AVirtualObjectBehindTheCameraLeavesThePhotoBitForBit) {
     for (Estimator e : {Estimator::Photons, Estimator::Split}) {
         p.render.estimator = e;
         auto scene = build(p, photo, sun.image());
-        ProgressiveRenderer r(scene, 50000, 1);
+        ProgressiveRenderer r(scene, settings(50000, 1, p.render));
         for (int i = 0; i < 3; ++i) ASSERT_TRUE(r.render_pass());
         // The object does cast a shadow, out of view: shadow photons under the all-photon
         // estimator, rays under the split one (which stores no photon here).

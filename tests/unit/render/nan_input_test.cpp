@@ -73,7 +73,7 @@ std::shared_ptr<RenderScene> scene_of(const Inputs& in, const Image& probe) {
 }
 
 Image render(const std::shared_ptr<RenderScene>& scene, size_t* bad_samples = nullptr) {
-    ProgressiveRenderer r(scene, 20000, 4);
+    ProgressiveRenderer r(scene, settings(20000, 4));
     for (int i = 0; i < 3; ++i) EXPECT_TRUE(r.render_pass());
     if (bad_samples) *bad_samples = r.stats().non_finite_samples;
     return r.image();

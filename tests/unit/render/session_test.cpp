@@ -44,14 +44,18 @@ public:
     std::string error_;
 };
 
-std::shared_ptr<RenderScene> small_scene(int passes) {
+std::shared_ptr<RenderScene> small_scene() {
     SunProbe sun;
     Project p = look_at_project(vec3(0, 3, 4), vec3(0, 0.5f, 0), 45);
     p.real.push_back(ground_plane(vec3(0.5f)));
     p.objects.push_back(sphere(vec3(0, 0.5f, 0), 0.5f, diffuse(vec3(0.5f))));
-    p.render.passes = passes;
-    p.render.photons_per_pass = 20000;
     return build(p, Image(48, 32, vec3(0.2f)), sun.image());
+}
+
+RenderSettings budget(int passes) {
+    RenderSettings s = settings(20000, 1);
+    s.passes = passes;
+    return s;
 }
 
 }  // namespace
@@ -59,7 +63,7 @@ std::shared_ptr<RenderScene> small_scene(int passes) {
 TEST(RenderSession, HandsOneImagePerPassToTheSinkAndFinishesOnBudget) {
     RecordingSink sink;
     RenderSession session(&sink);
-    session.start(small_scene(3));
+    session.start(small_scene(), budget(3));
     session.wait();
     ASSERT_EQ(sink.passes_, (std::vector<int>{1, 2, 3}));
     EXPECT_EQ(sink.finished_.back(), true);
@@ -73,7 +77,7 @@ TEST(RenderSession, HandsOneImagePerPassToTheSinkAndFinishesOnBudget) {
 TEST(RenderSession, CancelStopsALongRunEarly) {
     RecordingSink sink;
     RenderSession session(&sink);
-    session.start(small_scene(100000));
+    session.start(small_scene(), budget(100000));
     sink.wait_for_passes(1);
     session.cancel();
     session.wait();
@@ -86,9 +90,9 @@ TEST(RenderSession, CancelStopsALongRunEarly) {
 TEST(RenderSession, ResetRestartsRefinementFromTheFirstPass) {
     RecordingSink sink;
     RenderSession session(&sink);
-    session.start(small_scene(100000));
+    session.start(small_scene(), budget(100000));
     sink.wait_for_passes(3);
-    session.reset(small_scene(2));
+    session.reset(small_scene(), budget(2));
     session.wait();
     // After the reset the pass counter starts again at 1 and runs to the new budget.
     ASSERT_GE(sink.passes_.size(), 5u);

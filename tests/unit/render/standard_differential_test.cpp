@@ -50,7 +50,7 @@ struct SunScene {
 
 TEST(StandardDifferential, CorrelatedSamplingWithoutVirtualObjectsGivesThePhotoBitForBit) {
     SunScene s(false);
-    StandardDifferentialRenderer r(s.scene, Sampling::Correlated, 2);
+    StandardDifferentialRenderer r(s.scene, s.project.render, Sampling::Correlated, 2);
     ASSERT_TRUE(r.render_pass());
     EXPECT_TRUE(r.image() == s.photo);
     EXPECT_EQ(r.stats().samples_per_pixel, 2u);
@@ -58,7 +58,7 @@ TEST(StandardDifferential, CorrelatedSamplingWithoutVirtualObjectsGivesThePhotoB
 
 TEST(StandardDifferential, IndependentSimulationsWithoutVirtualObjectsAverageToThePhoto) {
     SunScene s(false);
-    StandardDifferentialRenderer r(s.scene, Sampling::Independent, 8);
+    StandardDifferentialRenderer r(s.scene, s.project.render, Sampling::Independent, 8);
     ASSERT_TRUE(r.render_pass());
     const Image d = r.delta_layer();
     double sum = 0, sum2 = 0, photo_sum = 0;
@@ -77,7 +77,7 @@ TEST(StandardDifferential, IndependentSimulationsWithoutVirtualObjectsAverageToT
 TEST(StandardDifferential, TheUmbraOfASphereUnderTheSunIsBlack) {
     SunScene s(true);
     for (Sampling sampling : {Sampling::Correlated, Sampling::Independent}) {
-        StandardDifferentialRenderer r(s.scene, sampling, 4);
+        StandardDifferentialRenderer r(s.scene, s.project.render, sampling, 4);
         ASSERT_TRUE(r.render_pass());
         const Image img = r.image();
         const std::vector<size_t> umbra = s.umbra_pixels();
@@ -95,7 +95,7 @@ TEST(StandardDifferential, TheUmbraOfASphereUnderTheSunIsBlack) {
 
 TEST(StandardDifferential, PixelsOnTheObjectShowTheNewSimulationAndCountInAlpha) {
     SunScene s(true);
-    StandardDifferentialRenderer r(s.scene, Sampling::Correlated, 4);
+    StandardDifferentialRenderer r(s.scene, s.project.render, Sampling::Correlated, 4);
     ASSERT_TRUE(r.render_pass());
     vec2 px;
     ASSERT_TRUE(s.scene->camera().project(vec3(0, 1.5f, 0), px));  // the sphere's sunlit top
@@ -109,7 +109,7 @@ TEST(StandardDifferential, PixelsOnTheObjectShowTheNewSimulationAndCountInAlpha)
 
 TEST(StandardDifferential, ACancelledPassAccumulatesNothing) {
     SunScene s(true);
-    StandardDifferentialRenderer r(s.scene, Sampling::Correlated, 1);
+    StandardDifferentialRenderer r(s.scene, s.project.render, Sampling::Correlated, 1);
     std::atomic<bool> cancel{true};
     EXPECT_FALSE(r.render_pass(&cancel));
     EXPECT_EQ(r.passes(), 0);

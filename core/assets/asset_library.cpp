@@ -1,0 +1,198 @@
+#include "assets/asset_library.h"
+
+#include <cmath>
+#include <system_error>
+
+#include "assets/scene_checks.h"
+#include "image/image_io.h"
+#include "probe/probe.h"
+
+namespace dp {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string indexed(const char* list, size_t i, const char* field) {
+    return std::string(list) + "[" + std::to_string(i) + "]." + field;
+}
+
+fs::file_time_type modified(const fs::path& path) {
+    std::error_code ec;
+    const fs::file_time_type t = fs::last_write_time(path, ec);
+    return ec ? fs::file_time_type{} : t;
+}
+
+}  // namespace
+
+/// Loads an image, noting replaced NaN/Inf in the cache entry.
+static Image load_noted(const fs::path& path, const std::string& field, ImageLoadReport& report,
+                        std::vector<std::string>& warnings, size_t& non_finite) {
+    Image img = load_image(path.string(), field, &report);
+    non_finite = report.non_finite_replaced;
+    if (report.non_finite_replaced > 0)
+        warnings.push_back(path.string() + ": " + std::to_string(report.non_finite_replaced) +
+                           " NaN/Inf values replaced by 0 (field '" + field + "')");
+    return img;
+}
+
+namespace {
+
+}  // namespace
+
+template <class T, class Make>
+std::shared_ptr<const T> AssetLibrary::cached(const std::string& key, const fs::path& path, Make&& make) {
+    const fs::file_time_type mtime = modified(path);
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = entries_.find(key);
+        if (it != entries_.end() && it->second.mtime == mtime) return std::static_pointer_cast<const T>(it->second.data);
+    }
+    // Decoded outside the lock: another thread may decode the same file meanwhile, and the
+    // later one wins; both results are equal.
+    Entry e;
+    e.mtime = mtime;
+    e.data = std::make_shared<const T>(make(e));
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_[key] = e;
+    return std::static_pointer_cast<const T>(e.data);
+}
+
+void AssetLibrary::report(const std::string& key, SceneAssets& assets) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = entries_.find(key);
+    if (it == entries_.end()) return;
+    assets.warnings.insert(assets.warnings.end(), it->second.warnings.begin(), it->second.warnings.end());
+    assets.non_finite_replaced += it->second.non_finite;
+}
+
+namespace {
+
+std::string photo_key(const Project& p) {
+    return "photo|" + p.resolve(p.photo.path).string() + "|" + std::to_string(p.photo.exposure);
+}
+
+std::string probe_key(const Project& p) {
+    return "probe|" + p.resolve(p.probe.path).string() + "|" + std::to_string(int(p.probe.format)) + "|" +
+           std::to_string(p.probe.mirror_ball_fov_deg);
+}
+
+}  // namespace
+
+std::shared_ptr<const Image> AssetLibrary::photo(const Project& p) {
+    const fs::path path = p.resolve(p.photo.path);
+    return cached<Image>(photo_key(p), path, [&](Entry& e) {
+        ImageLoadReport report;
+        Image img = load_noted(path, "photo.path", report, e.warnings, e.non_finite);
+        const float gain = std::exp2(p.photo.exposure);
+        if (gain != 1.0f)
+            for (size_t i = 0; i < img.size(); ++i) img[i] *= gain;
+        return img;
+    });
+}
+
+std::shared_ptr<const Image> AssetLibrary::photo_at(const Project& p, int width, int height) {
+    std::shared_ptr<const Image> full = photo(p);
+    if (width <= 0 || height <= 0 || (width == full->width() && height == full->height())) return full;
+    const std::string key = photo_key(p) + "|" + std::to_string(width) + "x" + std::to_string(height);
+    return cached<Image>(key, p.resolve(p.photo.path),
+                         [&](Entry&) { return resample(*full, width, height); });
+}
+
+std::shared_ptr<const Image> AssetLibrary::probe(const Project& p) {
+    const fs::path path = p.resolve(p.probe.path);
+    return cached<Image>(probe_key(p), path, [&](Entry& e) {
+        ImageLoadReport report;
+        Image probe = load_noted(path, "probe.path", report, e.warnings, e.non_finite);
+        if (!report.linear_source)
+            e.warnings.push_back("probe.path: the light probe is not an HDR image (EXR/HDR); "
+                               "bright lights are clipped and shadows will be too weak");
+        if (p.probe.format == ProbeSpec::Format::MirrorBall) {
+            const int h = std::max(16, probe.height() / 2);
+            probe = unwrap_mirror_ball(probe, 2 * h, h, p.probe.mirror_ball_fov_deg);
+        }
+        return probe;
+    });
+}
+
+SceneAssets AssetLibrary::load(const Project& project) {
+    SceneAssets a;
+    a.photo = *photo(project);
+    a.probe_latlong = *probe(project);
+    auto load_list = [&](auto const& list, const char* name, std::vector<TriangleMesh>& meshes,
+                         std::vector<Image>& textures, auto albedo_of) {
+        meshes.resize(list.size());
+        textures.resize(list.size());
+        for (size_t i = 0; i < list.size(); ++i) {
+            if (list[i].shape.kind == Shape::Kind::Mesh) {
+                const fs::path path = project.resolve(list[i].shape.mesh_path);
+                const std::string field = indexed(name, i, "shape.path");
+                auto mesh = cached<LoadedMesh>("mesh|" + path.string(), path,
+                                               [&](Entry&) { return load_mesh(path.string(), field); });
+                a.degenerate_triangles_dropped += mesh->dropped_degenerate;
+                meshes[i] = mesh->mesh;
+            }
+            const Albedo& alb = albedo_of(list[i]);
+            if (alb.kind == Albedo::Kind::Texture) {
+                const fs::path path = project.resolve(alb.texture_path);
+                const std::string field = indexed(name, i, "albedo.texture");
+                const std::string key = "texture|" + path.string();
+                textures[i] = *cached<Image>(key, path, [&](Entry& e) {
+                    ImageLoadReport report;
+                    return load_noted(path, field, report, e.warnings, e.non_finite);
+                });
+                report(key, a);
+            }
+        }
+    };
+    load_list(project.real, "real", a.real_meshes, a.real_textures,
+              [](const RealProxy& r) -> const Albedo& { return r.albedo; });
+    load_list(project.objects, "objects", a.object_meshes, a.object_textures,
+              [](const VirtualObject& o) -> const Albedo& { return o.material.albedo; });
+    SceneAssets head;
+    report(photo_key(project), head);
+    report(probe_key(project), head);
+    a.warnings.insert(a.warnings.begin(), head.warnings.begin(), head.warnings.end());
+    a.non_finite_replaced += head.non_finite_replaced;
+    if (a.degenerate_triangles_dropped > 0)
+        a.warnings.push_back(std::to_string(a.degenerate_triangles_dropped) + " zero-area triangles dropped");
+    return a;
+}
+
+std::vector<std::string> AssetLibrary::warnings(const Project& project) { return load(project).warnings; }
+
+void AssetLibrary::clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    entries_.clear();
+}
+
+SceneAssets load_assets(const Project& project) {
+    AssetLibrary library;
+    return library.load(project);
+}
+
+CameraSpec scaled_camera(const CameraSpec& c, int photo_w, int photo_h, int width, int height) {
+    CameraSpec out = c;
+    if (c.model != CameraSpec::Model::Intrinsics || (width == photo_w && height == photo_h)) return out;
+    const float ax = float(width) / float(photo_w), ay = float(height) / float(photo_h);
+    out.fx = c.fx * ax;
+    out.fy = c.fy * ay;
+    out.cx = (c.cx + 0.5f) * ax - 0.5f;
+    out.cy = (c.cy + 0.5f) * ay - 0.5f;
+    return out;
+}
+
+std::shared_ptr<RenderScene> build_scene(AssetLibrary& library, const Project& project, int width, int height) {
+    SceneAssets a = library.load(project);
+    Project p = project;
+    const int pw = a.photo.width(), ph = a.photo.height();
+    if (width > 0 && height > 0 && (width != pw || height != ph)) {
+        a.photo = *library.photo_at(project, width, height);
+        p.camera = scaled_camera(project.camera, pw, ph, width, height);
+    }
+    auto scene = std::make_shared<RenderScene>(p, std::move(a));
+    check_scene(*scene);
+    return scene;
+}
+
+}  // namespace dp

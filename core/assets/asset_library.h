@@ -1,0 +1,64 @@
+#pragma once
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "assets/render_scene.h"
+#include "geometry/mesh.h"
+#include "image/image.h"
+#include "scene/project.h"
+
+namespace dp {
+
+/// Decodes the files a project names, once: images and meshes are cached by path and
+/// modification time (and by the settings that change them: the photo's exposure, the
+/// probe's format and mirror-ball field of view), and what decoding finds is collected as
+/// warnings. The one path from a project to its assets for the CLI, the studio and the
+/// benchmarks. Thread-safe; what it hands out is shared and never changes.
+class AssetLibrary {
+public:
+    /// Everything a render of `project` needs. Throws InputError naming the file and field.
+    SceneAssets load(const Project& project);
+    /// The photo after the project's exposure; the probe as a lat-long map.
+    std::shared_ptr<const Image> photo(const Project& project);
+    std::shared_ptr<const Image> probe(const Project& project);
+    /// The photo resampled to width x height (cached per size: previews ask for the same few).
+    std::shared_ptr<const Image> photo_at(const Project& project, int width, int height);
+
+    /// Warnings about the files `project` names, as last decoded (NaN/Inf replaced, an LDR probe,
+    /// zero-area triangles dropped...).
+    std::vector<std::string> warnings(const Project& project);
+
+    /// Forgets everything (the next load decodes again).
+    void clear();
+
+private:
+    struct Entry {
+        std::filesystem::file_time_type mtime{};
+        std::shared_ptr<const void> data;
+        std::vector<std::string> warnings;
+        size_t non_finite = 0;  ///< NaN/Inf channels replaced when decoding
+    };
+    /// The cached entry for `key` made from `path` by `make`, remade if the file changed.
+    template <class T, class Make>
+    std::shared_ptr<const T> cached(const std::string& key, const std::filesystem::path& path, Make&& make);
+    /// Adds what decoding `key` found to `assets` (its warnings and replaced NaN/Inf).
+    void report(const std::string& key, SceneAssets& assets);
+
+    std::mutex mutex_;
+    std::map<std::string, Entry> entries_;
+};
+
+/// A scene for `project` at `width` x `height` (0: the photo's size): the photo resampled and the
+/// camera's intrinsics scaled to match. Loads through `library`.
+std::shared_ptr<RenderScene> build_scene(AssetLibrary& library, const Project& project, int width = 0,
+                                         int height = 0);
+
+/// The project's camera for an image of `width` x `height` when the photo is `photo_w` x
+/// `photo_h`: intrinsics (in pixels) are scaled; a look-at camera follows the size by itself.
+CameraSpec scaled_camera(const CameraSpec& camera, int photo_w, int photo_h, int width, int height);
+
+}  // namespace dp
