@@ -4,6 +4,7 @@
 #include <QUndoStack>
 
 #include "project_edit.h"
+#include "assets/asset_library.h"
 #include "scene/project.h"
 
 namespace dp::ui {
@@ -16,6 +17,9 @@ public:
     explicit Document(QObject* parent = nullptr);
 
     const Project& project() const { return project_; }
+    /// The files the project names, decoded once and shared by the renderer and every panel.
+    AssetLibrary& assets() const { return *assets_; }
+    const std::shared_ptr<AssetLibrary>& assetLibrary() const { return assets_; }
     const QString& path() const { return path_; }
     QUndoStack* undoStack() { return &stack_; }
     bool isModified() const { return !stack_.isClean(); }
@@ -48,6 +52,7 @@ Q_SIGNALS:
     void modifiedChanged(bool modified);
 
 private:
+    std::shared_ptr<AssetLibrary> assets_ = std::make_shared<AssetLibrary>();
     Project project_;
     QString path_;
     QUndoStack stack_;

@@ -45,7 +45,7 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     }
     setAcceptDrops(true);
     doc_ = new Document(this);
-    renderer_ = new RenderController(this);
+    renderer_ = new RenderController(doc_->assetLibrary(), this);
     renderer_->setRenderSize(options_.renderSize);
     renderer_->setPreviewFraction(options_.previewFraction);
     renderer_->setPreviewScale(options_.previewScale);

@@ -1,22 +1,13 @@
 #include "photo_geometry.h"
 
-#include <map>
-#include <string>
-
 #include "base/error.h"
-#include "image/image_io.h"
 
 namespace dp::ui {
 
-QSize photo_size(const Project& project) {
-    static std::map<std::string, QSize> sizes;  // photos do not change size under one path
-    const std::string path = project.resolve(project.photo.path).string();
-    auto it = sizes.find(path);
-    if (it != sizes.end()) return it->second;
-    const Image img = load_image(path, "photo.path");
-    const QSize s(img.width(), img.height());
-    sizes[path] = s;
-    return s;
+QSize photo_size(AssetLibrary& assets, const Project& project) {
+    int w = 0, h = 0;
+    assets.photo_size(project, w, h);
+    return QSize(w, h);
 }
 
 vec2 render_to_photo(QPointF r, QSize render, QSize photo) {
@@ -26,8 +17,8 @@ vec2 render_to_photo(QPointF r, QSize render, QSize photo) {
     return vec2(float((r.x() + 0.5) * sx - 0.5), float((r.y() + 0.5) * sy - 0.5));
 }
 
-Camera photo_camera(const Project& project) {
-    const QSize s = photo_size(project);
+Camera photo_camera(AssetLibrary& assets, const Project& project) {
+    const QSize s = photo_size(assets, project);
     return project.camera.build(s.width(), s.height());
 }
 

@@ -115,15 +115,14 @@ bool ProbeAlignPanel::guarded(const QString& title, const std::function<void()>&
 bool ProbeAlignPanel::alignSun(QPointF object, QPointF shadowTip) {
     return guarded(tr("Sun alignment failed"), [&] {
         Project p = doc_->project();
-        const QSize ps = photo_size(p);
+        const QSize ps = photo_size(doc_->assets(), p);
         ShadowCue cue;
         cue.object_px = render_to_photo(object, viewport_->renderSize(), ps);
         cue.shadow_px = render_to_photo(shadowTip, viewport_->renderSize(), ps);
         cue.height = float(height_->value());
         cue.object_is_base = base_->isChecked();
-        const vec3 sun = sun_direction_from_shadow(photo_camera(p), cue);
-        const SceneAssets assets = load_assets(p);
-        const vec3 bright = brightest_direction(assets.probe_latlong);
+        const vec3 sun = sun_direction_from_shadow(photo_camera(doc_->assets(), p), cue);
+        const vec3 bright = brightest_direction(*doc_->assets().probe(p));
         const ProbeYaw yaw = align_probe_yaw(bright, p.probe.rotation_deg, sun);
         p.probe.rotation_deg = yaw.rotation_deg;
         doc_->edit(tr("Align probe to the shadow"), p);
@@ -136,7 +135,7 @@ bool ProbeAlignPanel::alignSun(QPointF object, QPointF shadowTip) {
 bool ProbeAlignPanel::matchGreyCard(QPointF a, QPointF b) {
     return guarded(tr("Grey card failed"), [&] {
         Project p = doc_->project();
-        const QSize ps = photo_size(p);
+        const QSize ps = photo_size(doc_->assets(), p);
         const vec2 pa = render_to_photo(a, viewport_->renderSize(), ps);
         const vec2 pb = render_to_photo(b, viewport_->renderSize(), ps);
         GreyCard card;
@@ -145,13 +144,9 @@ bool ProbeAlignPanel::matchGreyCard(QPointF a, QPointF b) {
         card.x1 = int(std::lround(std::max(pa.x, pb.x)));
         card.y1 = int(std::lround(std::max(pa.y, pb.y)));
         card.reflectance = float(reflectance_->value());
-        float clip = INFINITY;
-        const std::string ext = std::filesystem::path(p.photo.path).extension().string();
-        if (ext != ".exr" && ext != ".hdr" && ext != ".EXR" && ext != ".HDR")
-            clip = 0.99f * std::exp2(p.photo.exposure);  // 8-bit photos clip at the top
+        const float clip = doc_->assets().photo_clip_level(p);
         QApplication::setOverrideCursor(Qt::WaitCursor);
-        RenderScene scene(p, load_assets(p));
-        const ExposureMatch m = match_exposure_grey_card(scene, card, clip);
+        const ExposureMatch m = match_exposure_grey_card(*build_scene(doc_->assets(), p), card, clip);
         QApplication::restoreOverrideCursor();
         p.probe.intensity = m.intensity;
         doc_->edit(tr("Probe exposure from the grey card"), p);

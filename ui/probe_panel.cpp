@@ -48,13 +48,15 @@ ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
 
 void ProbePanel::loadPreview() {
     const Project& p = doc_->project();
-    const QString key = QString::fromStdString(p.resolve(p.probe.path).string());
+    // The probe as the renderer sees it: a mirror ball unwrapped with its field of view.
+    const QString key = QString::fromStdString(p.resolve(p.probe.path).string()) + "|" +
+                        QString::number(int(p.probe.format)) + "|" + QString::number(p.probe.mirror_ball_fov_deg);
     if (key == previewKey_) return;
     previewKey_ = key;
     previewImage_ = QImage();
     if (p.probe.path.empty()) return;
     try {
-        const Image probe = load_image(key.toStdString(), "probe.path");
+        const Image& probe = *doc_->assets().probe(p);
         const int w = 256, h = std::max(1, w * probe.height() / std::max(1, probe.width()));
         previewImage_ = to_display(resample(probe, w, h), 0.0f);
         // The brightest pixel stands for the sun: marked so it can be dragged into place.

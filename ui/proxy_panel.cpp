@@ -1,6 +1,7 @@
 #include "proxy_panel.h"
 
 #include <QApplication>
+#include <QPointer>
 #include <QDoubleSpinBox>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -49,14 +50,6 @@ QPushButton* button(const char* name, const QString& text, const QString& tip) {
     b->setObjectName(name);
     b->setToolTip(tip);
     return b;
-}
-
-/// A file-name-safe form of a proxy's name.
-std::string file_stem(const std::string& name, int index) {
-    std::string s;
-    for (char c : name)
-        s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-    return s.empty() ? "real" + std::to_string(index) : s;
 }
 
 }  // namespace
@@ -110,11 +103,11 @@ ProxyPanel::ProxyPanel(Document* doc, Viewport* viewport, ErrorReporter* reporte
     samples_->setToolTip(tr("Probe samples per texel (more: less noise, slower)"));
     albedoForm->addRow(tr("Resolution"), resolution_);
     albedoForm->addRow(tr("Samples"), samples_);
-    QPushButton* estimate = button("albedoEstimate", tr("Estimate albedo"),
+    estimate_ = button("albedoEstimate", tr("Estimate albedo"),
                                    tr("Estimate the selected proxy's albedo texture from the "
                                       "photo and the probe (written next to the project)"));
-    connect(estimate, &QPushButton::clicked, this, [this] { estimateAlbedo(list_->currentRow()); });
-    albedoForm->addRow(estimate);
+    connect(estimate_, &QPushButton::clicked, this, [this] { estimateAlbedo(list_->currentRow()); });
+    albedoForm->addRow(estimate_);
     layout->addWidget(albedo);
     status_ = new QLabel;
     status_->setWordWrap(true);
@@ -178,10 +171,10 @@ bool ProxyPanel::guarded(const QString& title, const std::function<void()>& f) {
 bool ProxyPanel::addBox(const QVector<QPointF>& corners) {
     return guarded(tr("Box proxy failed"), [&] {
         Project p = doc_->project();
-        const QSize ps = photo_size(p);
+        const QSize ps = photo_size(doc_->assets(), p);
         std::vector<vec2> px;
         for (QPointF c : corners) px.push_back(render_to_photo(c, viewport_->renderSize(), ps));
-        ProxyFit fit = box_proxy(photo_camera(p), px, float(boxHeight_->value()),
+        ProxyFit fit = box_proxy(photo_camera(doc_->assets(), p), px, float(boxHeight_->value()),
                                  unique_real_name(p, "box"));
         p.real.push_back(fit.proxy);
         doc_->edit(tr("Add box proxy"), p);
@@ -195,10 +188,10 @@ bool ProxyPanel::addWall(const QVector<QPointF>& base) {
             throw InputError("", "wall", "a wall takes two points at its base, got " +
                                              std::to_string(base.size()));
         Project p = doc_->project();
-        const QSize ps = photo_size(p);
+        const QSize ps = photo_size(doc_->assets(), p);
         const vec2 a = render_to_photo(base[0], viewport_->renderSize(), ps);
         const vec2 b = render_to_photo(base[1], viewport_->renderSize(), ps);
-        ProxyFit fit = wall_proxy(photo_camera(p), a, b, float(wallHeight_->value()),
+        ProxyFit fit = wall_proxy(photo_camera(doc_->assets(), p), a, b, float(wallHeight_->value()),
                                   float(wallThickness_->value()), unique_real_name(p, "wall"));
         p.real.push_back(fit.proxy);
         doc_->edit(tr("Add wall proxy"), p);
@@ -207,42 +200,64 @@ bool ProxyPanel::addWall(const QVector<QPointF>& base) {
 }
 
 bool ProxyPanel::estimateAlbedo(int index) {
-    return guarded(tr("Albedo estimate failed"), [&] {
-        Project p = doc_->project();
-        if (index < 0 || index >= int(p.real.size()))
-            throw InputError("", "real", "select a real proxy first");
+    Project p = doc_->project();
+    AlbedoTextureOptions o;
+    const bool ok = guarded(tr("Albedo estimate failed"), [&] {
+        if (worker_.joinable()) throw InputError("", "", "an albedo estimate is already running");
+        if (index < 0 || index >= int(p.real.size())) throw InputError("", "real", "select a real proxy first");
         if (doc_->path().isEmpty())
             throw InputError("", "", "save the project first: the texture is written next to it");
-        QApplication::setOverrideCursor(Qt::WaitCursor);
-        RenderScene scene(p, load_assets(p));
-        AlbedoTextureOptions o;
         o.max_resolution = resolution_->value();
         o.probe_samples = samples_->value();
-        // An 8-bit photo clips at its top values; EXR and HDR photos do not clip.
-        const std::string ext = fs::path(p.photo.path).extension().string();
-        if (ext != ".exr" && ext != ".hdr" && ext != ".EXR" && ext != ".HDR")
-            o.clip_level = 0.99f * std::exp2(p.photo.exposure);
-        const AlbedoTexture t = estimate_albedo_texture(scene, index, o);
-        const QFileInfo project(doc_->path());
-        const std::string name = project.completeBaseName().toStdString() + "_" +
-                                 file_stem(p.real[size_t(index)].name, index) + "_albedo.exr";
-        const fs::path folder = project.absolutePath().toStdString();
-        save_exr((folder / name).string(), {{"", &t.albedo}});
-        RealProxy& r = p.real[size_t(index)];
-        r.albedo.kind = Albedo::Kind::Texture;
-        // Relative to the project's folder when it is the file's; absolute otherwise.
-        std::error_code ec;
-        r.albedo.texture_path =
-            fs::equivalent(p.base_dir, folder, ec) ? name : (folder / name).string();
-        doc_->edit(tr("Estimate albedo of %1").arg(QString::fromStdString(r.name)), p);
-        QApplication::restoreOverrideCursor();
-        const double n = double(t.albedo.size()) / 100.0;
-        status_->setText(tr("Albedo: %1 x %2 texels, %3% estimated, mean %4")
-                             .arg(t.albedo.width())
-                             .arg(t.albedo.height())
-                             .arg(double(t.valid) / n, 0, 'f', 1)
-                             .arg(double(luminance(t.mean_albedo)), 0, 'f', 3));
+        o.clip_level = doc_->assets().photo_clip_level(p);
     });
+    if (!ok) return false;
+    // Seconds of work: on a worker thread, the result applied on the UI thread to the project as
+    // it is then (only the proxy's albedo changes).
+    const std::string projectFile = doc_->path().toStdString();
+    const std::shared_ptr<AssetLibrary> assets = doc_->assetLibrary();
+    const QString name = QString::fromStdString(p.real[size_t(index)].name);
+    QPointer<ProxyPanel> self(this);
+    status_->setText(tr("Estimating the albedo of %1…").arg(name));
+    estimate_->setEnabled(false);
+    worker_ = std::thread([=]() mutable {
+        std::string error;
+        Albedo albedo;
+        AlbedoTexture t;
+        try {
+            t = estimate_albedo_texture(*build_scene(*assets, p), index, o);
+            Project q = p;
+            attach_albedo_texture(q, index, t, projectFile);
+            albedo = q.real[size_t(index)].albedo;
+        } catch (const std::exception& e) {
+            error = e.what();
+        }
+        QMetaObject::invokeMethod(qApp, [self, index, name, albedo, t = std::move(t), error] {
+            if (!self) return;
+            self->worker_.join();
+            self->estimate_->setEnabled(true);
+            if (!error.empty()) {
+                run_reporting_errors(self->reporter_, self->window(), tr("Albedo estimate failed"),
+                                     [&] { throw std::runtime_error(error); });
+                return;
+            }
+            Project now = self->doc_->project();
+            if (index >= int(now.real.size()) || QString::fromStdString(now.real[size_t(index)].name) != name) return;
+            now.real[size_t(index)].albedo = albedo;
+            self->doc_->edit(tr("Estimate albedo of %1").arg(name), now);
+            const double n = double(t.albedo.size()) / 100.0;
+            self->status_->setText(tr("Albedo: %1 x %2 texels, %3% estimated, mean %4")
+                                       .arg(t.albedo.width())
+                                       .arg(t.albedo.height())
+                                       .arg(double(t.valid) / n, 0, 'f', 1)
+                                       .arg(double(luminance(t.mean_albedo)), 0, 'f', 3));
+        }, Qt::QueuedConnection);
+    });
+    return true;
+}
+
+ProxyPanel::~ProxyPanel() {
+    if (worker_.joinable()) worker_.join();
 }
 
 void ProxyPanel::removeSelected() {

@@ -3,9 +3,11 @@
 #include <QVector>
 #include <QWidget>
 #include <functional>
+#include <thread>
 
 class QDoubleSpinBox;
 class QLabel;
+class QPushButton;
 class QListWidget;
 class QSpinBox;
 
@@ -30,8 +32,10 @@ public:
     /// A box from four footprint corners / a wall from two base points (render pixels).
     bool addBox(const QVector<QPointF>& corners);
     bool addWall(const QVector<QPointF>& base);
-    /// Estimates the albedo texture of real proxy `index` and points the proxy at it.
+    /// Estimates the albedo texture of real proxy `index` on a worker thread (seconds of work)
+    /// and points the proxy at it when done; false if the request is refused at once.
     bool estimateAlbedo(int index);
+    ~ProxyPanel() override;
 
 private:
     enum class Target { None, Box, Wall };
@@ -47,8 +51,10 @@ private:
     QDoubleSpinBox *boxHeight_, *wallHeight_, *wallThickness_;
     QSpinBox *resolution_, *samples_;
     QLabel* status_;
+    QPushButton* estimate_;  ///< disabled while an estimate runs
     Target target_ = Target::None;
     QVector<QPointF> points_;
+    std::thread worker_;  ///< the albedo estimate in flight, if any
 };
 
 }  // namespace dp::ui

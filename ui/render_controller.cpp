@@ -70,9 +70,9 @@ class RenderController::Sink : public RenderSink {
     RenderController* c_;
 };
 
-RenderController::RenderController(QObject* parent)
+RenderController::RenderController(std::shared_ptr<AssetLibrary> assets, QObject* parent)
     : QObject(parent),
-      builder_(std::make_unique<SceneBuilder>()),
+      builder_(std::make_unique<SceneBuilder>(std::move(assets))),
       sink_(std::make_unique<Sink>(this)) {
     session_ = std::make_unique<RenderSession>(sink_.get());
     thread_ = std::thread([this] { worker(); });

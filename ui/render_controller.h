@@ -10,6 +10,7 @@
 #include <optional>
 #include <thread>
 
+#include "assets/asset_library.h"
 #include "project_edit.h"
 #include "render/session.h"
 
@@ -37,7 +38,9 @@ struct RenderFrame {
 class RenderController : public QObject {
     Q_OBJECT
 public:
-    explicit RenderController(QObject* parent = nullptr);
+    /// `assets`: the library scenes are loaded through (shared with the document's panels).
+    explicit RenderController(std::shared_ptr<AssetLibrary> assets = std::make_shared<AssetLibrary>(),
+                              QObject* parent = nullptr);
     ~RenderController() override;
 
     /// Size of the full render (default: the photo's).

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "assets/asset_library.h"
 #include "base/error.h"
 #include "commands.h"
 #include "common.h"
@@ -48,32 +49,24 @@ std::vector<vec2> pairs(const std::vector<float>& xy) {
 
 /// The photo's size and the camera that took it (the photo file is read for its size).
 Camera project_camera(const Project& p) {
-    Image photo = load_image(p.resolve(p.photo.path).string(), "photo.path");
-    return p.camera.build(photo.width(), photo.height());
+    AssetLibrary assets;
+    int w = 0, h = 0;
+    assets.photo_size(p, w, h);
+    return p.camera.build(w, h);
 }
 
 /// Where a photo value clips, in the photo's units after the project's exposure: `given` (file
 /// units) when set, 0.99 for an 8-bit photo (sRGB 254 and 255), none for EXR/HDR.
 float clip_level(const Project& p, const std::optional<float>& given) {
-    const float gain = std::exp2(p.photo.exposure);
-    if (given) return *given * gain;
-    std::string ext = fs::path(p.photo.path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".exr" || ext == ".hdr") return std::numeric_limits<float>::infinity();
-    return 0.99f * gain;
+    if (given) return *given * std::exp2(p.photo.exposure);
+    AssetLibrary assets;
+    return assets.photo_clip_level(p);
 }
 
 void write_back(const Project& p, const std::string& input, const std::string& output) {
     const std::string path = output.empty() ? input : output;
     save_project(p, path);
     std::printf("wrote %s\n", path.c_str());
-}
-
-/// A file-name-safe form of a proxy's name ("real3" when it has none).
-std::string file_stem(const std::string& name, size_t index) {
-    std::string s;
-    for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
-    return s.empty() ? "real" + std::to_string(index) : s;
 }
 
 // ---- proxy ---------------------------------------------------------------------------------
@@ -165,8 +158,6 @@ void run_albedo(const AlbedoOptions& o) {
         ao.bounce_samples = o.bounce;
         ao.clip_level = clip_level(p, o.clip);
         ao.seed = o.seed;
-        const fs::path folder = fs::path(o.output.empty() ? o.project : o.output).parent_path();
-        const std::string project_stem = fs::path(o.output.empty() ? o.project : o.output).stem().string();
         for (size_t i : chosen) {
             AlbedoTexture t;
             try {
@@ -174,12 +165,8 @@ void run_albedo(const AlbedoOptions& o) {
             } catch (const InputError& e) {
                 rethrow_for(e, o.project);
             }
-            const std::string stem = project_stem + "_" + file_stem(p.real[i].name, i) + "_albedo";
-            const std::string texture = stem + ".exr", mask = stem + "_mask.exr";
-            save_exr((folder / texture).string(), {{"", &t.albedo}});
-            save_exr((folder / mask).string(), {{"", &t.mask}});
-            p.real[i].albedo.kind = Albedo::Kind::Texture;
-            p.real[i].albedo.texture_path = texture;
+            const std::string texture = attach_albedo_texture(p, int(i), t, o.output.empty() ? o.project : o.output, true);
+            const std::string mask = fs::path(texture).stem().string() + "_mask.exr";
             const double n = double(t.albedo.size()) / 100.0;
             std::printf("real[%zu] '%s': %dx%d texels, estimated %.1f%% (clipped %.1f%%, unseen %.1f%%, unlit %.1f%%)\n",
                         i, p.real[i].name.c_str(), t.albedo.width(), t.albedo.height(), t.valid / n, t.clipped / n,

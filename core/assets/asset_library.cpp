@@ -84,6 +84,7 @@ std::shared_ptr<const Image> AssetLibrary::photo(const Project& p) {
     return cached<Image>(photo_key(p), path, [&](Entry& e) {
         ImageLoadReport report;
         Image img = load_noted(path, "photo.path", report, e.warnings, e.non_finite);
+        e.linear = report.linear_source;
         const float gain = std::exp2(p.photo.exposure);
         if (gain != 1.0f)
             for (size_t i = 0; i < img.size(); ++i) img[i] *= gain;
@@ -160,6 +161,31 @@ SceneAssets AssetLibrary::load(const Project& project) {
 }
 
 std::vector<std::string> AssetLibrary::warnings(const Project& project) { return load(project).warnings; }
+
+void AssetLibrary::photo_size(const Project& p, int& width, int& height) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        auto it = entries_.find(photo_key(p));
+        if (it != entries_.end()) {
+            const auto img = std::static_pointer_cast<const Image>(it->second.data);
+            width = img->width();
+            height = img->height();
+            return;
+        }
+    }
+    if (read_image_size(p.resolve(p.photo.path).string(), width, height)) return;
+    const auto img = photo(p);
+    width = img->width();
+    height = img->height();
+}
+
+float AssetLibrary::photo_clip_level(const Project& p) {
+    photo(p);
+    std::lock_guard<std::mutex> lock(mutex_);
+    const bool linear = entries_[photo_key(p)].linear;
+    // The top code value of an 8-bit photo, less a little for rounding, after the exposure.
+    return linear ? INFINITY : 0.99f * std::exp2(p.photo.exposure);
+}
 
 void AssetLibrary::clear() {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -28,6 +28,13 @@ public:
     /// The photo resampled to width x height (cached per size: previews ask for the same few).
     std::shared_ptr<const Image> photo_at(const Project& project, int width, int height);
 
+    /// The photo's size, from its header where the photo is not decoded yet (cheap enough for a
+    /// UI thread). Throws InputError for an unreadable photo.
+    void photo_size(const Project& project, int& width, int& height);
+    /// The photo value (after exposure) at or above which a channel counts as clipped: the top
+    /// of an 8-bit photo's range, infinity for a linear (HDR) photo.
+    float photo_clip_level(const Project& project);
+
     /// Warnings about the files `project` names, as last decoded (NaN/Inf replaced, an LDR probe,
     /// zero-area triangles dropped...).
     std::vector<std::string> warnings(const Project& project);
@@ -41,6 +48,7 @@ private:
         std::shared_ptr<const void> data;
         std::vector<std::string> warnings;
         size_t non_finite = 0;  ///< NaN/Inf channels replaced when decoding
+        bool linear = true;     ///< an image decoded from a linear (HDR) file
     };
     /// The cached entry for `key` made from `path` by `make`, remade if the file changed.
     template <class T, class Make>

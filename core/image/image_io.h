@@ -27,6 +27,10 @@ struct ExrLayer {
     const Image* image;
 };
 
+/// Reads an image's size from its header (EXR, PNG, JPEG) without decoding it; false for other
+/// formats or an unreadable header (decode the image then).
+bool read_image_size(const std::string& path, int& width, int& height);
+
 /// Writes a 32-bit float EXR with the given layers (all the same size).
 void save_exr(const std::string& path, const std::vector<ExrLayer>& layers);
 /// Reads one layer of an EXR written by save_exr ("" for the main one).

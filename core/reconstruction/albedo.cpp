@@ -1,5 +1,9 @@
 #include "reconstruction/albedo.h"
 
+#include <cctype>
+
+#include "image/image_io.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -316,6 +320,32 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
     out.bounce_fraction = E_total > 0 ? E_bounce / E_total : 0;
     fill_flagged_texels(out.albedo, out.mask);
     return out;
+}
+
+namespace {
+
+/// A proxy's name as a file name part: letters, digits, '-' and '_' kept, the rest '_'.
+std::string file_stem(const std::string& name, int index) {
+    std::string s;
+    for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    return s.empty() ? "real" + std::to_string(index) : s;
+}
+
+}  // namespace
+
+std::string attach_albedo_texture(Project& project, int proxy, const AlbedoTexture& texture,
+                                  const std::filesystem::path& project_file, bool saved_there) {
+    namespace fs = std::filesystem;
+    const fs::path folder = fs::absolute(project_file).parent_path();
+    const std::string stem = project_file.stem().string() + "_" + file_stem(project.real[size_t(proxy)].name, proxy) + "_albedo";
+    save_exr((folder / (stem + ".exr")).string(), {{"", &texture.albedo}});
+    if (!texture.mask.empty()) save_exr((folder / (stem + "_mask.exr")).string(), {{"", &texture.mask}});
+    RealProxy& r = project.real[size_t(proxy)];
+    r.albedo.kind = Albedo::Kind::Texture;
+    std::error_code ec;
+    const bool beside = saved_there || (!project.base_dir.empty() && fs::equivalent(project.base_dir, folder, ec));
+    r.albedo.texture_path = beside ? stem + ".exr" : (folder / (stem + ".exr")).string();
+    return r.albedo.texture_path;
 }
 
 }  // namespace dp

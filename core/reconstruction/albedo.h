@@ -1,5 +1,7 @@
 #pragma once
 #include <cmath>
+#include <filesystem>
+#include <string>
 #include <cstdint>
 
 #include "image/image.h"
@@ -64,5 +66,13 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy,
 /// Fills texels whose `mask` pixel is non-zero from their valid neighbours, ring by ring.
 /// Returns false when there is no valid texel at all (nothing is changed then).
 bool fill_flagged_texels(Image& image, const Image& mask);
+
+/// Writes an estimated texture (and its mask) next to a project file as
+/// "<project stem>_<proxy name>_albedo.exr" (and "..._albedo_mask.exr") and points proxy
+/// `proxy` of `project` at it: by its name alone when the project resolves paths in that
+/// folder or is about to be saved to `project_file` (`saved_there`), by its absolute path
+/// otherwise. Returns the path as written into the project.
+std::string attach_albedo_texture(Project& project, int proxy, const AlbedoTexture& texture,
+                                  const std::filesystem::path& project_file, bool saved_there = false);
 
 }  // namespace dp

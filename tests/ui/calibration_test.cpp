@@ -373,7 +373,11 @@ void CalibrationTest::albedoEstimateWritesTheLibrarysTextureNextToTheProject() {
     child<QSpinBox>("albedoResolution")->setValue(16);  // small: the test stays fast
     child<QSpinBox>("albedoSamples")->setValue(32);
     w_->proxyPanel()->list()->setCurrentRow(0);
-    child<QPushButton>("albedoEstimate")->click();
+    QPushButton* estimate = child<QPushButton>("albedoEstimate");
+    QTest::mouseClick(estimate, Qt::LeftButton);
+    // The estimate runs on a worker: the button waits disabled, the UI keeps answering.
+    QVERIFY(!estimate->isEnabled());
+    QTRY_VERIFY_WITH_TIMEOUT(estimate->isEnabled(), 60000);
     QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
     const RealProxy& ground = w_->document()->project().real[0];
     QVERIFY(ground.albedo.kind == Albedo::Kind::Texture);
