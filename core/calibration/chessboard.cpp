@@ -215,8 +215,9 @@ ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& vi
             ++next;
         } else {
             cv::Vec3d rvec, tvec;
-            cv::solvePnP(target, calib::to_cv(views[i].corners), K, dist, rvec, tvec, false,
-                         cv::SOLVEPNP_IPPE);
+            const std::vector<cv::Point2d> image = calib::to_cv(views[i].corners);
+            cv::solvePnP(target, image, K, dist, rvec, tvec, false, cv::SOLVEPNP_IPPE);
+            cv::solvePnPRefineLM(target, image, K, dist, rvec, tvec);
             target_pose = calib::pose_from(rvec, tvec);
         }
         glm::dmat3 M;
