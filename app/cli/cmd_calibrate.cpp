@@ -63,7 +63,7 @@ int run_chessboard(const ChessboardOptions& o) {
     std::vector<ChessboardView> views;
     for (const std::string& photo : o.photos) views.push_back(detect_chessboard(photo, spec));
     CalibrationResult r;
-    std::string method, photo = o.photos[0];
+    std::string method, photo = o.photos[0], poses;
     if (views.size() > 1) {
         if (o.focal.given())
             throw InputError("", "--focal",
@@ -77,12 +77,7 @@ int run_chessboard(const ChessboardOptions& o) {
                         c.view_uncertainty[i].position_m, c.view_uncertainty[i].rotation_deg,
                         c.duplicate_of[i] >= 0 ? " (duplicate, not in the lens fit)" : "");
         }
-        if (!o.poses.empty()) {
-            std::ofstream out(o.poses);
-            out << chessboard_poses_json(c, views, spec) << "\n";
-            if (!out) throw InputError(o.poses, "--poses", "cannot write the file");
-            std::printf("wrote every photo's pose to %s\n", o.poses.c_str());
-        }
+        if (!o.poses.empty()) poses = chessboard_poses_json(c, views, spec);
         const size_t keep = project_photo(o.project, o.photos);
         r = c.for_view(keep);
         method = "chessboard, " + std::to_string(views.size()) + " photos (pose of " +
@@ -104,6 +99,12 @@ int run_chessboard(const ChessboardOptions& o) {
     }
     print_result(r, method);
     write_camera(o.project, r, photo);
+    if (!poses.empty()) {  // after the project: a refused camera writes nothing
+        std::ofstream out(o.poses);
+        out << poses << "\n";
+        if (!out) throw InputError(o.poses, "--poses", "cannot write the file");
+        std::printf("wrote every photo's pose to %s\n", o.poses.c_str());
+    }
     return 0;
 }
 

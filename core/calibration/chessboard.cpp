@@ -241,7 +241,12 @@ ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& vi
         out.result.warnings.push_back("only " + std::to_string(fitted.size()) +
                                       " different photos: the lens distortion is poorly "
                                       "constrained; 10 or more tilted views are better");
-    add_quality_warnings(out.result, 1.0);
+    // Detected corners fit to a few tenths of a pixel: more is blur or an unusual lens.
+    if (rms > 0.5)
+        out.result.warnings.push_back("the board fits the lens poorly (rms " + std::to_string(rms) +
+                                      " px, more than 0.5 px): drop blurred photos (those with "
+                                      "the largest rms), or the lens is beyond this model");
+    add_quality_warnings(out.result, HUGE_VAL);
     return out;
 }
 
