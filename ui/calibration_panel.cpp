@@ -370,7 +370,8 @@ void CalibrationPanel::apply(const QString& method, const CalibrationResult& r) 
                        .arg(method)
                        .arg(r.intrinsics.hfov_deg(), 0, 'f', 1)
                        .arg(QString::fromStdString(uncertainty_text(r)));
-    for (const std::string& w : r.warnings) text += "\n" + tr("Warning: ") + QString::fromStdString(w);
+    for (const std::string& w : r.warnings)
+        text += "\n" + tr("Warning: ") + QString::fromStdString(w);
     status_->setText(text);
 }
 

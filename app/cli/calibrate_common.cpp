@@ -211,7 +211,8 @@ void print_result(const CalibrationResult& r, const std::string& method) {
         std::printf("rms_px %.4f\n", r.rms_px);
     // One standard deviation; the noise it assumes for each point, where it has one.
     std::printf("uncertainty: %s", uncertainty_text(r).c_str());
-    if (r.uncertainty.known) std::printf(" (1 sigma, points to %.2g px)", r.uncertainty.point_sigma_px);
+    if (r.uncertainty.known)
+        std::printf(" (1 sigma, points to %.2g px)", r.uncertainty.point_sigma_px);
     std::printf("\n");
     for (const std::string& w : r.warnings) warn(w);
 }

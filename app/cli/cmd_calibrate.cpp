@@ -72,7 +72,8 @@ int run_chessboard(const ChessboardOptions& o) {
         ChessboardCalibration c = calibrate_chessboard(views, spec);
         for (size_t i = 0; i < views.size(); ++i) {
             const glm::dvec3 pos = c.poses[i].position();
-            std::printf("photo %s: rms_px %.4f position %.4f %.4f %.4f ± %.2g m rotation ± %.2g°%s\n",
+            std::printf("photo %s: rms_px %.4f position %.4f %.4f %.4f ± %.2g m "
+                        "rotation ± %.2g°%s\n",
                         views[i].source.c_str(), c.view_rms_px[i], pos.x, pos.y, pos.z,
                         c.view_uncertainty[i].position_m, c.view_uncertainty[i].rotation_deg,
                         c.duplicate_of[i] >= 0 ? " (duplicate, not in the lens fit)" : "");

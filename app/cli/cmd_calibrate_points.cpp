@@ -184,7 +184,8 @@ int run_vanishing(const VanishingOptions& o) {
         in.origin = in.distance ? in.distance->a : in.vertical->a;
     }
     if (const json* j = member(doc, "free_principal_point")) {
-        if (!j->is_boolean()) throw InputError(o.file, "free_principal_point", "expected true or false");
+        if (!j->is_boolean())
+            throw InputError(o.file, "free_principal_point", "expected true or false");
         in.free_principal_point = j->get<bool>();
     }
     if (o.free_principal_point) in.free_principal_point = true;

@@ -206,7 +206,8 @@ ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& vi
     out.result.rms_px = rms;
     // The lens' spread (OpenCV's marginal deviations; their correlations are not available).
     cv::Mat lens_cov = cv::Mat::zeros(4, 4, CV_64F);
-    for (int j = 0; j < 4; ++j) lens_cov.at<double>(j, j) = std::pow(std_intrinsics.at<double>(j), 2);
+    for (int j = 0; j < 4; ++j)
+        lens_cov.at<double>(j, j) = std::pow(std_intrinsics.at<double>(j), 2);
     size_t next = 0;
     for (size_t i = 0; i < views.size(); ++i) {
         Pose target_pose;

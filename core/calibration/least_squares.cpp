@@ -28,7 +28,8 @@ cv::Mat numeric_jacobian(const ResidualFunction& f, const std::vector<double>& x
         xp[j] = x[j] - h;
         f(xp, rm);
         xp[j] = x[j];
-        for (size_t i = 0; i < r0.size(); ++i) J.at<double>(int(i), int(j)) = (rp[i] - rm[i]) / (2 * h);
+        for (size_t i = 0; i < r0.size(); ++i)
+            J.at<double>(int(i), int(j)) = (rp[i] - rm[i]) / (2 * h);
     }
     return J;
 }
@@ -56,7 +57,8 @@ LeastSquaresResult levenberg_marquardt(const ResidualFunction& f, std::vector<do
             for (int j = 0; j < p; ++j)
                 D.at<double>(j, j) += lambda * std::max(A.at<double>(j, j), 1e-12);
             cv::Mat step;
-            if (!cv::solve(D, -g, step, cv::DECOMP_CHOLESKY)) cv::solve(D, -g, step, cv::DECOMP_SVD);
+            if (!cv::solve(D, -g, step, cv::DECOMP_CHOLESKY))
+                cv::solve(D, -g, step, cv::DECOMP_SVD);
             std::vector<double> trial = out.x;
             for (int j = 0; j < p; ++j) trial[size_t(j)] += step.at<double>(j);
             f(trial, trial_r);

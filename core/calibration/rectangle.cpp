@@ -84,7 +84,8 @@ void check_aspect(const std::vector<glm::dvec3>& world, const std::vector<ImageP
             r[2 * i] = p.x - image[i].x, r[2 * i + 1] = p.y - image[i].y;
         }
     };
-    const calib::LeastSquaresResult fit = calib::levenberg_marquardt(f, std::vector<double>(7, 0.0));
+    const calib::LeastSquaresResult fit =
+        calib::levenberg_marquardt(f, std::vector<double>(7, 0.0));
     const double rms_free = std::sqrt(fit.cost / 4);
     const cv::Mat cov = calib::inverse_normal_matrix(calib::numeric_jacobian(f, fit.x));
     const double sigma = std::max(click_sigma, rms_free) * std::sqrt(cov.at<double>(6, 6));

@@ -103,7 +103,8 @@ glm::dmat3 rotation_from_vps(const std::array<glm::dvec3, 3>& vp, const Axes& ax
     for (int a = 0; a < 3; ++a)
         if (ax.used[size_t(a)]) {
             const glm::dvec3& v = vp[size_t(a)];
-            d[size_t(a)] = glm::normalize(glm::dvec3((v.x - c.x * v.z) / f, (v.y - c.y * v.z) / f, v.z));
+            d[size_t(a)] =
+                glm::normalize(glm::dvec3((v.x - c.x * v.z) / f, (v.y - c.y * v.z) / f, v.z));
         }
     if (ax.used[1] && d[1].y > 0) d[1] = -d[1];
     if (ax.used[0] && d[0].x < 0) d[0] = -d[0];
@@ -302,7 +303,8 @@ glm::dvec3 vanishing_point(const std::vector<LineSegment>& segments) {
 
 CalibrationResult calibrate_vanishing(const VanishingInput& in, int width, int height,
                                       const std::string& source) {
-    if (width <= 0 || height <= 0) throw InputError(source, "size", "the image size must be positive");
+    if (width <= 0 || height <= 0)
+        throw InputError(source, "size", "the image size must be positive");
     const double size = double(std::max(width, height));
     const Axes ax = check_axes(in, size, source);
     if (in.focal_px) check_focal(*in.focal_px, source, "focal");
@@ -367,10 +369,11 @@ CalibrationResult calibrate_vanishing(const VanishingInput& in, int width, int h
         std::vector<ImagePoint> plus = clicks, minus = clicks;
         plus[i / 2][int(i % 2)] += 1e-3;
         minus[i / 2][int(i % 2)] -= 1e-3;
-        const glm::dvec3 d =
-            (calib::place_camera(cam.R, r.intrinsics, calib::with_placement_points(in, plus), source) -
-             calib::place_camera(cam.R, r.intrinsics, calib::with_placement_points(in, minus), source)) /
-            2e-3;
+        auto at = [&](const std::vector<ImagePoint>& p) {
+            return calib::place_camera(cam.R, r.intrinsics, calib::with_placement_points(in, p),
+                                       source);
+        };
+        const glm::dvec3 d = (at(plus) - at(minus)) / 2e-3;
         for (int k = 0; k < 3; ++k) Jc.at<double>(k, int(i)) = d[k];
     }
     const cv::Mat click_cov = fit.sigma * fit.sigma * Jc * Jc.t();

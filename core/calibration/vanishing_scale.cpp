@@ -22,7 +22,8 @@ struct UnitFrame {
         return glm::transpose(R) * glm::dvec3((p.x - k.cx) / k.fx, (p.y - k.cy) / k.fy, 1.0);
     }
     /// Ground point (y = 0) seen at `p`; throws above the horizon.
-    glm::dvec3 ground(const ImagePoint& p, const std::string& field, const std::string& what) const {
+    glm::dvec3 ground(const ImagePoint& p, const std::string& field,
+                      const std::string& what) const {
         const glm::dvec3 r = ray(p);
         if (!(r.y < 0))
             throw InputError(source, field, what + " must be on the ground, below the horizon");
@@ -66,7 +67,8 @@ UnitFrame unit_frame(const glm::dmat3& R, const Intrinsics& k, const VanishingIn
 
 glm::dvec3 place_camera(const glm::dmat3& R, const Intrinsics& k, const VanishingInput& in,
                         const std::string& source) {
-    const int scales = int(bool(in.camera_height)) + int(bool(in.distance)) + int(bool(in.vertical));
+    const int scales =
+        int(bool(in.camera_height)) + int(bool(in.distance)) + int(bool(in.vertical));
     if (scales > 1)
         throw InputError(source, "",
                          "give one scale only: the camera height, a ground distance or a "
@@ -79,7 +81,8 @@ glm::dvec3 place_camera(const glm::dmat3& R, const Intrinsics& k, const Vanishin
         height = *in.camera_height;
     } else if (in.distance) {
         const auto& d = *in.distance;
-        if (!(d.metres > 0)) throw InputError(source, "distance", "the distance must be > 0 metres");
+        if (!(d.metres > 0))
+            throw InputError(source, "distance", "the distance must be > 0 metres");
         const std::string what = "the distance's end points";
         const double unit = glm::length(f.ground(d.a, "distance", what) -
                                         f.ground(d.b, "distance", what));

@@ -46,7 +46,7 @@ expect_warned "a vertical length given as a distance" "give them as a vertical l
     vanishing scene.json --size 1000x750 $LINES --origin 413.518,381.519 \
     --distance 582.363,405.326,586.041,341.114,0.28
 HEIGHT=$(awk '/^position:/ { print $3 }' stdout.txt)
-at_most "$HEIGHT" 1.0 || fail "the distance taken as vertical should give a wrong height, got $HEIGHT"
+at_most "$HEIGHT" 1.0 || fail "a vertical taken as a distance gives a wrong height, not $HEIGHT"
 # shellcheck disable=SC2086
 expect_refused "a line in the wrong group" "wrong group" -- \
     vanishing scene.json --size 1000x750 $LINES --x 475.916,325.495,345.697,442.412 \

@@ -130,7 +130,7 @@ TEST(ChessboardPhotos, ALargePhotoGivesTheSameCornersAsTheSmallOne) {
     }
 }
 
-TEST(ChessboardPhotos, TheLensAndEveryPoseComeWithAnUncertainty) {
+TEST(ChessboardPhotoCalibration, TheLensAndEveryPoseComeWithAnUncertainty) {
     const auto& views = sample_views();
     ASSERT_GE(views.size(), 13u);
     ChessboardCalibration c = calibrate_chessboard(views, kBoard);
@@ -149,7 +149,7 @@ TEST(ChessboardPhotos, TheLensAndEveryPoseComeWithAnUncertainty) {
     }
 }
 
-TEST(ChessboardPhotos, ADuplicatePhotoIsLeftOutOfTheLensFitWithAWarning) {
+TEST(ChessboardPhotoCalibration, ADuplicatePhotoIsLeftOutOfTheLensFitWithAWarning) {
     const auto& views = sample_views();
     ASSERT_GE(views.size(), 13u);
     const ChessboardCalibration once = calibrate_chessboard(views, kBoard);
@@ -172,7 +172,7 @@ TEST(ChessboardPhotos, ADuplicatePhotoIsLeftOutOfTheLensFitWithAWarning) {
               std::string::npos);
 }
 
-TEST(ChessboardPhotos, TheWrittenPosesReprojectEveryPhotosCornersWithinHalfAPixel) {
+TEST(ChessboardPhotoCalibration, TheWrittenPosesReprojectEveryPhotosCornersWithinHalfAPixel) {
     const auto& views = sample_views();
     ASSERT_GE(views.size(), 13u);
     const ChessboardCalibration c = calibrate_chessboard(views, kBoard);

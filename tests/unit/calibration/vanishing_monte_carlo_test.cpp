@@ -28,7 +28,7 @@ void expect_about_95(double rate, const char* what) {
 
 }  // namespace
 
-TEST(VanishingMonteCarlo, ThreeDirectionsWithShortVerticalEdgesGiveTheFocalWithinFivePercent) {
+TEST(VanishingCalibrationMonteCarlo, ThreeDirectionsWithShortVerticalEdgesGiveTheFocalWithinFivePercent) {
     const DrawStats s = monte_carlo(ground_lines_and_box_edges(), kDraws, kClickNoise, 0.05, 0.5);
     report("three_directions_short_vertical", s);
     EXPECT_EQ(s.refused, 0);
@@ -36,7 +36,7 @@ TEST(VanishingMonteCarlo, ThreeDirectionsWithShortVerticalEdgesGiveTheFocalWithi
     EXPECT_EQ(s.silent_outliers, 0);
 }
 
-TEST(VanishingMonteCarlo, TwoLongGroundDirectionsGiveTheFocalWithinTwoPercentAndTheRotationWithinHalfADegree) {
+TEST(VanishingCalibrationMonteCarlo, TwoLongGroundDirectionsGiveTheFocalWithinTwoPercentAndTheRotationWithinHalfADegree) {
     const DrawStats s = monte_carlo(long_ground_lines(), kDraws, kClickNoise, 0.02, 0.5);
     report("two_long_ground_directions", s);
     EXPECT_EQ(s.refused, 0);
@@ -44,9 +44,10 @@ TEST(VanishingMonteCarlo, TwoLongGroundDirectionsGiveTheFocalWithinTwoPercentAnd
     EXPECT_GE(s.rate(s.rotation_within), 0.95);
 }
 
-TEST(VanishingMonteCarlo, TheStatedUncertaintyCoversTheErrorInAboutNinetyFivePercentOfDraws) {
-    for (const auto& [name, scene] : {std::pair{"coverage_three_directions", ground_lines_and_box_edges()},
-                                      std::pair{"coverage_two_directions", long_ground_lines()}}) {
+TEST(VanishingCalibrationMonteCarlo, TheStatedUncertaintyCoversTheErrorInAboutNinetyFivePercentOfDraws) {
+    for (const auto& [name, scene] :
+         {std::pair{"coverage_three_directions", ground_lines_and_box_edges()},
+          std::pair{"coverage_two_directions", long_ground_lines()}}) {
         SCOPED_TRACE(name);
         const DrawStats s = monte_carlo(scene, kDraws, kClickNoise, 0.05, 0.5);
         report(name, s);
@@ -56,7 +57,7 @@ TEST(VanishingMonteCarlo, TheStatedUncertaintyCoversTheErrorInAboutNinetyFivePer
     }
 }
 
-TEST(VanishingMonteCarlo, WeakLinesNeverGiveASilentlyWrongFocalLength) {
+TEST(VanishingCalibrationMonteCarlo, WeakLinesNeverGiveASilentlyWrongFocalLength) {
     // Only a box's short edges, clicked at 2 px: some draws are far off, each must warn.
     const DrawStats s = monte_carlo(box_edges(), kDraws, 2.0, 0.05, 0.5);
     report("box_edges_2px", s);
@@ -64,7 +65,7 @@ TEST(VanishingMonteCarlo, WeakLinesNeverGiveASilentlyWrongFocalLength) {
     EXPECT_EQ(s.silent_outliers, 0);
 }
 
-TEST(VanishingMonteCarlo, LinesParallelInTheImageAreSolvedUnderNoise) {
+TEST(VanishingCalibrationMonteCarlo, LinesParallelInTheImageAreSolvedUnderNoise) {
     const DrawStats s = monte_carlo(parallel_x_lines(), kDraws, kClickNoise, 0.05, 0.5);
     report("parallel_x_lines", s);
     EXPECT_EQ(s.refused, 0);

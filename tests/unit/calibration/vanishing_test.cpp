@@ -42,7 +42,7 @@ VanishingInput lines(const Camera& cam) {
 
 }  // namespace
 
-TEST(Vanishing, ThreeDirectionsFindAFreedPrincipalPoint) {
+TEST(VanishingCalibration, ThreeDirectionsFindAFreedPrincipalPoint) {
     const CameraSpec truth = shifted_camera();
     const Camera cam = truth.build(kW, kH);
     VanishingInput in = lines(cam);
@@ -56,7 +56,7 @@ TEST(Vanishing, ThreeDirectionsFindAFreedPrincipalPoint) {
     EXPECT_LT(rotation_angle_deg(r.pose.R, glm::dmat3(truth.rotation)), 1e-3);
 }
 
-TEST(Vanishing, AnyTwoDirectionsGiveTheSameCameraWithACentredPrincipalPoint) {
+TEST(VanishingCalibration, AnyTwoDirectionsGiveTheSameCameraWithACentredPrincipalPoint) {
     const CameraSpec truth = camera_at({1.5, 1.6, 2.5}, {0.3, 0, -0.2}, kW, kH, 800);
     const Camera cam = truth.build(kW, kH);
     const VanishingInput all = lines(cam);
@@ -71,7 +71,7 @@ TEST(Vanishing, AnyTwoDirectionsGiveTheSameCameraWithACentredPrincipalPoint) {
     }
 }
 
-TEST(Vanishing, AGivenFocalLengthIsKept) {
+TEST(VanishingCalibration, AGivenFocalLengthIsKept) {
     const CameraSpec truth = camera_at({1.5, 1.6, 2.5}, {0.3, 0, -0.2}, kW, kH, 800);
     VanishingInput in = lines(truth.build(kW, kH));
     in.y.clear();
@@ -81,14 +81,15 @@ TEST(Vanishing, AGivenFocalLengthIsKept) {
     EXPECT_LT(rotation_angle_deg(r.pose.R, glm::dmat3(truth.rotation)), 1e-3);
 }
 
-TEST(Vanishing, ExactClicksGiveTheFocalWithinATenthOfAPercent) {
+TEST(VanishingCalibration, ExactClicksGiveTheFocalWithinATenthOfAPercent) {
     for (const auto& [name, scene] :
          {std::pair{"three directions", ground_lines_and_box_edges()},
           std::pair{"two long ground directions", long_ground_lines()},
           std::pair{"box edges only", box_edges()},
           std::pair{"x parallel in the image", parallel_x_lines()}}) {
         SCOPED_TRACE(name);
-        const CalibrationResult r = calibrate_vanishing(scene.exact(), scene.width, scene.height, "");
+        const CalibrationResult r =
+            calibrate_vanishing(scene.exact(), scene.width, scene.height, "");
         EXPECT_NEAR(r.intrinsics.fx / scene.truth.fx, 1.0, 1e-3);
         EXPECT_LT(rotation_angle_deg(r.pose.R, glm::dmat3(scene.truth.rotation)), 0.01);
         EXPECT_LT(glm::length(r.pose.position() - glm::dvec3(scene.camera().position())), 1e-3);
@@ -96,7 +97,7 @@ TEST(Vanishing, ExactClicksGiveTheFocalWithinATenthOfAPercent) {
     }
 }
 
-TEST(Vanishing, LinesParallelInTheImageAreSolvedNotRefused) {
+TEST(VanishingCalibration, LinesParallelInTheImageAreSolvedNotRefused) {
     const LineScene scene = parallel_x_lines();
     const VanishingInput exact = scene.exact();
     ASSERT_NEAR(exact.x[0].a.y, exact.x[0].b.y, 1e-3);  // the X lines are level in the image
@@ -110,7 +111,7 @@ TEST(Vanishing, LinesParallelInTheImageAreSolvedNotRefused) {
     EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
 }
 
-TEST(Vanishing, AKnownVerticalLengthSetsTheScale) {
+TEST(VanishingCalibration, AKnownVerticalLengthSetsTheScale) {
     const LineScene scene = ground_lines_and_box_edges();
     VanishingInput in = scene.exact();
     in.distance.reset();
@@ -126,7 +127,7 @@ TEST(Vanishing, AKnownVerticalLengthSetsTheScale) {
                 0.5 * scene.camera().position().y, 1e-4);
 }
 
-TEST(Vanishing, AFreedPrincipalPointStaysCentredWhenTheLinesCannotFixIt) {
+TEST(VanishingCalibration, AFreedPrincipalPointStaysCentredWhenTheLinesCannotFixIt) {
     const LineScene scene = long_ground_lines();
     VanishingInput in = scene.exact();
     in.free_principal_point = true;
@@ -144,7 +145,7 @@ TEST(Vanishing, AFreedPrincipalPointStaysCentredWhenTheLinesCannotFixIt) {
     EXPECT_NE(q.warnings[0].find("do not pin down the principal point"), std::string::npos);
 }
 
-TEST(Vanishing, TheUncertaintyIsStatedForFocalRotationAndPosition) {
+TEST(VanishingCalibration, TheUncertaintyIsStatedForFocalRotationAndPosition) {
     const LineScene scene = long_ground_lines();
     const CalibrationResult r = calibrate_vanishing(scene.exact(), scene.width, scene.height, "");
     const Uncertainty& u = r.uncertainty;

@@ -36,7 +36,7 @@ const Intrinsics kK = Intrinsics::centred(1000, 750, 800);
 
 }  // namespace
 
-TEST(WrongInput, ARectangleOfAnotherAspectIsRefusedNamingTheAspect) {
+TEST(CalibrationWrongInput, ARectangleOfAnotherAspectIsRefusedNamingTheAspect) {
     const auto c = rectangle_corners();
     EXPECT_NO_THROW(calibrate_rectangle(c, 0.6, 0.4, 1000, 750, kK, "r"));
     expect_error([&] { calibrate_rectangle(c, 0.6, 0.6, 1000, 750, kK, "r"); },
@@ -45,7 +45,7 @@ TEST(WrongInput, ARectangleOfAnotherAspectIsRefusedNamingTheAspect) {
                  "width and height swapped?");
 }
 
-TEST(WrongInput, ARectangleCornerFarOffIsRefused) {
+TEST(CalibrationWrongInput, ARectangleCornerFarOffIsRefused) {
     auto c = rectangle_corners();
     c[2].x += 121;
     expect_error([&] { calibrate_rectangle(c, 0.6, 0.4, 1000, 750, kK, "r"); },
@@ -55,7 +55,7 @@ TEST(WrongInput, ARectangleCornerFarOffIsRefused) {
     has_warning(r, "wider than almost any lens");
 }
 
-TEST(WrongInput, AFocalLengthFromASmallRectangleWarnsThatItIsUncertain) {
+TEST(CalibrationWrongInput, AFocalLengthFromASmallRectangleWarnsThatItIsUncertain) {
     // A 0.3 x 0.2 m sheet: about 60 px across.
     const auto c = rectangle_corners(0.3, 0.2);
     ASSERT_LT(glm::length(c[1] - c[0]), 90.0);
@@ -65,7 +65,7 @@ TEST(WrongInput, AFocalLengthFromASmallRectangleWarnsThatItIsUncertain) {
     has_warning(r, "the focal length is uncertain");
 }
 
-TEST(WrongInput, AVerticalLengthGivenAsAGroundDistanceWarns) {
+TEST(CalibrationWrongInput, AVerticalLengthGivenAsAGroundDistanceWarns) {
     const LineScene scene = ground_lines_and_box_edges();
     VanishingInput in = scene.exact();
     const glm::dvec3 foot(0.7, 0, -0.1);
@@ -76,7 +76,7 @@ TEST(WrongInput, AVerticalLengthGivenAsAGroundDistanceWarns) {
     has_warning(r, "give them as a vertical length");
 }
 
-TEST(WrongInput, AVerticalLengthWhoseTopIsNotAboveItsFootWarns) {
+TEST(CalibrationWrongInput, AVerticalLengthWhoseTopIsNotAboveItsFootWarns) {
     const LineScene scene = ground_lines_and_box_edges();
     VanishingInput in = scene.exact();
     in.distance.reset();
@@ -94,7 +94,7 @@ TEST(WrongInput, AVerticalLengthWhoseTopIsNotAboveItsFootWarns) {
                  "give one scale only");
 }
 
-TEST(WrongInput, ALineInTheWrongGroupIsRefused) {
+TEST(CalibrationWrongInput, ALineInTheWrongGroupIsRefused) {
     const LineScene scene = long_ground_lines();
     VanishingInput in = scene.exact();
     in.x.push_back(in.z[1]);
@@ -102,7 +102,7 @@ TEST(WrongInput, ALineInTheWrongGroupIsRefused) {
                  "wrong group");
 }
 
-TEST(WrongInput, APointAFewPixelsOffWarnsOfThePoorFit) {
+TEST(CalibrationWrongInput, APointAFewPixelsOffWarnsOfThePoorFit) {
     const LineScene scene = ground_lines();
     std::vector<PointCorrespondence> pts;
     for (const glm::dvec3& w : {glm::dvec3(0, 0, 0), glm::dvec3(0.6, 0, 0), glm::dvec3(0.6, 0, 0.4),
@@ -114,7 +114,7 @@ TEST(WrongInput, APointAFewPixelsOffWarnsOfThePoorFit) {
     has_warning(calibrate_points(pts, 1000, 750, kK, "p"), "fits the camera poorly");
 }
 
-TEST(WrongInput, APrincipalPointOutsideTheMiddleHalfWarns) {
+TEST(CalibrationWrongInput, APrincipalPointOutsideTheMiddleHalfWarns) {
     // Points of a camera whose principal point is at x = 100 in a 1000 px wide photo.
     LineScene scene = ground_lines();
     scene.truth.cx = 100;
