@@ -142,7 +142,8 @@ struct LineFit {
         return params.free_focal ? std::sqrt(cov.at<double>(3, 3)) : 0.0;
     }
     double sigma_pp(int i) const {
-        return params.free_pp ? params.size * std::sqrt(cov.at<double>(4 + i, 4 + i)) : 0.0;
+        const int j = 3 + int(params.free_focal) + i;  // after the rotation and focal length
+        return params.free_pp ? params.size * std::sqrt(cov.at<double>(j, j)) : 0.0;
     }
 };
 

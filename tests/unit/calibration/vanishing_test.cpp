@@ -54,6 +54,15 @@ TEST(VanishingCalibration, ThreeDirectionsFindAFreedPrincipalPoint) {
     EXPECT_LT(r.rms_px, 1e-3);
     EXPECT_LT(glm::length(r.pose.position() - glm::dvec3(cam.position())), 1e-4);
     EXPECT_LT(rotation_angle_deg(r.pose.R, glm::dmat3(truth.rotation)), 1e-3);
+    EXPECT_TRUE(r.uncertainty.principal_free);
+    // With the focal length given too.
+    in.focal_px = truth.fx;
+    CalibrationResult g = calibrate_vanishing(in, kW, kH, "");
+    EXPECT_NEAR(g.intrinsics.cx, truth.cx, 0.05);
+    EXPECT_NEAR(g.intrinsics.cy, truth.cy, 0.05);
+    EXPECT_TRUE(g.uncertainty.principal_free && !g.uncertainty.focal_free);
+    EXPECT_GT(g.uncertainty.cx, 0);
+    EXPECT_LT(g.uncertainty.cx, r.uncertainty.cx);  // the focal length known: a tighter point
 }
 
 TEST(VanishingCalibration, AnyTwoDirectionsGiveTheSameCameraWithACentredPrincipalPoint) {
