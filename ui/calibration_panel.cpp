@@ -1,5 +1,8 @@
 #include "calibration_panel.h"
 
+#include <algorithm>
+
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
@@ -209,6 +212,24 @@ QWidget* CalibrationPanel::makeVanishingPage() {
     distRow->addWidget(distance_, 1);
     distRow->addWidget(ends);
     form->addRow(tr("Or distance"), distRow);
+    vertical_ = spin(0, 1e4, 0, 3, tr(" m"),
+                     tr("Scale from a known vertical length (a box edge, a door frame, a "
+                        "person) instead of the camera height (0: not used)"));
+    vertical_->setSpecialValueText(tr("not used"));
+    vertical_->setObjectName("vanishingVertical");
+    QPushButton* footTop = button("vanishingVerticalEnds", tr("Click foot, top"),
+                                  tr("Click the vertical length's foot on the ground, then its "
+                                     "top straight above it"));
+    connect(footTop, &QPushButton::clicked, this, [this] { startPicking(Target::Vertical); });
+    auto* vertRow = new QHBoxLayout;
+    vertRow->addWidget(vertical_, 1);
+    vertRow->addWidget(footTop);
+    form->addRow(tr("Or vertical"), vertRow);
+    freePrincipal_ = new QCheckBox(tr("Estimate the principal point"));
+    freePrincipal_->setObjectName("vanishingFreePrincipal");
+    freePrincipal_->setToolTip(tr("Needs lines along all three directions that pin it down; "
+                                  "otherwise it stays at the image centre"));
+    form->addRow(freePrincipal_);
     vanFocal_ = spin(0, 1e5, 0, 1, tr(" px"),
                      tr("Focal length in pixels; 0 takes it from two vanishing points"));
     vanFocal_->setSpecialValueText(tr("from the lines"));
@@ -242,6 +263,11 @@ void CalibrationPanel::startPicking(Target target) {
             pick->start(PickTool::Kind::Point, 2,
                         tr("Click the two ground points of the known distance"));
             break;
+        case Target::Vertical:
+            verticalEnds_.clear();
+            pick->start(PickTool::Kind::Point, 2,
+                        tr("Click the vertical length's foot on the ground, then its top"));
+            break;
         case Target::X:
         case Target::Y:
         case Target::Z:
@@ -262,6 +288,7 @@ void CalibrationPanel::onPoint(QPointF px) {
     if (target_ == Target::Corners) corners_.push_back(px);
     if (target_ == Target::Origin) origin_ = {px};
     if (target_ == Target::Distance) distanceEnds_.push_back(px);
+    if (target_ == Target::Vertical) verticalEnds_.push_back(px);
     refreshMarks();
 }
 
@@ -276,6 +303,7 @@ void CalibrationPanel::clearPicks() {
     corners_.clear();
     origin_.clear();
     distanceEnds_.clear();
+    verticalEnds_.clear();
     for (auto& l : lines_) l.clear();
     refreshMarks();
 }
@@ -295,6 +323,8 @@ void CalibrationPanel::refreshMarks() {
         for (QPointF o : origin_) marks.push_back({o, o, false, QColor(255, 255, 255), "O"});
         if (distanceEnds_.size() == 2)
             marks.push_back({distanceEnds_[0], distanceEnds_[1], true, QColor(255, 200, 0), "d"});
+        if (verticalEnds_.size() == 2)
+            marks.push_back({verticalEnds_[0], verticalEnds_[1], true, QColor(255, 200, 0), "h"});
     }
     viewport_->pickTool()->setMarks(marks);
     cornerCount_->setText(tr("Corners: %1 / 4").arg(corners_.size()));
@@ -328,12 +358,20 @@ ImagePoint CalibrationPanel::toPhoto(QPointF r) {
     return ImagePoint((r.x() + 0.5) * sx - 0.5, (r.y() + 0.5) * sy - 0.5);
 }
 
+double CalibrationPanel::clickSigma() {
+    const QSize rs = viewport_->renderSize();
+    const double scale = rs.isValid() ? double(photo().width()) / rs.width() : 1.0;
+    return 0.5 * std::max(1.0, scale);
+}
+
 void CalibrationPanel::apply(const QString& method, const CalibrationResult& r) {
     camera_->applyCalibration(method, r.camera_spec(), r.rms_px);
-    QString text = tr("Matched (%1): horizontal field of view %2°")
+    QString text = tr("Matched (%1): horizontal field of view %2°\nUncertainty (1 sigma): %3")
                        .arg(method)
-                       .arg(r.intrinsics.hfov_deg(), 0, 'f', 1);
-    for (const std::string& w : r.warnings) text += "\n" + QString::fromStdString(w);
+                       .arg(r.intrinsics.hfov_deg(), 0, 'f', 1)
+                       .arg(QString::fromStdString(uncertainty_text(r)));
+    for (const std::string& w : r.warnings)
+        text += "\n" + tr("Warning: ") + QString::fromStdString(w);
     status_->setText(text);
 }
 
@@ -377,7 +415,8 @@ bool CalibrationPanel::applyRectangle() {
             k = Intrinsics::centred(img.width(), img.height(), rectFocal_->value());
         const CalibrationResult r = calibrate_rectangle(px, rectWidth_->value(),
                                                         rectHeight_->value(), img.width(),
-                                                        img.height(), k, "rectangle");
+                                                        img.height(), k, "rectangle",
+                                                        clickSigma());
         apply(tr("rectangle"), r);
     });
 }
@@ -400,10 +439,19 @@ bool CalibrationPanel::applyVanishing() {
                                  "click the two ends of the known distance (\"Click ends\")");
             in.distance = VanishingInput::Distance{toPhoto(distanceEnds_[0]),
                                                    toPhoto(distanceEnds_[1]), distance_->value()};
+        } else if (vertical_->value() > 0) {
+            if (verticalEnds_.size() != 2)
+                throw InputError("vanishing lines", "vertical",
+                                 "click the foot and the top of the known vertical length "
+                                 "(\"Click foot, top\")");
+            in.vertical = VanishingInput::Distance{toPhoto(verticalEnds_[0]),
+                                                   toPhoto(verticalEnds_[1]), vertical_->value()};
         } else {
             in.camera_height = cameraHeight_->value();
         }
         if (vanFocal_->value() > 0) in.focal_px = vanFocal_->value();
+        in.free_principal_point = freePrincipal_->isChecked();
+        in.click_sigma_px = clickSigma();
         const Image& img = photo();
         apply(tr("vanishing lines"),
               calibrate_vanishing(in, img.width(), img.height(), "vanishing lines"));

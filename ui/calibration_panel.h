@@ -8,6 +8,7 @@
 #include "calibration/calibration.h"
 #include "image/image.h"
 
+class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
@@ -23,10 +24,12 @@ class Viewport;
 
 /// The camera-matching tools of the camera panel: chessboard auto-detect on the project's
 /// photo, the four clicked corners of a known rectangle, or vanishing lines drawn on the photo
-/// with the image of the origin and the camera's height. Clicks and drags go through the
-/// viewport's pick tool; a result is applied through CameraPanel::applyCalibration (one undo
-/// step). Bad input reaches the user through the error reporter and changes nothing. Widgets
-/// carry object names (e.g. "rectanglePick") for tests and scripting.
+/// with the image of the origin and one known length (the camera's height, a ground distance
+/// or a vertical length). Clicks and drags go through the viewport's pick tool; a result is
+/// applied through CameraPanel::applyCalibration (one undo step) and its uncertainty and
+/// warnings are shown in the status line. Bad input reaches the user through the error
+/// reporter and changes nothing. Widgets carry object names (e.g. "rectanglePick") for tests
+/// and scripting.
 class CalibrationPanel : public QWidget {
     Q_OBJECT
 public:
@@ -48,7 +51,7 @@ public:
 
 private:
     /// What the pick tool's clicks and drags are for.
-    enum class Target { None, Corners, X, Y, Z, Origin, Distance };
+    enum class Target { None, Corners, X, Y, Z, Origin, Distance, Vertical };
 
     QWidget* makeChessboardPage();
     QWidget* makeRectanglePage();
@@ -66,6 +69,8 @@ private:
     const Image& photo(std::string* path = nullptr);
     /// Render pixel -> photo pixel (pixel edges scale).
     ImagePoint toPhoto(QPointF renderPx);
+    /// How precisely a click lands on the photo: half a render pixel, in photo pixels.
+    double clickSigma();
 
     Document* doc_;
     Viewport* viewport_;
@@ -82,13 +87,14 @@ private:
     QDoubleSpinBox *rectWidth_, *rectHeight_, *rectFocal_;
     QLabel* cornerCount_;
     // Vanishing lines.
-    QDoubleSpinBox *cameraHeight_, *distance_, *vanFocal_;
+    QDoubleSpinBox *cameraHeight_, *distance_, *vertical_, *vanFocal_;
+    QCheckBox* freePrincipal_;
     QLabel* lineCount_;
 
     Target target_ = Target::None;
     QVector<QPointF> corners_;
     QVector<QPair<QPointF, QPointF>> lines_[3];  ///< X, Y, Z
-    QVector<QPointF> origin_, distanceEnds_;
+    QVector<QPointF> origin_, distanceEnds_, verticalEnds_;
     std::string photoPath_;
     Image photo_;
 };

@@ -166,10 +166,14 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
                             k.height);
             }
         }
+    } else if (photo.empty()) {
+        // Matched on a size alone (--size): the photo is named later.
+        p.photo.path = "photo.jpg";
+        p.probe.path = "probe.exr";
+        std::printf("note: created a new project; set photo.path to the %dx%d photograph the "
+                    "camera was matched on and probe.path to the light probe\n",
+                    r.intrinsics.width, r.intrinsics.height);
     } else {
-        if (photo.empty())
-            throw InputError(project_path, "",
-                             "the project does not exist; give the photo to create it with");
         const fs::path folder = fs::absolute(project_path).parent_path();
         const fs::path rel = fs::absolute(photo).lexically_relative(folder);
         // Inside the project's folder: relative, so the folder can move; elsewhere: absolute.
@@ -205,6 +209,11 @@ void print_result(const CalibrationResult& r, const std::string& method) {
         std::printf("rms_px n/a\n");
     else
         std::printf("rms_px %.4f\n", r.rms_px);
+    // One standard deviation; the noise it assumes for each point, where it has one.
+    std::printf("uncertainty: %s", uncertainty_text(r).c_str());
+    if (r.uncertainty.known)
+        std::printf(" (1 sigma, points to %.2g px)", r.uncertainty.point_sigma_px);
+    std::printf("\n");
     for (const std::string& w : r.warnings) warn(w);
 }
 

@@ -48,12 +48,13 @@ ImageSize image_size(const std::string& photo, const std::string& size_text);
 /// Puts the calibrated camera into the project at `project_path` and saves it. An existing
 /// project keeps everything else; if its photo exists at another resolution of the same aspect
 /// ratio, the intrinsics are scaled to it (a different aspect ratio is an InputError). A
-/// missing project is created with `photo` as its photograph and a probe path to fill in.
+/// missing project is created with `photo` as its photograph (a placeholder to fill in if
+/// `photo` is empty: the camera was matched on a --size) and a probe path to fill in.
 void write_camera(const std::string& project_path, const CalibrationResult& result,
                   const std::string& photo);
 
-/// Prints the camera and the error figure ("rms_px <value>", or "rms_px n/a" for NaN), and
-/// the result's warnings on stderr.
+/// Prints the camera, the error figure ("rms_px <value>", or "rms_px n/a" for NaN) and the
+/// uncertainty ("uncertainty: fx 495 ± 12 px ..."), and the result's warnings on stderr.
 void print_result(const CalibrationResult& r, const std::string& method);
 
 /// `calibrate rectangle`, `points` and `vanishing` (cmd_calibrate_points.cpp).

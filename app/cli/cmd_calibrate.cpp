@@ -26,7 +26,20 @@ struct ChessboardOptions {
     std::string board = "9x6";
     double square = 0;
     FocalOptions focal;
+    std::string poses;
 };
+
+/// The photo among `photos` that an existing project shows (its pose is the one to keep),
+/// else the first.
+size_t project_photo(const std::string& project, const std::vector<std::string>& photos) {
+    std::error_code ec;
+    if (!fs::exists(project, ec)) return 0;
+    const Project p = load_project(project);
+    const fs::path own = p.resolve(p.photo.path);
+    for (size_t i = 0; i < photos.size(); ++i)
+        if (fs::equivalent(own, photos[i], ec)) return i;
+    return 0;
+}
 
 ChessboardSpec parse_board(const std::string& text, double square) {
     ChessboardSpec spec;
@@ -50,19 +63,32 @@ int run_chessboard(const ChessboardOptions& o) {
     std::vector<ChessboardView> views;
     for (const std::string& photo : o.photos) views.push_back(detect_chessboard(photo, spec));
     CalibrationResult r;
-    std::string method;
+    std::string method, photo = o.photos[0], poses;
     if (views.size() > 1) {
         if (o.focal.given())
             throw InputError("", "--focal",
                              "several photos calibrate the focal length themselves; give a "
                              "focal length only with a single photo");
         ChessboardCalibration c = calibrate_chessboard(views, spec);
-        for (size_t i = 0; i < views.size(); ++i)
-            std::printf("photo %s: rms_px %.4f\n", views[i].source.c_str(), c.view_rms_px[i]);
-        r = c.result;
-        method = "chessboard, " + std::to_string(views.size()) +
-                 " photos (pose of the first)";
+        for (size_t i = 0; i < views.size(); ++i) {
+            const glm::dvec3 pos = c.poses[i].position();
+            std::printf("photo %s: rms_px %.4f position %.4f %.4f %.4f ± %.2g m "
+                        "rotation ± %.2g°%s\n",
+                        views[i].source.c_str(), c.view_rms_px[i], pos.x, pos.y, pos.z,
+                        c.view_uncertainty[i].position_m, c.view_uncertainty[i].rotation_deg,
+                        c.duplicate_of[i] >= 0 ? " (duplicate, not in the lens fit)" : "");
+        }
+        if (!o.poses.empty()) poses = chessboard_poses_json(c, views, spec);
+        const size_t keep = project_photo(o.project, o.photos);
+        r = c.for_view(keep);
+        method = "chessboard, " + std::to_string(views.size()) + " photos (pose of " +
+                 fs::path(o.photos[keep]).filename().string() + ")";
+        photo = o.photos[keep];
     } else {
+        if (!o.poses.empty())
+            throw InputError("", "--poses",
+                             "writes the poses of several photos; with one photo the project "
+                             "gets its pose");
         const ChessboardView& v = views[0];
         if (auto f = o.focal.resolve(o.photos[0], v.width)) {
             r = chessboard_pose(v, spec, Intrinsics::centred(v.width, v.height, *f));
@@ -73,7 +99,13 @@ int run_chessboard(const ChessboardOptions& o) {
         }
     }
     print_result(r, method);
-    write_camera(o.project, r, o.photos[0]);
+    write_camera(o.project, r, photo);
+    if (!poses.empty()) {  // after the project: a refused camera writes nothing
+        std::ofstream out(o.poses);
+        out << poses << "\n";
+        if (!out) throw InputError(o.poses, "--poses", "cannot write the file");
+        std::printf("wrote every photo's pose to %s\n", o.poses.c_str());
+    }
     return 0;
 }
 
@@ -135,14 +167,16 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
             "chessboard", "Camera from photos of a chessboard lying on the ground");
         sub->add_option("project", o->project, "Project file to write or update")->required();
         sub->add_option("photos", o->photos,
-                        "Photos of the board; the pose is the first one's. One photo: give the "
-                        "focal length or let the board estimate it")
+                        "Photos of the board; the pose is the project photo's (else the "
+                        "first's). One photo: give the focal length or let the board estimate it")
             ->required();
         sub->add_option("--board", o->board, "Inner corners COLSxROWS (default 9x6)");
         sub->add_option("--square", o->square, "Square size in metres")
             ->required()
             ->check(kFinite);
         o->focal.add_to(sub);
+        sub->add_option("--poses", o->poses,
+                        "Write every photo's pose (and its corners) to this JSON file");
         out.push_back({sub, [o] { return run_chessboard(*o); }});
     }
     {

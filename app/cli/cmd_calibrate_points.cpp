@@ -20,13 +20,24 @@ using json = nlohmann::json;
 struct PhotoOptions {
     std::string project, photo, size, file;
     FocalOptions focal;
+    double click_sigma = 0.5;
 
     void add_to(CLI::App* sub, const char* file_help) {
         sub->add_option("project", project, "Project file to write or update")->required();
         sub->add_option("--photo", photo, "The photo (for its size, and EXIF with --exif)");
         sub->add_option("--size", size, "Image size WIDTHxHEIGHT instead of --photo");
         sub->add_option("--file", file, file_help);
+        sub->add_option("--click-sigma", click_sigma,
+                        "How precisely the points were clicked, pixels (default 0.5): the "
+                        "uncertainty's floor")
+            ->check(kFinite);
         focal.add_to(sub);
+    }
+    /// Throws InputError for a click precision < 0.
+    double click_sigma_px() const {
+        if (!(click_sigma >= 0))
+            throw InputError("", "--click-sigma", "the click precision must be >= 0 pixels");
+        return click_sigma;
     }
     /// The JSON file's document, or an empty object.
     json document() const { return file.empty() ? json::object() : read_json(file); }
@@ -68,7 +79,8 @@ int run_rectangle(const RectangleOptions& o) {
     std::optional<Intrinsics> k;
     if (auto f = o.focal.resolve(o.photo, s.width))
         k = Intrinsics::centred(s.width, s.height, *f);
-    CalibrationResult r = calibrate_rectangle(corners, width, height, s.width, s.height, k, o.file);
+    CalibrationResult r = calibrate_rectangle(corners, width, height, s.width, s.height, k, o.file,
+                                              o.click_sigma_px());
     print_result(r, k ? "rectangle, given focal length" : "rectangle, focal length from its perspective");
     write_camera(o.project, r, o.photo);
     return 0;
@@ -104,7 +116,7 @@ int run_points(const PointsOptions& o) {
     std::optional<Intrinsics> k;
     if (auto f = o.focal.resolve(o.photo, s.width))
         k = Intrinsics::centred(s.width, s.height, *f);
-    CalibrationResult r = calibrate_points(pts, s.width, s.height, k, o.file);
+    CalibrationResult r = calibrate_points(pts, s.width, s.height, k, o.file, o.click_sigma_px());
     print_result(r, k ? "points, given focal length" : "points, focal length from the points");
     write_camera(o.project, r, o.photo);
     return 0;
@@ -114,9 +126,22 @@ int run_points(const PointsOptions& o) {
 
 struct VanishingOptions : PhotoOptions {
     std::vector<std::string> x, y, z;
-    std::string origin, distance;
+    std::string origin, distance, vertical;
     std::optional<double> camera_height;
+    bool free_principal_point = false;
 };
+
+/// A scale given as U1,V1,U2,V2,METRES (on the command line or as a JSON array).
+std::optional<VanishingInput::Distance> scale_length(const json& doc, const std::string& text,
+                                                     const char* key, const std::string& option,
+                                                     const std::string& file) {
+    std::optional<std::vector<double>> v;
+    if (const json* j = member(doc, key)) v = json_numbers(*j, 5, file, key);
+    if (!text.empty()) v = parse_numbers(text, 5, option);
+    if (!v) return std::nullopt;
+    return VanishingInput::Distance{ImagePoint((*v)[0], (*v)[1]), ImagePoint((*v)[2], (*v)[3]),
+                                    (*v)[4]};
+}
 
 int run_vanishing(const VanishingOptions& o) {
     const json doc = o.document();
@@ -147,19 +172,24 @@ int run_vanishing(const VanishingOptions& o) {
     if (const json* j = member(doc, "camera_height"))
         in.camera_height = json_number(*j, o.file, "camera_height");
     if (o.camera_height) in.camera_height = o.camera_height;
-    std::optional<std::vector<double>> dist;
-    if (const json* j = member(doc, "distance")) dist = json_numbers(*j, 5, o.file, "distance");
-    if (!o.distance.empty()) dist = parse_numbers(o.distance, 5, "--distance");
-    if (dist)
-        in.distance = VanishingInput::Distance{ImagePoint((*dist)[0], (*dist)[1]),
-                                               ImagePoint((*dist)[2], (*dist)[3]), (*dist)[4]};
-    if (in.camera_height && in.distance)
-        throw InputError(o.file, "--camera-height", "give either --camera-height or --distance");
+    in.distance = scale_length(doc, o.distance, "distance", "--distance", o.file);
+    in.vertical = scale_length(doc, o.vertical, "vertical", "--vertical", o.file);
+    if (int(bool(in.camera_height)) + int(bool(in.distance)) + int(bool(in.vertical)) > 1)
+        throw InputError(o.file, "--camera-height",
+                         "give one scale only: --camera-height, --distance or --vertical");
     if (!has_origin) {
-        if (!in.distance)
+        // The first point of a distance, or the foot of a vertical length, is on the ground.
+        if (!in.distance && !in.vertical)
             throw InputError(o.file, "--origin", "give the image point of the world origin");
-        in.origin = in.distance->a;  // the first end point of the distance
+        in.origin = in.distance ? in.distance->a : in.vertical->a;
     }
+    if (const json* j = member(doc, "free_principal_point")) {
+        if (!j->is_boolean())
+            throw InputError(o.file, "free_principal_point", "expected true or false");
+        in.free_principal_point = j->get<bool>();
+    }
+    if (o.free_principal_point) in.free_principal_point = true;
+    in.click_sigma_px = o.click_sigma_px();
     const ImageSize s = image_size(o.photo, o.size);
     in.focal_px = o.focal.resolve(o.photo, s.width);
     CalibrationResult r = calibrate_vanishing(in, s.width, s.height, o.file);
@@ -199,15 +229,22 @@ std::vector<Command> add_calibrate_point_commands(CLI::App& calibrate) {
         CLI::App* sub = calibrate.add_subcommand(
             "vanishing", "Camera from lines along two or three orthogonal directions");
         o->add_to(sub, "JSON file with \"x\", \"y\", \"z\" (arrays of [x1, y1, x2, y2]), "
-                       "\"origin\", \"distance\" or \"camera_height\"");
+                       "\"origin\", \"distance\", \"vertical\" or \"camera_height\", "
+                       "\"free_principal_point\"");
         sub->add_option("--x", o->x, "Segment X1,Y1,X2,Y2 along world X (on the ground)");
         sub->add_option("--y", o->y, "Segment X1,Y1,X2,Y2 along world Y (vertical)");
         sub->add_option("--z", o->z, "Segment X1,Y1,X2,Y2 along world Z (on the ground)");
         sub->add_option("--origin", o->origin, "Image point U,V of the world origin (on the ground)");
         sub->add_option("--distance", o->distance,
                         "Scale: two ground points and their distance U1,V1,U2,V2,METRES");
+        sub->add_option("--vertical", o->vertical,
+                        "Scale: a vertical length U1,V1,U2,V2,METRES, its foot on the ground "
+                        "first (a box edge, a door frame, a person)");
         sub->add_option("--camera-height", o->camera_height, "Scale: camera height in metres")
             ->check(kFinite);
+        sub->add_flag("--free-principal-point", o->free_principal_point,
+                      "Estimate the principal point too (needs three directions that pin it "
+                      "down; otherwise it stays at the image centre)");
         out.push_back({sub, [o] { return run_vanishing(*o); }});
     }
     return out;

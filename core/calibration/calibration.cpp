@@ -1,6 +1,8 @@
 #include "calibration/calibration.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "base/error.h"
@@ -36,6 +38,89 @@ CameraSpec CalibrationResult::camera_spec() const {
 
 Camera CalibrationResult::camera() const {
     return camera_spec().build(intrinsics.width, intrinsics.height);
+}
+
+namespace {
+
+/// Decimals that show `sigma` with two significant digits.
+int decimals_for(double sigma) {
+    if (!(sigma > 0) || !std::isfinite(sigma)) return 1;
+    return std::clamp(1 - int(std::floor(std::log10(sigma))), 0, 6);
+}
+
+std::string format(const char* fmt, auto... args) {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf), fmt, args...);
+    return buf;
+}
+
+/// "495 ± 12" with the value to the uncertainty's precision.
+std::string plus_minus(double value, double sigma) {
+    const int d = decimals_for(sigma);
+    return format("%.*f ± %.*f", d, value, d, sigma);
+}
+
+}  // namespace
+
+void add_quality_warnings(CalibrationResult& r, double rms_limit_px) {
+    const Intrinsics& k = r.intrinsics;
+    const Uncertainty& u = r.uncertainty;
+    if (u.known && u.focal_free && !(u.fx <= 0.05 * k.fx))
+        r.warnings.push_back(
+            "the focal length is uncertain: fx " + plus_minus(k.fx, u.fx) + " px (" +
+            format("%.0f", 100 * u.fx / k.fx) +
+            " %, more than 5 %); give the focal length if it is known (EXIF, the lens), or "
+            "input that shows more perspective (longer lines farther apart, a target seen at a "
+            "steeper angle)");
+    if (u.known && u.focal_free && k.width > 0 && k.hfov_deg() > 120)
+        r.warnings.push_back(format("the field of view found, %.0f° across, is wider than almost "
+                                    "any lens but a fisheye: a point is probably misplaced",
+                                    k.hfov_deg()));
+    if (k.width > 0 && k.height > 0 &&
+        (std::abs(k.cx - 0.5 * (k.width - 1)) > 0.25 * k.width ||
+         std::abs(k.cy - 0.5 * (k.height - 1)) > 0.25 * k.height))
+        r.warnings.push_back(format("the principal point (%.0f, %.0f) is outside the middle half "
+                                    "of the %dx%d image: photos are rarely cropped that much, so "
+                                    "the camera is probably wrong; hold the principal point at "
+                                    "the centre or give the focal length",
+                                    k.cx, k.cy, k.width, k.height));
+    if (r.rms_px > rms_limit_px)
+        r.warnings.push_back(format("the input fits the camera poorly (rms %.2f px, more than "
+                                    "%.0f px): a point may be misplaced or a line in the wrong "
+                                    "group",
+                                    r.rms_px, rms_limit_px));
+}
+
+void check_usable_fit(const CalibrationResult& r, const std::string& source,
+                      const std::string& field, const std::string& what) {
+    const Intrinsics& k = r.intrinsics;
+    const double limit = std::max(5.0, 0.005 * std::hypot(k.width, k.height));
+    if (r.rms_px > limit)
+        throw InputError(source, field,
+                         format("the input does not fit one camera (rms %.1f px; more than "
+                                "%.1f px is not a camera to use): ",
+                                r.rms_px, limit) +
+                             what);
+}
+
+std::string uncertainty_text(const CalibrationResult& r) {
+    const Uncertainty& u = r.uncertainty;
+    if (!u.known) return "n/a";
+    const Intrinsics& k = r.intrinsics;
+    std::string s;
+    if (u.focal_free) {
+        s = "fx " + plus_minus(k.fx, u.fx) + " px (" + format("%.1f", 100 * u.fx / k.fx) + " %)";
+        if (k.fy != k.fx) s += ", fy " + plus_minus(k.fy, u.fy) + " px";
+    } else {
+        s = "focal length given";
+    }
+    if (u.principal_free)
+        s += ", cx " + plus_minus(k.cx, u.cx) + " cy " + plus_minus(k.cy, u.cy) + " px";
+    else
+        s += ", principal point held";
+    s += ", rotation ± " + format("%.*f", decimals_for(u.rotation_deg), u.rotation_deg) + "°";
+    s += ", position ± " + format("%.*f", decimals_for(u.position_m), u.position_m) + " m";
+    return s;
 }
 
 void check_focal(double focal_px, const std::string& source, const std::string& field) {

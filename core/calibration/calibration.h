@@ -40,6 +40,23 @@ struct Pose {
     glm::dvec3 position() const { return -(glm::transpose(R) * t); }
 };
 
+/// One standard deviation of what a method estimated: the covariance of its fit (from the
+/// Jacobian at the optimum, scaled by the noise of the points) carried to focal length,
+/// principal point, rotation and camera position. What was given or held fixed has none.
+struct Uncertainty {
+    /// False for methods that give no figure to derive one from (EXIF, fSpy).
+    bool known = false;
+    bool focal_free = false, principal_free = false;
+    double fx = 0, fy = 0, cx = 0, cy = 0;  ///< pixels
+    /// RMS angle of the rotation error, degrees; and of the camera centre's error, metres.
+    double rotation_deg = 0, position_m = 0;
+    /// Noise of one clicked or detected point that the figures assume, pixels.
+    double point_sigma_px = 0;
+    /// Covariance of the small rotation w with R_true = exp([w]x) R (radians^2, camera
+    /// frame), and of the camera centre (m^2).
+    glm::dmat3 rotation_cov{0.0}, position_cov{0.0};
+};
+
 /// What a calibration method found: intrinsics, pose and the RMS reprojection error in pixels
 /// of the points it was fitted to (for vanishing lines: the RMS distance of the segment
 /// end points from the lines through the fitted vanishing points).
@@ -47,6 +64,7 @@ struct CalibrationResult {
     Intrinsics intrinsics;
     Pose pose;
     double rms_px = 0;
+    Uncertainty uncertainty;
     /// World positions of the points the fit used, where the method defines them (board or
     /// rectangle corners in the frame it chose, the given points), in input order.
     std::vector<glm::dvec3> world_points;
@@ -56,6 +74,22 @@ struct CalibrationResult {
     CameraSpec camera_spec() const;
     Camera camera() const;
 };
+
+/// The checks every method's result gets, added to its warnings: an estimated focal length
+/// uncertain by more than 5 % or wider than 120° across, a principal point outside the middle
+/// half of the image, and an RMS error above `rms_limit_px` (pass infinity where the method
+/// words its own).
+void add_quality_warnings(CalibrationResult& r, double rms_limit_px = 2.0);
+
+/// Throws InputError (`source`) when clicked input fits so badly that the camera cannot be
+/// used: an RMS error above 5 px and above 0.5 % of the image diagonal. `what` says what to
+/// check ("a corner is misplaced ...").
+void check_usable_fit(const CalibrationResult& r, const std::string& source,
+                      const std::string& field, const std::string& what);
+
+/// The uncertainty in words, for the command line and the studio: "fx 495 ± 12 px (2.4 %),
+/// rotation ± 0.41°, position ± 0.012 m"; "n/a" where the method gives none.
+std::string uncertainty_text(const CalibrationResult& r);
 
 /// Throws InputError (`source`, `field`) unless the focal length is finite and > 0.
 void check_focal(double focal_px, const std::string& source, const std::string& field);

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "base/error.h"
 #include "calibration/cv_util.h"
+#include "calibration/reprojection.h"
 #include "image/image_io.h"
 
 namespace dp {
@@ -56,6 +58,30 @@ std::vector<cv::Point3d> as_cv(const std::vector<glm::dvec3>& pts) {
     std::vector<cv::Point3d> out;
     for (const glm::dvec3& p : pts) out.emplace_back(p.x, p.y, p.z);
     return out;
+}
+
+/// For each view, the earlier view whose corners it repeats (mean distance under a pixel: the
+/// same photo, or the camera and board unmoved), or -1; a warning for each repeat.
+std::vector<int> find_duplicates(const std::vector<ChessboardView>& views,
+                                 std::vector<std::string>& warnings) {
+    std::vector<int> dup(views.size(), -1);
+    for (size_t j = 1; j < views.size(); ++j)
+        for (size_t i = 0; i < j && dup[j] < 0; ++i) {
+            if (dup[i] >= 0 || views[i].corners.size() != views[j].corners.size()) continue;
+            double sum = 0;
+            for (size_t c = 0; c < views[i].corners.size(); ++c)
+                sum += glm::length(views[i].corners[c] - views[j].corners[c]);
+            const double mean = sum / double(std::max<size_t>(1, views[i].corners.size()));
+            if (mean >= 1.0) continue;
+            dup[j] = int(i);
+            char buf[64];
+            std::snprintf(buf, sizeof(buf), "%.2f", mean);
+            warnings.push_back("duplicate photos: " + views[j].source + " shows the board where " +
+                               views[i].source + " does (corners " + buf +
+                               " px apart on average); it is left out of the lens fit, which "
+                               "it would only weight twice");
+        }
+    return dup;
 }
 
 }  // namespace
@@ -118,6 +144,14 @@ ChessboardView detect_chessboard(const std::string& path, const ChessboardSpec& 
     return detect_chessboard(load_image(path, "photo"), spec, path);
 }
 
+CalibrationResult ChessboardCalibration::for_view(size_t i) const {
+    CalibrationResult r = result;
+    r.pose = poses[i];
+    r.world_points = world_corners[i];
+    r.uncertainty = view_uncertainty[i];
+    return r;
+}
+
 ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& views,
                                            const ChessboardSpec& spec) {
     check_spec(spec, views.empty() ? "" : views[0].source);
@@ -126,9 +160,7 @@ ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& vi
                          "calibrating the lens needs at least 2 photos of the board (10 or more "
                          "is better); for one photo give the focal length instead");
     const cv::Size image_size(views[0].width, views[0].height);
-    std::vector<std::vector<cv::Point3d>> object(views.size(), target_points_cv(spec));
-    std::vector<std::vector<cv::Point2d>> image;
-    for (const ChessboardView& v : views) {
+    for (const ChessboardView& v : views)
         if (v.width != views[0].width || v.height != views[0].height)
             throw InputError(v.source, "",
                              "all photos must have the same size (" +
@@ -136,23 +168,33 @@ ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& vi
                                  std::to_string(views[0].height) + " for " + views[0].source +
                                  ", " + std::to_string(v.width) + "x" +
                                  std::to_string(v.height) + " here)");
-        image.push_back(calib::to_cv(v.corners));
-    }
+    ChessboardCalibration out;
+    std::vector<size_t> fitted;
+    out.duplicate_of = find_duplicates(views, out.result.warnings);
+    for (size_t i = 0; i < views.size(); ++i)
+        if (out.duplicate_of[i] < 0) fitted.push_back(i);
+    if (fitted.size() < 2)
+        throw InputError(views[0].source, "",
+                         "calibrating the lens needs at least 2 different photos of the board; "
+                         "these are all the same view");
     // calibrateCamera wants float points.
     std::vector<std::vector<cv::Point3f>> object_f;
     std::vector<std::vector<cv::Point2f>> image_f;
-    for (size_t i = 0; i < views.size(); ++i) {
-        object_f.emplace_back(object[i].begin(), object[i].end());
-        image_f.emplace_back(image[i].begin(), image[i].end());
+    const std::vector<cv::Point3d> target = target_points_cv(spec);
+    for (size_t i : fitted) {
+        object_f.emplace_back(target.begin(), target.end());
+        std::vector<cv::Point2f> img;
+        for (const ImagePoint& p : views[i].corners) img.emplace_back(float(p.x), float(p.y));
+        image_f.push_back(img);
     }
-    cv::Mat K, dist;
+    cv::Mat K, dist, std_intrinsics, std_extrinsics, per_view;
     std::vector<cv::Mat> rvecs, tvecs;
     // k3 stays 0: with the photos people take it mostly fits noise at the image corners, where
     // no board was seen (OpenCV's advice for lenses that are not fisheyes).
     const double rms = cv::calibrateCamera(object_f, image_f, image_size, K, dist, rvecs, tvecs,
+                                           std_intrinsics, std_extrinsics, per_view,
                                            cv::CALIB_FIX_K3);
 
-    ChessboardCalibration out;
     Intrinsics& k = out.result.intrinsics;
     k.width = image_size.width;
     k.height = image_size.height;
@@ -162,26 +204,59 @@ ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& vi
     k.cy = K.at<double>(1, 2);
     k.distortion = calib::distortion_from(dist);
     out.result.rms_px = rms;
+    // The lens' spread (OpenCV's marginal deviations; their correlations are not available).
+    cv::Mat lens_cov = cv::Mat::zeros(4, 4, CV_64F);
+    for (int j = 0; j < 4; ++j)
+        lens_cov.at<double>(j, j) = std::pow(std_intrinsics.at<double>(j), 2);
+    size_t next = 0;
     for (size_t i = 0; i < views.size(); ++i) {
+        Pose target_pose;
+        if (out.duplicate_of[i] < 0) {
+            target_pose = calib::pose_from(cv::Vec3d(rvecs[next]), cv::Vec3d(tvecs[next]));
+            ++next;
+        } else {
+            cv::Vec3d rvec, tvec;
+            const std::vector<cv::Point2d> image = calib::to_cv(views[i].corners);
+            cv::solvePnP(target, image, K, dist, rvec, tvec, false, cv::SOLVEPNP_IPPE);
+            cv::solvePnPRefineLM(target, image, K, dist, rvec, tvec);
+            target_pose = calib::pose_from(rvec, tvec);
+        }
         glm::dmat3 M;
-        Pose pose = calib::planar_to_world(
-            calib::pose_from(cv::Vec3d(rvecs[i]), cv::Vec3d(tvecs[i])), &M);
+        const Pose pose = calib::planar_to_world(target_pose, &M);
         out.poses.push_back(pose);
         out.world_corners.push_back(to_world(spec, M));
-        out.view_rms_px.push_back(
-            calib::rms_reprojection(as_cv(out.world_corners.back()), image[i], k, pose));
+        out.view_rms_px.push_back(calib::rms_reprojection(as_cv(out.world_corners.back()),
+                                                          calib::to_cv(views[i].corners), k, pose));
+        Uncertainty u = calib::reprojection_uncertainty(out.world_corners.back(), views[i].corners,
+                                                        k, pose, calib::FreeIntrinsics::None,
+                                                        0.0, lens_cov);
+        u.focal_free = u.principal_free = true;
+        u.fx = std_intrinsics.at<double>(0), u.fy = std_intrinsics.at<double>(1);
+        u.cx = std_intrinsics.at<double>(2), u.cy = std_intrinsics.at<double>(3);
+        out.view_uncertainty.push_back(u);
     }
     out.result.pose = out.poses[0];
     out.result.world_points = out.world_corners[0];
-    if (views.size() < 5)
-        out.result.warnings.push_back("only " + std::to_string(views.size()) +
-                                      " photos: the lens distortion is poorly constrained; "
-                                      "10 or more tilted views are better");
+    out.result.uncertainty = out.view_uncertainty[0];
+    if (fitted.size() < 5)
+        out.result.warnings.push_back("only " + std::to_string(fitted.size()) +
+                                      " different photos: the lens distortion is poorly "
+                                      "constrained; 10 or more tilted views are better");
+    // Detected corners fit to a few tenths of a pixel: more is blur or an unusual lens.
+    if (rms > 0.5)
+        out.result.warnings.push_back("the board fits the lens poorly (rms " + std::to_string(rms) +
+                                      " px, more than 0.5 px): drop blurred photos (those with "
+                                      "the largest rms), or the lens is beyond this model");
+    add_quality_warnings(out.result, HUGE_VAL);
     return out;
 }
 
-CalibrationResult chessboard_pose(const ChessboardView& view, const ChessboardSpec& spec,
-                                  const Intrinsics& intrinsics) {
+namespace {
+
+/// Pose for known intrinsics, its uncertainty with the intrinsics' `free` part estimated, and
+/// the warnings for a detected board.
+CalibrationResult board_pose(const ChessboardView& view, const ChessboardSpec& spec,
+                             const Intrinsics& intrinsics, calib::FreeIntrinsics free) {
     check_spec(spec, view.source);
     check_focal(intrinsics.fx, view.source, "focal");
     check_focal(intrinsics.fy, view.source, "focal");
@@ -197,12 +272,23 @@ CalibrationResult chessboard_pose(const ChessboardView& view, const ChessboardSp
     r.pose = calib::planar_to_world(calib::pose_from(rvec, tvec), &M);
     r.world_points = to_world(spec, M);
     r.rms_px = calib::rms_reprojection(as_cv(r.world_points), image, intrinsics, r.pose);
+    // Detected corners: the residuals alone say how precise they are.
+    r.uncertainty = calib::reprojection_uncertainty(r.world_points, view.corners, intrinsics,
+                                                    r.pose, free, 0.0);
     // Detected corners are good to a few tenths of a pixel: more means the lens model is off.
     if (r.rms_px > 0.5)
         r.warnings.push_back("the board does not fit well (rms " + std::to_string(r.rms_px) +
                              " px): the lens may be distorted or the focal length wrong; "
                              "calibrate the lens from several photos");
+    add_quality_warnings(r, HUGE_VAL);
     return r;
+}
+
+}  // namespace
+
+CalibrationResult chessboard_pose(const ChessboardView& view, const ChessboardSpec& spec,
+                                  const Intrinsics& intrinsics) {
+    return board_pose(view, spec, intrinsics, calib::FreeIntrinsics::None);
 }
 
 CalibrationResult chessboard_single(const ChessboardView& view, const ChessboardSpec& spec) {
@@ -217,22 +303,17 @@ CalibrationResult chessboard_single(const ChessboardView& view, const Chessboard
     std::vector<cv::Point2f> img;
     for (const ImagePoint& p : view.corners) img.emplace_back(float(p.x), float(p.y));
     std::vector<cv::Mat> rvecs, tvecs;
-    cv::Mat std_intrinsics, std_extrinsics, per_view;
     const int flags = cv::CALIB_USE_INTRINSIC_GUESS | cv::CALIB_FIX_PRINCIPAL_POINT |
                       cv::CALIB_FIX_ASPECT_RATIO | cv::CALIB_ZERO_TANGENT_DIST |
                       cv::CALIB_FIX_K1 | cv::CALIB_FIX_K2 | cv::CALIB_FIX_K3;
     cv::calibrateCamera(std::vector<std::vector<cv::Point3f>>{obj},
                         std::vector<std::vector<cv::Point2f>>{img}, image_size, K, dist, rvecs,
-                        tvecs, std_intrinsics, std_extrinsics, per_view, flags);
+                        tvecs, flags);
     const double f = K.at<double>(0, 0);
     check_focal(f, view.source, "focal");
-    Intrinsics k = Intrinsics::centred(view.width, view.height, f);
-    CalibrationResult r = chessboard_pose(view, spec, k);
-    const double sigma_f = std_intrinsics.empty() ? 0.0 : std_intrinsics.at<double>(0);
-    if (!(sigma_f < 0.05 * f))
-        r.warnings.push_back("the focal length is poorly determined (the board is seen nearly "
-                             "face-on): tilt the board or give the focal length");
-    return r;
+    // A board seen face-on leaves the focal length free: the uncertainty warning says so.
+    return board_pose(view, spec, Intrinsics::centred(view.width, view.height, f),
+                      calib::FreeIntrinsics::Focal);
 }
 
 }  // namespace dp

@@ -40,18 +40,33 @@ std::vector<glm::dvec3> chessboard_target_points(const ChessboardSpec& spec);
 struct ChessboardCalibration {
     /// Intrinsics with the pose of the first photo, and the RMS error over all photos.
     CalibrationResult result;
-    /// Per photo: the pose in that photo's board frame, its RMS error and the corners in world
-    /// space (board on y = 0).
+    /// Per photo: the pose in that photo's board frame, its RMS error, the corners in world
+    /// space (board on y = 0) and the pose's uncertainty (the lens' included).
     std::vector<Pose> poses;
     std::vector<double> view_rms_px;
     std::vector<std::vector<glm::dvec3>> world_corners;
+    std::vector<Uncertainty> view_uncertainty;
+    /// Per photo: the earlier photo it duplicates (left out of the lens fit), or -1.
+    std::vector<int> duplicate_of;
+
+    /// `result` with photo `i`'s pose, corners and uncertainty.
+    CalibrationResult for_view(size_t i) const;
 };
 
 /// Calibrates intrinsics and distortion (k1 k2 p1 p2 k3) from two or more views (use ten or
-/// more, tilted in different directions, for a good estimate). Throws InputError for fewer
-/// than two views or views of different sizes.
+/// more, tilted in different directions, for a good estimate). A photo whose corners lie
+/// where an earlier one's do (the same photo twice) is left out of the lens fit with a
+/// warning and gets its pose with the lens found. Throws InputError for fewer than two
+/// different views or views of different sizes.
 ChessboardCalibration calibrate_chessboard(const std::vector<ChessboardView>& views,
                                            const ChessboardSpec& spec);
+
+/// Every photo's pose as JSON: the lens, and per photo its file, RMS error, world-to-camera
+/// rotation (rows) and translation, camera position, uncertainty and its board corners as
+/// world-image pairs (the `calibrate points` format).
+std::string chessboard_poses_json(const ChessboardCalibration& c,
+                                  const std::vector<ChessboardView>& views,
+                                  const ChessboardSpec& spec);
 
 /// Pose from one photo with known intrinsics (from EXIF, a given focal length or an earlier
 /// calibration); the board frame is the world frame.

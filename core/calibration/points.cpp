@@ -6,6 +6,7 @@
 #include "base/error.h"
 #include "calibration/correspondences.h"
 #include "calibration/cv_util.h"
+#include "calibration/reprojection.h"
 
 namespace dp {
 namespace {
@@ -88,7 +89,7 @@ Intrinsics dlt_intrinsics(const std::vector<PointCorrespondence>& pts, int width
 CalibrationResult calibrate_points(const std::vector<PointCorrespondence>& points,
                                    int image_width, int image_height,
                                    const std::optional<Intrinsics>& intrinsics,
-                                   const std::string& source) {
+                                   const std::string& source, double click_sigma_px) {
     const bool known = intrinsics && intrinsics->fx != 0;
     std::vector<ImagePoint> image_points;
     for (const auto& p : points) {
@@ -150,6 +151,12 @@ CalibrationResult calibrate_points(const std::vector<PointCorrespondence>& point
     r.pose = calib::pose_from(rvec, tvec);
     r.rms_px = calib::rms_reprojection(world, image, k, r.pose);
     for (const auto& p : points) r.world_points.push_back(p.world);
+    check_usable_fit(r, source, "points",
+                     "a point is misplaced in the image or its world coordinates are wrong");
+    r.uncertainty = calib::reprojection_uncertainty(
+        r.world_points, image_points, k, r.pose,
+        known ? calib::FreeIntrinsics::None : calib::FreeIntrinsics::All, click_sigma_px);
+    add_quality_warnings(r);
     return r;
 }
 

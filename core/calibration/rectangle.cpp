@@ -1,11 +1,14 @@
 // Camera from the four corners of a known rectangle.
 #include <cmath>
+#include <cstdio>
 
 #include <opencv2/calib3d.hpp>
 
 #include "base/error.h"
 #include "calibration/correspondences.h"
 #include "calibration/cv_util.h"
+#include "calibration/least_squares.h"
+#include "calibration/reprojection.h"
 
 namespace dp {
 namespace {
@@ -60,12 +63,55 @@ double focal_from_rectangle(const std::vector<ImagePoint>& corners, double width
     return f < 20.0 ? f * image_size : 0;  // beyond ~1 degree of field: no perspective left
 }
 
+/// Refuses corners that a rectangle of another aspect explains: with the focal length known
+/// the four corners fix the aspect, so a mistyped size (or width and height swapped) shows
+/// as a misfit the aspect's own fit removes.
+void check_aspect(const std::vector<glm::dvec3>& world, const std::vector<ImagePoint>& image,
+                  const Intrinsics& k, const Pose& pose, double width, double height,
+                  double rms, double click_sigma, const std::string& source) {
+    // Corners 2 and 3 lie `height` along the world direction from corner 1 to corner 2.
+    const glm::dvec3 across = (world[2] - world[1]) / height;
+    const calib::ReprojectionParams params{k, pose, calib::FreeIntrinsics::None};
+    const calib::ResidualFunction f = [&](const std::vector<double>& x, std::vector<double>& r) {
+        Intrinsics kk;
+        Pose pp;
+        params.apply(x, kk, pp);
+        const double h = height * std::exp(x[6]);
+        r.resize(8);
+        for (size_t i = 0; i < 4; ++i) {
+            const glm::dvec3 w = i < 2 ? world[i] : world[i] + (h - height) * across;
+            const ImagePoint p = calib::project(kk, pp, w);
+            r[2 * i] = p.x - image[i].x, r[2 * i + 1] = p.y - image[i].y;
+        }
+    };
+    const calib::LeastSquaresResult fit =
+        calib::levenberg_marquardt(f, std::vector<double>(7, 0.0));
+    const double rms_free = std::sqrt(fit.cost / 4);
+    const cv::Mat cov = calib::inverse_normal_matrix(calib::numeric_jacobian(f, fit.x));
+    const double sigma = std::max(click_sigma, rms_free) * std::sqrt(cov.at<double>(6, 6));
+    const double shift = fit.x[6];
+    // Only an aspect that fits to click precision: a misplaced corner leaves a misfit anyway.
+    const bool explained = rms_free < std::max(2.0, 3 * click_sigma) && rms_free < 0.5 * rms;
+    if (!(explained && std::abs(shift) > 3 * sigma && std::abs(shift) > 0.02)) return;
+    const double given = width / height, fitted = width / (height * std::exp(shift));
+    char buf[512];
+    std::snprintf(buf, sizeof(buf),
+                  "the corners fit a rectangle of aspect %.2f (width / height, rms %.1f px) but "
+                  "not the given %g x %g m (aspect %.2f, rms %.1f px)%s: check --width and "
+                  "--height and the order of the corners",
+                  fitted, rms_free, width, height, given, rms,
+                  std::abs(fitted * given - 1) < 0.05
+                      ? "; width and height swapped? --width is the edge from corner 1 to 2"
+                      : "");
+    throw InputError(source, "size", buf);
+}
+
 }  // namespace
 
 CalibrationResult calibrate_rectangle(const std::vector<ImagePoint>& corners, double width,
                                       double height, int image_width, int image_height,
                                       const std::optional<Intrinsics>& intrinsics,
-                                      const std::string& source) {
+                                      const std::string& source, double click_sigma_px) {
     check_quad(corners, source);
     if (!(std::isfinite(width) && width > 0 && std::isfinite(height) && height > 0))
         throw InputError(source, "size", "the rectangle's width and height must be > 0 metres");
@@ -73,7 +119,8 @@ CalibrationResult calibrate_rectangle(const std::vector<ImagePoint>& corners, do
         throw InputError(source, "size", "the image size must be positive");
     Intrinsics k;
     std::vector<std::string> warnings;
-    if (intrinsics && intrinsics->fx != 0) {
+    const bool known = intrinsics && intrinsics->fx != 0;
+    if (known) {
         k = *intrinsics;
         check_focal(k.fx, source, "focal");
         check_focal(k.fy, source, "focal");
@@ -97,17 +144,24 @@ CalibrationResult calibrate_rectangle(const std::vector<ImagePoint>& corners, do
                       rvec, tvec, false, cv::SOLVEPNP_IPPE))
         throw InputError(source, "corners", "the rectangle's pose could not be solved");
     CalibrationResult r;
-    r.intrinsics = k;
     glm::dmat3 M;
     r.pose = calib::planar_to_world(calib::pose_from(rvec, tvec), &M);
-    std::vector<cv::Point3d> world;
-    for (const cv::Point3d& p : target) {
-        glm::dvec3 w = M * glm::dvec3(p.x, p.y, p.z);
-        world.emplace_back(w.x, w.y, w.z);
-        r.world_points.push_back(w);
-    }
-    r.rms_px = calib::rms_reprojection(world, image, k, r.pose);
+    for (const cv::Point3d& p : target) r.world_points.push_back(M * glm::dvec3(p.x, p.y, p.z));
+    // IPPE is exact only for exact corners: the least-squares camera (with the focal length
+    // where it is estimated) is the one the uncertainty describes.
+    const auto free = known ? calib::FreeIntrinsics::None : calib::FreeIntrinsics::Focal;
+    r.rms_px = calib::refine_reprojection(r.world_points, corners, k, r.pose, free);
+    r.intrinsics = k;
+    if (known && r.rms_px > 2.0)
+        check_aspect(r.world_points, corners, k, r.pose, width, height, r.rms_px, click_sigma_px,
+                     source);
+    check_usable_fit(r, source, "corners",
+                     "a corner is misplaced, the corners are not in order around the rectangle, "
+                     "or its size or the focal length is wrong");
+    r.uncertainty = calib::reprojection_uncertainty(r.world_points, corners, k, r.pose, free,
+                                                    click_sigma_px);
     r.warnings = warnings;
+    add_quality_warnings(r);
     return r;
 }
 

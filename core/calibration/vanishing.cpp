@@ -1,48 +1,282 @@
 #include "calibration/vanishing.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 
 #include <opencv2/core.hpp>
 
 #include "base/error.h"
 #include "calibration/cv_util.h"
+#include "calibration/least_squares.h"
+#include "calibration/reprojection.h"
+#include "calibration/vanishing_scale.h"
 
 namespace dp {
 namespace {
 
+using calib::LeastSquaresResult;
+
 constexpr const char* kAxisName[3] = {"x", "y", "z"};
 
 glm::dvec3 homog(const ImagePoint& p) { return glm::dvec3(p, 1.0); }
+glm::dvec3 column(const glm::dmat3& R, int a) { return glm::dvec3(R[a][0], R[a][1], R[a][2]); }
 
-/// Vanishing point as a finite image point; throws when its lines are parallel in the image.
-ImagePoint finite_vp(const std::vector<LineSegment>& segs, int axis, double image_size,
-                     const std::string& source) {
-    const std::string field = kAxisName[axis];
-    if (segs.size() < 2)
-        throw InputError(source, field,
-                         "need at least 2 line segments per direction, got " +
-                             std::to_string(segs.size()));
-    for (const LineSegment& s : segs)
-        if (glm::length(s.b - s.a) < 1e-6 * image_size)
-            throw InputError(source, field, "a line segment has zero length");
-    const glm::dvec3 v = vanishing_point(segs);
-    // Farther than ~1000 image sizes: the lines are parallel in the image.
-    if (std::abs(v.z) * 1000.0 * image_size <= glm::length(glm::dvec2(v)))
-        throw InputError(source, field,
-                         "the " + field + " line segments are parallel in the image, so their "
-                         "vanishing point is at infinity; draw lines that converge in "
-                         "perspective (or use another direction)");
-    return glm::dvec2(v) / v.z;
+/// The segments of the directions in use.
+struct Axes {
+    std::array<const std::vector<LineSegment>*, 3> segs{};
+    std::array<bool, 3> used{};
+    int count = 0, segments = 0;
+};
+
+/// What the lines are fitted for: world-to-camera rotation, focal length, principal point.
+struct LineCamera {
+    glm::dmat3 R{1.0};
+    double f = 1;
+    ImagePoint c{0.0};
+
+    /// Homogeneous vanishing point of world axis `a` (w = 0 at infinity).
+    glm::dvec3 vp(int a) const {
+        const glm::dvec3 d = column(R, a);
+        return glm::dvec3(f * d.x + c.x * d.z, f * d.y + c.y * d.z, d.z);
+    }
+    Intrinsics intrinsics(int w, int h) const {
+        Intrinsics k = Intrinsics::centred(w, h, f);
+        k.cx = c.x, k.cy = c.y;
+        return k;
+    }
+};
+
+/// sqrt(2) times the distance of the segment's end points (equal and opposite) from the line
+/// through its midpoint and the vanishing point `v`: independent end-point noise sigma gives
+/// residuals of spread sigma.
+double segment_residual(const LineSegment& s, const glm::dvec3& v) {
+    const glm::dvec3 l = glm::cross(homog(0.5 * (s.a + s.b)), v);
+    const double n = glm::length(glm::dvec2(l));
+    if (!(n > 0)) return n == 0 ? 0.0 : HUGE_VAL;  // overflow must not pass for a perfect fit
+    return std::sqrt(2.0) * glm::dot(l, homog(s.a)) / n;
 }
 
-/// Orthocentre of a triangle: the principal point given three orthogonal vanishing points.
-ImagePoint orthocentre(const ImagePoint& a, const ImagePoint& b, const ImagePoint& c) {
-    // Altitude from a is perpendicular to bc: (p - a).(c - b) = 0; likewise from b.
-    const glm::dvec2 u = c - b, w = c - a;
-    const double det = u.x * w.y - u.y * w.x;
-    const double r0 = glm::dot(a, u), r1 = glm::dot(b, w);
-    return ImagePoint((r0 * w.y - u.y * r1) / det, (u.x * r1 - w.x * r0) / det);
+/// One residual per segment, through its axis' vanishing point in `cam`.
+void line_residuals(const LineCamera& cam, const Axes& ax, std::vector<double>& r) {
+    r.clear();
+    for (int a = 0; a < 3; ++a) {
+        if (!ax.used[size_t(a)]) continue;
+        const glm::dvec3 v = cam.vp(a);
+        for (const LineSegment& s : *ax.segs[size_t(a)]) r.push_back(segment_residual(s, v));
+    }
+}
+
+/// Parameters: rotation vector (R = exp([w]x) R0), log focal length ratio, principal point
+/// shift in image sizes; the last two only where estimated.
+struct LineParams {
+    LineCamera base;
+    bool free_focal = false, free_pp = false;
+    double size = 1;
+
+    int count() const { return 3 + int(free_focal) + 2 * int(free_pp); }
+    LineCamera apply(const std::vector<double>& x) const {
+        LineCamera c = base;
+        c.R = calib::rotation_exp(glm::dvec3(x[0], x[1], x[2])) * base.R;
+        size_t i = 3;
+        // Within a factor of 10^6 either way: beyond, the focal length is meaningless anyway.
+        if (free_focal) c.f = base.f * std::exp(std::clamp(x[i++], -14.0, 14.0));
+        if (free_pp) c.c += size * glm::dvec2(x[i], x[i + 1]);
+        return c;
+    }
+};
+
+/// World axes signed as the conventions say: Y up in the image, X to the right, Z = X x Y.
+/// Flipping the sign of an axis moves no vanishing point, so the fit is unchanged.
+glm::dmat3 signed_axes(const glm::dmat3& R) {
+    glm::dvec3 x = column(R, 0), y = column(R, 1);
+    if (y.y > 0) y = -y;
+    if (x.x < 0) x = -x;
+    return glm::dmat3(x, y, glm::cross(x, y));
+}
+
+/// A starting rotation from the directions' own vanishing points for focal `f`.
+glm::dmat3 rotation_from_vps(const std::array<glm::dvec3, 3>& vp, const Axes& ax, double f,
+                             const ImagePoint& c) {
+    std::array<glm::dvec3, 3> d{};
+    for (int a = 0; a < 3; ++a)
+        if (ax.used[size_t(a)]) {
+            const glm::dvec3& v = vp[size_t(a)];
+            d[size_t(a)] =
+                glm::normalize(glm::dvec3((v.x - c.x * v.z) / f, (v.y - c.y * v.z) / f, v.z));
+        }
+    if (ax.used[1] && d[1].y > 0) d[1] = -d[1];
+    if (ax.used[0] && d[0].x < 0) d[0] = -d[0];
+    if (!ax.used[1]) {
+        d[1] = glm::cross(d[2], d[0]);
+        if (d[1].y > 0) d[2] = -d[2], d[1] = -d[1];
+    } else if (!ax.used[0]) {
+        d[0] = glm::cross(d[1], d[2]);
+        if (d[0].x < 0) d[2] = -d[2], d[0] = -d[0];
+    }
+    if (ax.used[2] && glm::dot(d[2], glm::cross(d[0], d[1])) < 0) d[2] = -d[2];
+    if (!ax.used[2]) d[2] = glm::cross(d[0], d[1]);
+    cv::Matx33d D;
+    for (int a = 0; a < 3; ++a)
+        for (int r = 0; r < 3; ++r) D(r, a) = d[size_t(a)][r];
+    cv::Matx33d U, Vt;
+    cv::Vec3d sv;
+    cv::SVD::compute(D, sv, U, Vt);
+    if (cv::determinant(U * Vt) < 0)
+        for (int r = 0; r < 3; ++r) U(r, 2) = -U(r, 2);
+    return calib::from_cv(U * Vt);
+}
+
+/// A fit of the lines and its covariance at the optimum.
+struct LineFit {
+    LineParams params;  ///< based at the optimum: parameters zero are the solution
+    double cost = 0;
+    int residuals = 0;
+    double sigma = 0;
+    cv::Mat cov;
+
+    const LineCamera& camera() const { return params.base; }
+    double rms() const { return residuals ? std::sqrt(cost / (2.0 * residuals)) : 0.0; }
+    double relative_sigma_focal() const {
+        return params.free_focal ? std::sqrt(cov.at<double>(3, 3)) : 0.0;
+    }
+    double sigma_pp(int i) const {
+        const int j = 3 + int(params.free_focal) + i;  // after the rotation and focal length
+        return params.free_pp ? params.size * std::sqrt(cov.at<double>(j, j)) : 0.0;
+    }
+};
+
+/// Fits from each start and keeps the lowest cost.
+LineFit fit_lines(const Axes& ax, const std::vector<LineCamera>& starts, bool free_focal,
+                  bool free_pp, double size, double click_sigma) {
+    LineFit best;
+    best.cost = HUGE_VAL;
+    for (const LineCamera& start : starts) {
+        LineParams p{start, free_focal, free_pp, size};
+        const LeastSquaresResult r = calib::levenberg_marquardt(
+            [&](const std::vector<double>& x, std::vector<double>& res) {
+                line_residuals(p.apply(x), ax, res);
+            },
+            std::vector<double>(size_t(p.count()), 0.0));
+        if (r.cost < best.cost) {
+            best.params = p;
+            best.params.base = p.apply(r.x);
+            best.cost = r.cost;
+            best.residuals = r.residuals;
+        }
+    }
+    best.params.base.R = signed_axes(best.params.base.R);
+    const LineParams& p = best.params;
+    const calib::ResidualFunction f = [&](const std::vector<double>& x, std::vector<double>& res) {
+        line_residuals(p.apply(x), ax, res);
+    };
+    const cv::Mat J = calib::numeric_jacobian(f, std::vector<double>(size_t(p.count()), 0.0));
+    best.sigma = calib::residual_sigma(best.cost, best.residuals, p.count(), click_sigma);
+    best.cov = best.sigma * best.sigma * calib::inverse_normal_matrix(J);
+    return best;
+}
+
+Axes check_axes(const VanishingInput& in, double image_size, const std::string& source) {
+    Axes ax;
+    ax.segs = {&in.x, &in.y, &in.z};
+    for (int a = 0; a < 3; ++a) {
+        const auto& segs = *ax.segs[size_t(a)];
+        if (segs.empty()) continue;
+        if (segs.size() < 2)
+            throw InputError(source, kAxisName[a],
+                             "need at least 2 line segments per direction, got " +
+                                 std::to_string(segs.size()));
+        for (const LineSegment& s : segs) {
+            if (!std::isfinite(s.a.x) || !std::isfinite(s.a.y) || !std::isfinite(s.b.x) ||
+                !std::isfinite(s.b.y))
+                throw InputError(source, kAxisName[a], "line segments must be finite pixels");
+            if (glm::length(s.b - s.a) < 1e-6 * image_size)
+                throw InputError(source, kAxisName[a], "a line segment has zero length");
+        }
+        ax.used[size_t(a)] = true;
+        ++ax.count;
+        ax.segments += int(segs.size());
+    }
+    if (ax.count < 2)
+        throw InputError(source, "",
+                         "need line segments for at least two of the directions x, y, z");
+    return ax;
+}
+
+bool at_infinity(const glm::dvec3& v, double image_size) {
+    return std::abs(v.z) * 1000.0 * image_size <= glm::length(glm::dvec2(v));
+}
+
+/// Starting cameras: the given focal length, or the one two orthogonal vanishing points give
+/// with the principal point at the centre, and a spread of fields of view in case noise makes
+/// that one meaningless.
+std::vector<LineCamera> starts(const Axes& ax, const VanishingInput& in, const ImagePoint& c,
+                               double size, std::array<glm::dvec3, 3>& vp) {
+    for (int a = 0; a < 3; ++a)
+        if (ax.used[size_t(a)]) vp[size_t(a)] = vanishing_point(*ax.segs[size_t(a)]);
+    std::vector<double> focals;
+    if (in.focal_px) {
+        focals.push_back(*in.focal_px);
+    } else {
+        for (int a = 0; a < 3; ++a)
+            for (int b = a + 1; b < 3; ++b) {
+                const glm::dvec3 &va = vp[size_t(a)], &vb = vp[size_t(b)];
+                if (!ax.used[size_t(a)] || !ax.used[size_t(b)] || at_infinity(va, size) ||
+                    at_infinity(vb, size))
+                    continue;
+                const double f2 = -glm::dot(glm::dvec2(va) / va.z - c, glm::dvec2(vb) / vb.z - c);
+                if (f2 > 0) focals.push_back(std::sqrt(f2));
+            }
+        for (double s : {0.3, 0.5, 0.8, 1.2, 2.0, 3.5, 6.0}) focals.push_back(s * size);
+    }
+    std::vector<LineCamera> out;
+    for (double f : focals) out.push_back({rotation_from_vps(vp, ax, f, c), f, c});
+    return out;
+}
+
+/// Names the reason when the focal length is left undetermined.
+std::string undetermined_focal(const LineCamera& cam, const Axes& ax, double size) {
+    for (int a = 0; a < 3; ++a)
+        if (ax.used[size_t(a)] && at_infinity(cam.vp(a), size))
+            return std::string("the ") + kAxisName[a] +
+                   " lines are parallel in the image (their vanishing point is at infinity), "
+                   "which leaves the focal length free: give it (--focal, --exif), or draw "
+                   "lines along a third direction";
+    return "give the focal length (--focal, --exif), or draw longer lines, farther apart, or "
+           "along a third direction";
+}
+
+/// Throws when the directions' own vanishing points cannot be at right angles for any focal
+/// length and forcing them to be costs far more than click noise explains (`joint_cost`
+/// against each direction fitted alone): the grouping is wrong, not the clicks.
+/// `force` skips the cost test (the fit already escaped to an undetermined focal length).
+void check_orthogonal(const std::array<glm::dvec3, 3>& vp, const Axes& ax, const ImagePoint& c,
+                      double size, double joint_cost, double click_sigma, bool force,
+                      const std::string& source) {
+    double alone = 0;
+    for (int a = 0; a < 3; ++a)
+        if (ax.used[size_t(a)])
+            for (const LineSegment& s : *ax.segs[size_t(a)])
+                alone += std::pow(segment_residual(s, vp[size_t(a)]), 2);
+    // 25 sigma^2 for at most three constraints: far beyond what noise does.
+    const double sigma = std::max(click_sigma, 0.05);
+    if (!force && !(joint_cost - alone > 25 * sigma * sigma)) return;
+    for (int a = 0; a < 3; ++a)
+        for (int b = a + 1; b < 3; ++b) {
+            const glm::dvec3 &va = vp[size_t(a)], &vb = vp[size_t(b)];
+            if (!ax.used[size_t(a)] || !ax.used[size_t(b)] || at_infinity(va, size) ||
+                at_infinity(vb, size))
+                continue;
+            const double f2 = -glm::dot(glm::dvec2(va) / va.z - c, glm::dvec2(vb) / vb.z - c);
+            if (!(f2 > 0))
+                throw InputError(source, "",
+                                 "these directions cannot be orthogonal in a pinhole photo (the "
+                                 "focal length squared would be " + std::to_string(f2) +
+                                     " px^2 <= 0): check that each group's lines are parallel "
+                                     "in the world (a line in the wrong group?) and the groups "
+                                     "are at right angles");
+        }
 }
 
 }  // namespace
@@ -70,145 +304,95 @@ glm::dvec3 vanishing_point(const std::vector<LineSegment>& segments) {
 
 CalibrationResult calibrate_vanishing(const VanishingInput& in, int width, int height,
                                       const std::string& source) {
-    if (width <= 0 || height <= 0) throw InputError(source, "size", "the image size must be positive");
-    const double image_size = double(std::max(width, height));
-    const std::array<const std::vector<LineSegment>*, 3> segs = {&in.x, &in.y, &in.z};
-    std::array<bool, 3> used{};
-    std::array<ImagePoint, 3> vp{};
-    int count = 0;
-    for (int a = 0; a < 3; ++a) {
-        if (segs[size_t(a)]->empty()) continue;
-        vp[size_t(a)] = finite_vp(*segs[size_t(a)], a, image_size, source);
-        used[size_t(a)] = true;
-        ++count;
-    }
-    if (count < 2)
-        throw InputError(source, "",
-                         "need line segments for at least two of the directions x, y, z");
+    if (width <= 0 || height <= 0)
+        throw InputError(source, "size", "the image size must be positive");
+    const double size = double(std::max(width, height));
+    const Axes ax = check_axes(in, size, source);
+    if (in.focal_px) check_focal(*in.focal_px, source, "focal");
+    const bool free_focal = !in.focal_px;
+    const double click = std::max(0.0, in.click_sigma_px);
+    const ImagePoint centre(0.5 * (width - 1), 0.5 * (height - 1));
 
-    Intrinsics k = Intrinsics::centred(width, height, 1.0);
+    std::array<glm::dvec3, 3> vp{};
+    LineFit fit = fit_lines(ax, starts(ax, in, centre, size, vp), free_focal, false, size, click);
     std::vector<std::string> warnings;
-    if (count == 3 && !in.focal_px) {
-        const ImagePoint p = orthocentre(vp[0], vp[1], vp[2]);
-        if (!std::isfinite(p.x) || !std::isfinite(p.y))
-            throw InputError(source, "", "the three vanishing points are collinear");
-        k.cx = p.x, k.cy = p.y;
-    }
-    if (in.focal_px) {
-        check_focal(*in.focal_px, source, "focal");
-        k.fx = k.fy = *in.focal_px;
-    } else {
-        const ImagePoint c(k.cx, k.cy);
-        double f2 = 0;
-        int pairs = 0;
-        for (int a = 0; a < 3; ++a)
-            for (int b = a + 1; b < 3; ++b)
-                if (used[size_t(a)] && used[size_t(b)]) {
-                    f2 += -glm::dot(vp[size_t(a)] - c, vp[size_t(b)] - c);
-                    ++pairs;
-                }
-        f2 /= pairs;
-        if (!(f2 > 0))
-            throw InputError(source, "",
-                             "these directions cannot be orthogonal in a pinhole photo (the "
-                             "focal length squared would be " + std::to_string(f2) +
-                                 " px^2 <= 0): check that each group of lines is parallel in "
-                                 "the world and the groups are at right angles");
-        k.fx = k.fy = std::sqrt(f2);
-    }
-    if (k.fx > 50 * image_size)
-        warnings.push_back("the focal length is very long: the vanishing points are far away "
-                           "and it is poorly determined");
-
-    // Camera-space directions of the world axes (up to sign).
-    std::array<glm::dvec3, 3> d{};
-    for (int a = 0; a < 3; ++a)
-        if (used[size_t(a)])
-            d[size_t(a)] = glm::normalize(glm::dvec3((vp[size_t(a)].x - k.cx) / k.fx,
-                                                     (vp[size_t(a)].y - k.cy) / k.fy, 1.0));
-    // Signs: Y up in the image (camera -y), X to the right (camera +x), Z = X x Y.
-    if (used[1] && d[1].y > 0) d[1] = -d[1];
-    if (used[0] && d[0].x < 0) d[0] = -d[0];
-    if (!used[1]) {
-        d[1] = glm::cross(d[2], d[0]);
-        if (d[1].y > 0) d[2] = -d[2], d[1] = -d[1];
-    } else if (!used[0]) {
-        d[0] = glm::cross(d[1], d[2]);
-        if (d[0].x < 0) d[2] = -d[2], d[0] = -d[0];
-    }
-    d[2] = used[2] && glm::dot(d[2], glm::cross(d[0], d[1])) < 0 ? -d[2] : d[2];
-    if (!used[2]) d[2] = glm::cross(d[0], d[1]);
-    // Nearest rotation to the three directions (its columns are the world axes in camera space).
-    cv::Matx33d D;
-    for (int a = 0; a < 3; ++a)
-        for (int r = 0; r < 3; ++r) D(r, a) = d[size_t(a)][r];
-    cv::Matx33d U, Vt;
-    cv::Vec3d sv;
-    cv::SVD::compute(D, sv, U, Vt);
-    const glm::dmat3 R = calib::from_cv(U * Vt);
-
-    // Scale: rays in world space; the camera sits at -s * ray(origin), above the ground.
-    const glm::dmat3 Rt = glm::transpose(R);
-    auto ray = [&](const ImagePoint& p) {
-        return Rt * glm::dvec3((p.x - k.cx) / k.fx, (p.y - k.cy) / k.fy, 1.0);
-    };
-    const glm::dvec3 ro = ray(in.origin);
-    if (!(ro.y < 0))
-        throw InputError(source, "origin",
-                         "the origin must be a point on the ground, below the horizon");
-    double s = 0;
-    if (in.camera_height) {
-        if (!(*in.camera_height > 0))
-            throw InputError(source, "camera-height", "the camera height must be > 0 metres");
-        s = *in.camera_height / -ro.y;
-    } else if (in.distance) {
-        const auto& dist = *in.distance;
-        if (!(dist.metres > 0))
-            throw InputError(source, "distance", "the distance must be > 0 metres");
-        const glm::dvec3 c1 = -ro / -ro.y;  // camera at height 1
-        auto ground = [&](const ImagePoint& p) {
-            const glm::dvec3 r = ray(p);
-            if (!(r.y < 0))
-                throw InputError(source, "distance",
-                                 "the distance's end points must be on the ground, below the "
-                                 "horizon");
-            return c1 + (-c1.y / r.y) * r;
-        };
-        const double unit = glm::length(ground(dist.a) - ground(dist.b));
-        if (!(unit > 0))
-            throw InputError(source, "distance", "the distance's end points coincide");
-        s = dist.metres / unit / -ro.y;
-    } else {
-        throw InputError(source, "",
-                         "give a scale: the camera height or a distance between two ground "
-                         "points");
-    }
-    const glm::dvec3 C = -s * ro;
-
-    CalibrationResult r;
-    r.intrinsics = k;
-    r.pose.R = R;
-    r.pose.t = -(R * C);
-    r.warnings = warnings;
-    // Error figure: distance of the segment end points from the lines joining the segment
-    // midpoints to the fitted vanishing points.
-    double sum = 0;
-    int n = 0;
-    for (int a = 0; a < 3; ++a) {
-        const glm::dvec3 col(R[a][0], R[a][1], R[a][2]);  // world axis a in camera space
-        const glm::dvec3 v(k.fx * col.x + k.cx * col.z, k.fy * col.y + k.cy * col.z, col.z);
-        for (const LineSegment& sgm : *segs[size_t(a)]) {
-            glm::dvec3 l = glm::cross(homog(0.5 * (sgm.a + sgm.b)), v);
-            const double norm = glm::length(glm::dvec2(l));
-            if (norm == 0) continue;
-            for (const ImagePoint& p : {sgm.a, sgm.b}) {
-                const double e = glm::dot(l, homog(p)) / norm;
-                sum += e * e;
-                ++n;
+    if (in.free_principal_point) {
+        if (ax.count < 3) {
+            warnings.push_back("the principal point needs lines along all three directions: it "
+                               "is held at the image centre");
+        } else {
+            LineFit free = fit_lines(ax, {fit.camera()}, free_focal, true, size, click);
+            const double s = std::max(free.sigma_pp(0), free.sigma_pp(1));
+            char buf[256];
+            if (s < 0.05 * size) {
+                fit = free;
+            } else {
+                std::snprintf(buf, sizeof(buf),
+                              "the lines do not pin down the principal point (± %.0f px): it is "
+                              "held at the image centre",
+                              s);
+                warnings.push_back(buf);
             }
         }
     }
-    r.rms_px = n ? std::sqrt(sum / n) : 0.0;
+    CalibrationResult r;
+    const LineCamera& cam = fit.camera();
+    r.intrinsics = cam.intrinsics(width, height);
+    r.rms_px = fit.rms();
+    // A poor fit whose directions' own vanishing points contradict orthogonality is a
+    // grouping mistake; say so before anything the fit then did to reconcile them.
+    check_orthogonal(vp, ax, cam.c, size, fit.cost, click, false, source);
+    if (free_focal && !(fit.relative_sigma_focal() < 1.0)) {
+        check_orthogonal(vp, ax, cam.c, size, fit.cost, click, true, source);
+        throw InputError(source, "focal",
+                         "the focal length is not determined by these lines: " +
+                             undetermined_focal(cam, ax, size));
+    }
+    check_usable_fit(r, source, "",
+                     "check that each group's lines are parallel in the world and the groups "
+                     "are at right angles (a line in the wrong group?)");
+    const glm::dvec3 C = calib::place_camera(cam.R, r.intrinsics, in, source);
+    r.pose.R = cam.R;
+    r.pose.t = -(cam.R * C);
+
+    // Uncertainty: the fit's covariance carried to the camera centre, plus the click noise of
+    // the origin and scale points.
+    Uncertainty& u = r.uncertainty;
+    u.known = true;
+    u.point_sigma_px = fit.sigma;
+    u.focal_free = free_focal;
+    u.principal_free = fit.params.free_pp;
+    u.fx = u.fy = cam.f * fit.relative_sigma_focal();
+    u.cx = fit.sigma_pp(0), u.cy = fit.sigma_pp(1);
+    const std::vector<ImagePoint> clicks = calib::placement_points(in);
+    cv::Mat Jc(3, int(2 * clicks.size()), CV_64F);
+    for (size_t i = 0; i < 2 * clicks.size(); ++i) {
+        std::vector<ImagePoint> plus = clicks, minus = clicks;
+        plus[i / 2][int(i % 2)] += 1e-3;
+        minus[i / 2][int(i % 2)] -= 1e-3;
+        auto at = [&](const std::vector<ImagePoint>& p) {
+            return calib::place_camera(cam.R, r.intrinsics, calib::with_placement_points(in, p),
+                                       source);
+        };
+        const glm::dvec3 d = (at(plus) - at(minus)) / 2e-3;
+        for (int k = 0; k < 3; ++k) Jc.at<double>(k, int(i)) = d[k];
+    }
+    const cv::Mat click_cov = fit.sigma * fit.sigma * Jc * Jc.t();
+    glm::dmat3 extra(0.0);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) extra[j][i] = click_cov.at<double>(i, j);
+    calib::pose_uncertainty(
+        fit.cov, std::vector<double>(size_t(fit.params.count()), 0.0),
+        [&](const std::vector<double>& x) {
+            const LineCamera c = fit.params.apply(x);
+            return calib::place_camera(c.R, c.intrinsics(width, height), in, source);
+        },
+        u, extra);
+
+    r.warnings = warnings;
+    for (std::string& w : calib::scale_warnings(cam.R, r.intrinsics, in, fit.sigma))
+        r.warnings.push_back(std::move(w));
+    add_quality_warnings(r);
     return r;
 }
 

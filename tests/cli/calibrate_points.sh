@@ -13,10 +13,14 @@ expect_camera() {
         fail "$1: position $pos, expected 1.5 1.6 2.5"
 }
 
+# --size alone creates a project whose photo is to be named.
 run calibrate rectangle rect.json --size 1000x750 --focal 800 --width 0.6 --height 0.4 \
     --corners 413.518,381.519 549.410,412.026 508.295,466.634 360.722,428.922
-expect_rc 2 "a new project needs a photo"
-expect_stderr "give the photo to create it with" "a new project needs a photo"
+expect_rc 0 "a new project from --size"
+expect_stdout "set photo.path to the 1000x750 photograph" "a new project from --size"
+expect_stdout "uncertainty: focal length given, principal point held, rotation ± " "rectangle"
+grep -q '"path": "photo.jpg"' rect.json || fail "the new project names no photo to replace"
+expect_camera "rectangle on a new project"
 
 make_inputs
 run make-test-image photo1000.png --size 1000 750 --value 0.5 0.5 0.5
@@ -52,4 +56,18 @@ expect_rc 0 "vanishing points"
 expect_camera "vanishing"
 RMS=$(field rms_px)
 at_most "$RMS" 0.01 || fail "vanishing: rms_px $RMS for exact lines"
+# The focal length's uncertainty beside it, in pixels and percent.
+grep -qE '^uncertainty: fx 800(\.[0-9]+)? ± [0-9.]+ px \([0-9.]+ %\), principal point held, rotation ± [0-9.]+°, position ± [0-9.]+ m' stdout.txt ||
+    fail "vanishing: no uncertainty line"
+
+# The scale from a vertical box edge 0.28 m tall (its foot first), three directions.
+run calibrate vanishing scene.json --photo photo1000.png \
+    --x 313.041,358.962,650.975,434.827 --x 253.016,401.398,620.047,495.192 \
+    --z 475.916,325.495,345.697,442.412 --z 597.218,348.529,496.481,482.324 \
+    --y 446.174,375.654,443.965,314.488 --y 582.363,405.326,586.041,341.114 \
+    --y 397.620,421.737,392.931,355.904 \
+    --origin 413.518,381.519 --vertical 582.363,405.326,586.041,341.114,0.28
+expect_rc 0 "vanishing points, vertical length"
+expect_camera "vanishing, vertical length"
+[ -s stderr.txt ] && fail "vanishing, vertical length: warnings for exact input"
 echo PASS

@@ -235,6 +235,12 @@ void CalibrationTest::drawnVanishingLinesMatchTheCamera() {
     QVERIFY(angle < 0.5);
     QVERIFY(position < 0.01);
     QVERIFY(pixels < 1.5);
+    // The uncertainty is shown with the result.
+    const QString status = child<QLabel>("calibrationStatus")->text();
+    qInfo("status: %s", qPrintable(status));
+    QVERIFY2(status.contains("Uncertainty (1 sigma): focal length given") &&
+                 status.contains("rotation ± ") && status.contains("position ± "),
+             qPrintable(status));
 
     // The scale from a known distance instead: the rectangle's 0.6 m edge.
     Project p = w_->document()->project();
@@ -250,6 +256,26 @@ void CalibrationTest::drawnVanishingLinesMatchTheCamera() {
     QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
     compare(w_->document()->project().camera, angle, position, pixels);
     qInfo("vanishing lines, known distance: rotation %.3f deg, position %.4f, reprojection %.3f px",
+          angle, position, pixels);
+    QVERIFY(angle < 0.5);
+    QVERIFY(position < 0.01);
+    QVERIFY(pixels < 1.5);
+
+    // Or from a vertical length: a 0.5 m pole standing at the rectangle's far corner.
+    p = w_->document()->project();
+    p.camera = CameraSpec{};
+    w_->document()->edit("reset camera", p);
+    child<QDoubleSpinBox>("vanishingDistance")->setValue(0);
+    child<QDoubleSpinBox>("vanishingVertical")->setValue(0.5);
+    child<QPushButton>("vanishingVerticalEnds")->click();
+    for (const vec3& c : {kCorners[1], kCorners[1] + vec3(0, 0.5f, 0)}) {
+        send(QEvent::MouseButtonPress, widgetAtF(photo_px(c)), Qt::LeftButton);
+        send(QEvent::MouseButtonRelease, widgetAtF(photo_px(c)), Qt::NoButton);
+    }
+    QVERIFY(w_->calibrationPanel()->applyVanishing());
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    compare(w_->document()->project().camera, angle, position, pixels);
+    qInfo("vanishing lines, vertical length: rotation %.3f deg, position %.4f, reprojection %.3f px",
           angle, position, pixels);
     QVERIFY(angle < 0.5);
     QVERIFY(position < 0.01);

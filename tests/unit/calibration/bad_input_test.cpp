@@ -83,10 +83,13 @@ TEST(PointsInput, TooFewOrDegeneratePointsAreRejected) {
                        "need at least 6 points");
 }
 
-TEST(VanishingInput, ParallelLinesAreRejected) {
+TEST(VanishingInput, ParallelLinesAndOneOtherDirectionNeedAGivenFocalLength) {
     VanishingInput in = converging();
     in.x = {{{100, 300}, {600, 300}}, {{100, 400}, {600, 400}}};
     EXPECT_INPUT_ERROR(calibrate_vanishing(in, 1000, 750, "v"), "vanishing point is at infinity");
+    EXPECT_INPUT_ERROR(calibrate_vanishing(in, 1000, 750, "v"), "give it (--focal, --exif)");
+    in.focal_px = 800;
+    EXPECT_NO_THROW(calibrate_vanishing(in, 1000, 750, "v"));
 }
 
 TEST(VanishingInput, DirectionsThatCannotBeOrthogonalAreRejected) {

@@ -56,6 +56,14 @@ TEST(SyntheticChessboard, SeveralPhotosRecoverTheCamera) {
     ChessboardCalibration c = calibrate_chessboard(views, board().spec());
     RecordProperty("rms_px", std::to_string(c.result.rms_px));
     EXPECT_LT(c.result.rms_px, 0.5);
+    // The stated uncertainty of the lens covers the true one (three standard deviations).
+    const Intrinsics& k = c.result.intrinsics;
+    const Uncertainty& u = c.result.uncertainty;
+    RecordProperty("lens", uncertainty_text(c.result));
+    EXPECT_LT(std::abs(k.fx - kFocal), 3 * u.fx);
+    EXPECT_LT(std::abs(k.fy - kFocal), 3 * u.fy);
+    EXPECT_LT(std::abs(k.cx - 0.5 * (kW - 1)), 3 * u.cx);
+    EXPECT_LT(std::abs(k.cy - 0.5 * (kH - 1)), 3 * u.cy);
     for (size_t i = 0; i < views.size(); ++i) {
         SCOPED_TRACE(views[i].source);
         CalibrationResult r = c.result;

@@ -1,7 +1,9 @@
-// Vanishing points from exact line segments of a known camera, including vertical lines.
+// Vanishing points from exact line segments of a known camera, including vertical lines and
+// lines parallel in the image; the scale from a vertical length; the stated uncertainty.
 #include <gtest/gtest.h>
 
 #include "calibration/vanishing.h"
+#include "line_scenes.h"
 #include "synthetic_board.h"
 
 using namespace dp;
@@ -40,19 +42,30 @@ VanishingInput lines(const Camera& cam) {
 
 }  // namespace
 
-TEST(Vanishing, ThreeDirectionsGiveThePrincipalPointAsTheOrthocentre) {
+TEST(VanishingCalibration, ThreeDirectionsFindAFreedPrincipalPoint) {
     const CameraSpec truth = shifted_camera();
     const Camera cam = truth.build(kW, kH);
-    CalibrationResult r = calibrate_vanishing(lines(cam), kW, kH, "");
+    VanishingInput in = lines(cam);
+    in.free_principal_point = true;
+    CalibrationResult r = calibrate_vanishing(in, kW, kH, "");
     EXPECT_NEAR(r.intrinsics.cx, truth.cx, 0.05);
     EXPECT_NEAR(r.intrinsics.cy, truth.cy, 0.05);
     EXPECT_NEAR(r.intrinsics.fx, truth.fx, 0.05);
     EXPECT_LT(r.rms_px, 1e-3);
     EXPECT_LT(glm::length(r.pose.position() - glm::dvec3(cam.position())), 1e-4);
     EXPECT_LT(rotation_angle_deg(r.pose.R, glm::dmat3(truth.rotation)), 1e-3);
+    EXPECT_TRUE(r.uncertainty.principal_free);
+    // With the focal length given too.
+    in.focal_px = truth.fx;
+    CalibrationResult g = calibrate_vanishing(in, kW, kH, "");
+    EXPECT_NEAR(g.intrinsics.cx, truth.cx, 0.05);
+    EXPECT_NEAR(g.intrinsics.cy, truth.cy, 0.05);
+    EXPECT_TRUE(g.uncertainty.principal_free && !g.uncertainty.focal_free);
+    EXPECT_GT(g.uncertainty.cx, 0);
+    EXPECT_LT(g.uncertainty.cx, r.uncertainty.cx);  // the focal length known: a tighter point
 }
 
-TEST(Vanishing, AnyTwoDirectionsGiveTheSameCameraWithACentredPrincipalPoint) {
+TEST(VanishingCalibration, AnyTwoDirectionsGiveTheSameCameraWithACentredPrincipalPoint) {
     const CameraSpec truth = camera_at({1.5, 1.6, 2.5}, {0.3, 0, -0.2}, kW, kH, 800);
     const Camera cam = truth.build(kW, kH);
     const VanishingInput all = lines(cam);
@@ -67,7 +80,7 @@ TEST(Vanishing, AnyTwoDirectionsGiveTheSameCameraWithACentredPrincipalPoint) {
     }
 }
 
-TEST(Vanishing, AGivenFocalLengthIsKept) {
+TEST(VanishingCalibration, AGivenFocalLengthIsKept) {
     const CameraSpec truth = camera_at({1.5, 1.6, 2.5}, {0.3, 0, -0.2}, kW, kH, 800);
     VanishingInput in = lines(truth.build(kW, kH));
     in.y.clear();
@@ -75,4 +88,89 @@ TEST(Vanishing, AGivenFocalLengthIsKept) {
     CalibrationResult r = calibrate_vanishing(in, kW, kH, "");
     EXPECT_EQ(r.intrinsics.fx, 800.0);
     EXPECT_LT(rotation_angle_deg(r.pose.R, glm::dmat3(truth.rotation)), 1e-3);
+}
+
+TEST(VanishingCalibration, ExactClicksGiveTheFocalWithinATenthOfAPercent) {
+    for (const auto& [name, scene] :
+         {std::pair{"three directions", ground_lines_and_box_edges()},
+          std::pair{"two long ground directions", long_ground_lines()},
+          std::pair{"box edges only", box_edges()},
+          std::pair{"x parallel in the image", parallel_x_lines()}}) {
+        SCOPED_TRACE(name);
+        const CalibrationResult r =
+            calibrate_vanishing(scene.exact(), scene.width, scene.height, "");
+        EXPECT_NEAR(r.intrinsics.fx / scene.truth.fx, 1.0, 1e-3);
+        EXPECT_LT(rotation_angle_deg(r.pose.R, glm::dmat3(scene.truth.rotation)), 0.01);
+        EXPECT_LT(glm::length(r.pose.position() - glm::dvec3(scene.camera().position())), 1e-3);
+        EXPECT_LT(r.rms_px, 1e-3);
+    }
+}
+
+TEST(VanishingCalibration, LinesParallelInTheImageAreSolvedNotRefused) {
+    const LineScene scene = parallel_x_lines();
+    const VanishingInput exact = scene.exact();
+    ASSERT_NEAR(exact.x[0].a.y, exact.x[0].b.y, 1e-3);  // the X lines are level in the image
+    // With the focal length given, the parallel X lines and the Z lines give the rotation.
+    VanishingInput in = exact;
+    in.y.clear();
+    in.focal_px = 800;
+    const CalibrationResult r = calibrate_vanishing(in, scene.width, scene.height, "");
+    EXPECT_LT(rotation_angle_deg(r.pose.R, glm::dmat3(scene.truth.rotation)), 1e-3);
+    EXPECT_LT(glm::length(r.pose.position() - glm::dvec3(scene.camera().position())), 1e-4);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
+}
+
+TEST(VanishingCalibration, AKnownVerticalLengthSetsTheScale) {
+    const LineScene scene = ground_lines_and_box_edges();
+    VanishingInput in = scene.exact();
+    in.distance.reset();
+    const glm::dvec3 foot(0.7, 0, -0.1);
+    in.vertical = VanishingInput::Distance{scene.pixel(foot),
+                                           scene.pixel(foot + glm::dvec3(0, 0.28, 0)), 0.28};
+    const CalibrationResult r = calibrate_vanishing(in, scene.width, scene.height, "");
+    EXPECT_LT(glm::length(r.pose.position() - glm::dvec3(scene.camera().position())), 1e-4);
+    EXPECT_TRUE(r.warnings.empty()) << r.warnings[0];
+    // Half the length: the camera half as high.
+    in.vertical->metres = 0.14;
+    EXPECT_NEAR(calibrate_vanishing(in, scene.width, scene.height, "").pose.position().y,
+                0.5 * scene.camera().position().y, 1e-4);
+}
+
+TEST(VanishingCalibration, AFreedPrincipalPointStaysCentredWhenTheLinesCannotFixIt) {
+    const LineScene scene = long_ground_lines();
+    VanishingInput in = scene.exact();
+    in.free_principal_point = true;
+    const CalibrationResult r = calibrate_vanishing(in, scene.width, scene.height, "");
+    EXPECT_EQ(r.intrinsics.cx, 0.5 * (scene.width - 1));
+    EXPECT_FALSE(r.uncertainty.principal_free);
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("needs lines along all three directions"), std::string::npos);
+    // Three directions, one of them parallel in the image: the point is not pinned down.
+    VanishingInput p = parallel_x_lines().exact();
+    p.free_principal_point = true;
+    const CalibrationResult q = calibrate_vanishing(p, scene.width, scene.height, "");
+    EXPECT_FALSE(q.uncertainty.principal_free);
+    ASSERT_EQ(q.warnings.size(), 1u);
+    EXPECT_NE(q.warnings[0].find("do not pin down the principal point"), std::string::npos);
+}
+
+TEST(VanishingCalibration, TheUncertaintyIsStatedForFocalRotationAndPosition) {
+    const LineScene scene = long_ground_lines();
+    const CalibrationResult r = calibrate_vanishing(scene.exact(), scene.width, scene.height, "");
+    const Uncertainty& u = r.uncertainty;
+    EXPECT_TRUE(u.known && u.focal_free && !u.principal_free);
+    EXPECT_EQ(u.point_sigma_px, 0.5);  // exact clicks: the click precision, not the residuals
+    EXPECT_GT(u.fx, 0);
+    EXPECT_GT(u.rotation_deg, 0);
+    EXPECT_GT(u.position_m, 0);
+    const std::string text = uncertainty_text(r);
+    EXPECT_NE(text.find("fx 800.0 ± "), std::string::npos) << text;
+    EXPECT_NE(text.find("rotation ± "), std::string::npos) << text;
+    EXPECT_NE(text.find("position ± "), std::string::npos) << text;
+    // Clicks half as precise: twice the uncertainty.
+    VanishingInput coarse = scene.exact();
+    coarse.click_sigma_px = 1.0;
+    const Uncertainty c = calibrate_vanishing(coarse, scene.width, scene.height, "").uncertainty;
+    EXPECT_NEAR(c.fx / u.fx, 2.0, 1e-6);
+    EXPECT_NEAR(c.rotation_deg / u.rotation_deg, 2.0, 1e-6);
 }
