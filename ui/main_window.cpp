@@ -8,12 +8,14 @@
 #include <QKeySequence>
 #include <QLabel>
 #include <QMenuBar>
+#include <QMessageBox>
 #include <QScrollArea>
 #include <QSlider>
 #include <QStandardPaths>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QToolBar>
+#include <QToolButton>
 #include <QUndoStack>
 #include <QVBoxLayout>
 #include <cmath>
@@ -54,6 +56,18 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     status_ = new QLabel(tr("No project"));
     status_->setToolTip(tr("Passes done, photon rate and an estimate of the remaining noise"));
     statusBar()->addWidget(status_, 1);
+    // Asset warnings stay visible beside the status until the project's files are fixed.
+    warnings_ = new QToolButton;
+    warnings_->setObjectName("assetWarnings");
+    warnings_->setAutoRaise(true);
+    warnings_->setVisible(false);
+    statusBar()->addPermanentWidget(warnings_);
+    connect(warnings_, &QToolButton::clicked, this, [this] {
+        auto* box = new QMessageBox(QMessageBox::Warning, tr("Asset warnings"), warnings_->toolTip(),
+                                    QMessageBox::Close, this);
+        box->setAttribute(Qt::WA_DeleteOnClose);
+        box->open();  // not modal to the render: the picture keeps refining behind it
+    });
 
     createActions();
     createDocks();
@@ -281,6 +295,11 @@ void MainWindow::connectRenderer() {
     connect(renderer_, &RenderController::failed, this, [this](const QString& message) {
         status_->setText(tr("Render failed"));
         error(tr("Render failed"), message);
+    });
+    connect(renderer_, &RenderController::assetWarnings, this, [this](const QStringList& list) {
+        warnings_->setText(list.size() == 1 ? tr("⚠ 1 asset warning") : tr("⚠ %1 asset warnings").arg(list.size()));
+        warnings_->setToolTip(list.join("\n"));
+        warnings_->setVisible(!list.isEmpty());
     });
     connect(renderer_, &RenderController::refinementFinished, this,
             [this] { status_->setText(status_->text() + tr("  ·  done")); });

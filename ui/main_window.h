@@ -11,6 +11,7 @@ class QActionGroup;
 class QLabel;
 class QMenu;
 class QSlider;
+class QToolButton;
 
 namespace dp::ui {
 
@@ -116,6 +117,7 @@ private:
     ProbeAlignPanel* probeAlignPanel_ = nullptr;
     Autosave* autosave_ = nullptr;
     QLabel* status_;
+    QToolButton* warnings_;  ///< "n asset warnings", hidden while there are none
     QSlider* exposure_ = nullptr;
     QMenu* recentMenu_ = nullptr;
     QActionGroup *viewGroup_ = nullptr, *gizmoGroup_ = nullptr;

@@ -7,6 +7,7 @@
 #include <QMimeData>
 #include <QSettings>
 #include <QSlider>
+#include <QStatusBar>
 #include <algorithm>
 #include <cmath>
 
@@ -20,6 +21,7 @@
 #include "new_project_dialog.h"
 #include "project_edit.h"
 #include "render/progressive.h"
+#include "render/render_output.h"
 #include "render_controller.h"
 #include "scene/project_io.h"
 #include "scene_builder.h"
@@ -31,11 +33,6 @@ namespace {
 
 const QStringList kMeshSuffixes = {"obj", "ply", "gltf", "glb"};
 const QStringList kImageSuffixes = {"exr", "hdr", "png", "jpg", "jpeg", "tif", "tiff"};
-
-void sanitize(Image& image) {
-    for (size_t i = 0; i < image.size(); ++i)
-        if (!is_finite(image[i])) image[i] = vec3(0);
-}
 
 }  // namespace
 
@@ -120,19 +117,16 @@ bool MainWindow::exportImage(const QString& path) {
         return false;
     }
     const QString suffix = QFileInfo(path).suffix().toLower();
+    std::vector<std::string> warnings;
     try {
-        Image image = f->update.image;
-        sanitize(image);
         if (suffix == "png" || suffix == "jpg" || suffix == "jpeg") {
+            Image image = f->update.image;
+            if (const size_t n = replace_non_finite(image))
+                warnings.push_back(std::to_string(n) + " NaN/Inf values replaced by 0");
             save_ldr(path.toStdString(), image, viewport_->exposure());
         } else if (suffix == "exr") {
-            Image delta = f->update.delta, alpha = f->update.alpha;
-            sanitize(delta);
-            sanitize(alpha);
-            const Image photo = resample(*f->photo, image.width(), image.height());
-            const Image shadow = shadow_matte(photo, delta);
-            save_exr(path.toStdString(),
-                     {{"", &image}, {"dL", &delta}, {"alpha", &alpha}, {"shadow", &shadow}});
+            RenderUpdate u = f->update;
+            warnings = save_render_exr(path.toStdString(), u, *f->photo, true);
         } else {
             throw InputError(path.toStdString(), "export",
                              "unknown format (use .png, .jpg or .exr)");
@@ -141,6 +135,9 @@ bool MainWindow::exportImage(const QString& path) {
         error(tr("Cannot export"), QString::fromUtf8(e.what()));
         return false;
     }
+    QString note = tr("Exported %1").arg(QFileInfo(path).fileName());
+    for (const std::string& w : warnings) note += "  ·  " + QString::fromStdString(w);
+    statusBar()->showMessage(note, 10000);
     return true;
 }
 

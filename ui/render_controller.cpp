@@ -158,7 +158,15 @@ void RenderController::handle(const Request& r) {
     Timings timings;
     const Project& p = r.project;
     Change change = haveScenes_ ? classify(built_, p) : Change::Assets;
-    if (change >= Change::Scene) builder_->load(p);
+    if (change >= Change::Scene) {
+        builder_->load(p);
+        if (builder_->warnings() != warned_) {
+            warned_ = builder_->warnings();
+            QStringList list;
+            for (const std::string& w : warned_) list << QString::fromStdString(w);
+            QMetaObject::invokeMethod(this, [this, list] { Q_EMIT assetWarnings(list); }, Qt::QueuedConnection);
+        }
+    }
 
     const Image& photo = *builder_->photo();
     QSize full = r.size.isValid() ? r.size : QSize(photo.width(), photo.height());

@@ -1,6 +1,7 @@
 #pragma once
 #include <QObject>
 #include <QSize>
+#include <QStringList>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -57,8 +58,6 @@ public:
     void stop();
     bool idle() const;
 
-    /// The latest frame delivered to the UI thread (null before the first).
-    std::shared_ptr<const RenderFrame> lastFrame() const { return last_; }
     /// The latest full-size frame (what export writes).
     std::shared_ptr<const RenderFrame> lastFullFrame() const { return lastFull_; }
     uint64_t generation() const { return requested_; }
@@ -84,6 +83,9 @@ Q_SIGNALS:
     void refinementFinished();
     /// Loading or building failed (message for the user).
     void failed(const QString& message);
+    /// What loading the project's files found (NaN/Inf replaced, an LDR probe, ...); sent when
+    /// the list changes, on the UI thread.
+    void assetWarnings(const QStringList& warnings);
 
 private:
     struct Request {
@@ -130,6 +132,7 @@ private:
     bool quit_ = false;
     bool busy_ = false;
     std::atomic<int> scenesBuilt_{0};
+    std::vector<std::string> warned_;  ///< worker thread: the warnings last sent
     uint64_t requested_ = 0;  ///< UI thread
     bool finished_ = false;   ///< UI thread
     std::shared_ptr<const RenderFrame> last_, lastFull_;

@@ -95,7 +95,7 @@ public:
             throw InputError(exr, "", "Cycles' render differs in size from the photograph");
         return img;
     }
-    Image delta_layer() const override { return Image(scene_->camera().width(), scene_->camera().height()); }
+    Image dL_layer() const override { return Image(scene_->camera().width(), scene_->camera().height()); }
     Image alpha_layer() const override { return Image(scene_->camera().width(), scene_->camera().height()); }
 
 private:

@@ -32,7 +32,7 @@ std::string prepare_cycles_method(std::vector<std::string>& methods, const std::
 /// conversion not), image() its shadow-catcher composite. Blender runs once, on the first
 /// call. render_pass() returns false when the renders are used up, on Ctrl-C, or when Blender
 /// failed (then with a message on stderr that names the scene). The composite has no layers:
-/// delta_layer() and alpha_layer() are zero images.
+/// dL_layer() and alpha_layer() are zero images.
 std::unique_ptr<PassRenderer> make_cycles_renderer(std::shared_ptr<const RenderScene> scene, const CyclesRun& run);
 
 }  // namespace dp::cli

@@ -13,6 +13,7 @@
 #include "image/image_io.h"
 #include "reference/standard_differential.h"
 #include "render/progressive.h"
+#include "render/render_output.h"
 #include "render/session.h"
 #include "render_pixel.h"
 #include "render_sink.h"
@@ -49,18 +50,7 @@ void write_result(const RenderOptions& o, ImageKind kind, const Image& photo, Re
         write_image(o.output, std::move(u.image), o.exposure);
         return;
     }
-    sanitize(u.image, o.output, "main");
-    std::vector<ExrLayer> layers = {{"", &u.image}};
-    Image shadow;
-    if (o.layers) {
-        sanitize(u.delta, o.output, "dL");
-        sanitize(u.alpha, o.output, "alpha");
-        shadow = shadow_matte(photo, u.delta);
-        layers.push_back({"dL", &u.delta});
-        layers.push_back({"alpha", &u.alpha});
-        layers.push_back({"shadow", &shadow});
-    }
-    save_exr(o.output, layers);
+    for (const std::string& w : save_render_exr(o.output, u, photo, o.layers)) warn(o.output + ": " + w);
 }
 
 int run_render(const RenderOptions& o) {

@@ -78,13 +78,7 @@ void check_output_folder(const std::string& path, const std::string& option) {
 }
 
 size_t sanitize(Image& image, const std::string& path, const std::string& layer) {
-    size_t replaced = 0;
-    for (size_t i = 0; i < image.size(); ++i)
-        for (int c = 0; c < 3; ++c)
-            if (!std::isfinite(image[i][c])) {
-                image[i][c] = 0.0f;
-                ++replaced;
-            }
+    const size_t replaced = replace_non_finite(image);
     if (replaced > 0)
         warn(path + ": " + std::to_string(replaced) + " NaN/Inf values in layer '" + layer +
              "' replaced by 0 before writing");

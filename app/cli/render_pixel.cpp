@@ -29,15 +29,15 @@ int debug_pixel(std::shared_ptr<const RenderScene> scene, const RenderSettings& 
                              ") is outside the " + std::to_string(photo.width()) + "x" +
                              std::to_string(photo.height()) + " photo");
     ProgressiveRenderer renderer(scene, rs);
-    Image delta, dL, alpha;
-    renderer.render_single_pass(pass, delta, dL, alpha);
+    Image change, dL, alpha;
+    renderer.render_single_pass(pass, change, dL, alpha);
 
-    const vec3 p = photo.at(x, y), d = delta.at(x, y);
+    const vec3 p = photo.at(x, y), d = change.at(x, y);
     std::printf("pixel (%d, %d), pass %d of seed %llu, %lld photons, radius %g\n", x, y, pass,
                 static_cast<unsigned long long>(rs.seed),
                 static_cast<long long>(rs.photons_per_pass), renderer.radius_for_pass(pass));
     std::printf("  photo   %s\n", vec(p).c_str());
-    std::printf("  delta   %s\n", vec(d).c_str());
+    std::printf("  change  %s\n", vec(d).c_str());
     std::printf("  dL      %s\n", vec(dL.at(x, y)).c_str());
     std::printf("  alpha   %g\n", alpha.at(x, y).x);
     std::printf("  result  %s\n", vec(p + d).c_str());

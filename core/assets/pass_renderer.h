@@ -46,7 +46,7 @@ public:
     /// The augmented photograph (linear).
     virtual Image image() const = 0;
     /// Mean signed change of radiance on real surfaces seen directly.
-    virtual Image delta_layer() const = 0;
+    virtual Image dL_layer() const = 0;
     /// Fraction of samples that saw a virtual object first (grey RGB).
     virtual Image alpha_layer() const = 0;
 };

@@ -1,4 +1,5 @@
 #include "assets/render_scene.h"
+#include "base/euler.h"
 
 #include <algorithm>
 #include <cmath>

@@ -20,13 +20,7 @@ std::string indexed(const char* list, size_t i, const char* field) {
 void RenderScene::sanitize_images() {
     // Images made in memory never went through load_image: the same rule applies to them.
     auto clean = [&](Image& img, const std::string& what) {
-        size_t replaced = 0;
-        for (size_t i = 0; i < img.size(); ++i)
-            for (int c = 0; c < 3; ++c)
-                if (!std::isfinite(img[i][c])) {
-                    img[i][c] = 0.0f;
-                    ++replaced;
-                }
+        const size_t replaced = replace_non_finite(img);
         if (replaced == 0) return;
         assets_.non_finite_replaced += replaced;
         assets_.warnings.push_back(what + ": " + std::to_string(replaced) + " NaN/Inf values replaced by 0");

@@ -35,4 +35,15 @@ Image resample(const Image& image, int width, int height) {
     return out;
 }
 
+size_t replace_non_finite(Image& image) {
+    size_t replaced = 0;
+    for (size_t i = 0; i < image.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            if (!std::isfinite(image[i][c])) {
+                image[i][c] = 0.0f;
+                ++replaced;
+            }
+    return replaced;
+}
+
 }  // namespace dp

@@ -41,4 +41,8 @@ private:
 /// averaging a small footprint when shrinking so that previews do not alias.
 Image resample(const Image& image, int width, int height);
 
+/// The one NaN/Inf policy of every image that enters or leaves diffphoton: each non-finite
+/// channel becomes 0 (the other channels of the pixel are kept). Returns how many were replaced.
+size_t replace_non_finite(Image& image);
+
 }  // namespace dp

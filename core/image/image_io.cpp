@@ -48,20 +48,6 @@ void check_output_folder(const std::string& path) {
                                  "' does not exist");
 }
 
-size_t replace_non_finite(Image& image) {
-    size_t replaced = 0;
-    for (size_t i = 0; i < image.size(); ++i) {
-        for (int c = 0; c < 3; ++c) {
-            float& v = image[i][c];
-            if (!std::isfinite(v)) {
-                v = 0.0f;
-                ++replaced;
-            }
-        }
-    }
-    return replaced;
-}
-
 }  // namespace image_io_detail
 
 namespace {
@@ -170,7 +156,7 @@ Image load_image(const std::string& path, const std::string& field, ImageLoadRep
         image = load_with_opencv(path, field, out);
     }
     if (image.empty()) throw InputError(path, field, "image has zero size");
-    out.non_finite_replaced = image_io_detail::replace_non_finite(image);
+    out.non_finite_replaced = replace_non_finite(image);
     return image;
 }
 

@@ -26,7 +26,4 @@ Image load_exr_main(const std::string& path, const std::string& field);
 /// output folders are never created implicitly, so a mistyped path fails loudly.
 void check_output_folder(const std::string& path);
 
-/// Replaces NaN/Inf channels by 0 and returns how many channels were replaced.
-size_t replace_non_finite(Image& image);
-
 }  // namespace dp::image_io_detail

@@ -184,12 +184,4 @@ float Probe::pdf(const vec3& dir) const {
     return pdf_[latlong_pixel(to_probe(dir), width(), height())];
 }
 
-glm::mat3 euler_xyz_deg(const vec3& deg) {
-    const glm::mat4 id(1.0f);
-    glm::mat3 rx(glm::rotate(id, glm::radians(deg.x), vec3(1, 0, 0)));
-    glm::mat3 ry(glm::rotate(id, glm::radians(deg.y), vec3(0, 1, 0)));
-    glm::mat3 rz(glm::rotate(id, glm::radians(deg.z), vec3(0, 0, 1)));
-    return rz * ry * rx;
-}
-
 }  // namespace dp

@@ -140,9 +140,6 @@ private:
     double total_power_ = 0;
 };
 
-/// Euler XYZ angles in degrees to a rotation matrix (X applied first).
-glm::mat3 euler_xyz_deg(const vec3& deg);
-
 /// Unwraps a mirror-ball photograph (the ball filling the square image) seen by a camera with
 /// the given vertical field of view (0 = orthographic) into a lat-long map of the given size.
 /// The ball's camera looks along -Z of probe space, image right being +X and up +Y; a perspective

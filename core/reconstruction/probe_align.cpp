@@ -1,4 +1,5 @@
 #include "reconstruction/probe_align.h"
+#include "base/euler.h"
 
 #include <algorithm>
 #include <cmath>
@@ -68,20 +69,6 @@ vec3 brightest_direction(const Image& map, float fraction, float cone_deg, const
     }
     if (!(glm::length(sum) > 0)) return peak;
     return vec3(glm::normalize(sum));
-}
-
-vec3 euler_xyz_from_matrix(const glm::mat3& M) {
-    // M = Rz(g) Ry(b) Rx(a); glm indexes [column][row].
-    double sb = std::clamp(double(-M[0][2]), -1.0, 1.0);
-    double b = std::asin(sb), a, g;
-    if (std::abs(sb) < 0.99999) {
-        a = std::atan2(double(M[1][2]), double(M[2][2]));
-        g = std::atan2(double(M[0][1]), double(M[0][0]));
-    } else {  // gimbal lock: only a - g (or a + g) is defined; put it all in g
-        a = 0;
-        g = std::atan2(double(-M[1][0]), double(M[1][1]));
-    }
-    return vec3(float(a * kDeg), float(b * kDeg), float(g * kDeg));
 }
 
 ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg, const vec3& target_world) {

@@ -44,9 +44,6 @@ struct ProbeYaw {
 /// either direction is vertical (no azimuth).
 ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg, const vec3& target_world);
 
-/// Euler XYZ angles in degrees (as euler_xyz_deg reads them) of a rotation matrix.
-vec3 euler_xyz_from_matrix(const glm::mat3& R);
-
 /// A patch of known reflectance in the photo (pixel rectangle, corners inclusive).
 struct GreyCard {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;

@@ -128,7 +128,7 @@ Image StandardDifferentialRenderer::image() const {
     return out;
 }
 
-Image StandardDifferentialRenderer::delta_layer() const {
+Image StandardDifferentialRenderer::dL_layer() const {
     Image out(scene_->camera().width(), scene_->camera().height());
     for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(sum_delta_[i] / double(std::max<uint32_t>(1, samples_[i])));
     return out;

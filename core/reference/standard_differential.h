@@ -33,7 +33,7 @@ public:
     bool render_pass(const std::atomic<bool>* cancel = nullptr) override;
     const RenderStats& stats() const override { return stats_; }
     Image image() const override;
-    Image delta_layer() const override;
+    Image dL_layer() const override;
     Image alpha_layer() const override;
 
 private:

@@ -238,7 +238,7 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
             SampleResult* tile_out = &out[k * kTilePixels];
             for (uint32_t e = work.splat_begin[k]; e < work.splat_begin[k + 1]; ++e) {
                 SampleResult& r0 = tile_out[work.splats[e].key % kTilePixels];
-                r0.dL = r0.delta = vec3(work.splats[e].value);
+                r0.dL = r0.pixel_change = vec3(work.splats[e].value);
             }
             for_tile_pixels(plan_, t, [&](size_t i, int x, int y, size_t slot) {
                 const FramePlan::PixelKind kind = plan_.kind[i];
@@ -258,7 +258,7 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
                 const SampleResult splat = tile_out[slot];
                 SampleResult r1 = shader.shade_camera(x, y, float(x) + j.x, float(y) + j.y, sampler, rng, w);
                 r1.dL += splat.dL;
-                r1.delta += splat.delta;
+                r1.pixel_change += splat.pixel_change;
                 tile_out[slot] = r1;
                 ++local;
             });
@@ -326,7 +326,7 @@ void ProgressiveRenderer::update_convergence() {
         double tile_e2 = 0, tile_value = 0;
         int n = 0;
         for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) {
-            const dvec3 d = sums_.mean_delta(i);
+            const dvec3 d = sums_.mean_pixel_change(i);
             const double before = luminance(photo[i]);
             const double value = std::max(before + luminance(d), double(floor));
             const double e2 = passes >= 2 ? sums_.error2(i, before, ceiling_) : 0.0;
@@ -348,20 +348,20 @@ void ProgressiveRenderer::update_convergence() {
     stats_.estimated_rel_error = passes < 2 ? -1.0 : changed ? std::sqrt(e2_changed / changed) / (value_changed / changed) : 0.0;
 }
 
-void ProgressiveRenderer::render_single_pass(int pass, Image& delta, Image& dL, Image& alpha) {
+void ProgressiveRenderer::render_single_pass(int pass, Image& pixel_change, Image& dL, Image& alpha) {
     PassMaps maps;
     build_pass_maps(pass, maps, nullptr);
     const PassWork work = plan_pass(pass, maps, false);
     std::vector<SampleResult> samples;
     size_t shaded = 0, direct = 0;
     shade_tiles(pass, maps, work, samples, nullptr, shaded, direct);
-    delta = Image(plan_.width, plan_.height);
+    pixel_change = Image(plan_.width, plan_.height);
     dL = Image(plan_.width, plan_.height);
     alpha = Image(plan_.width, plan_.height);
     for (size_t k = 0; k < work.tiles.size(); ++k)
         for_tile_pixels(plan_, work.tiles[k], [&](size_t i, int, int, size_t slot) {
             const SampleResult& r = samples[k * kTilePixels + slot];
-            delta[i] = r.delta;
+            pixel_change[i] = r.pixel_change;
             dL[i] = r.dL;
             alpha[i] = vec3(r.alpha);
         });
@@ -373,14 +373,14 @@ Image ProgressiveRenderer::image() const {
         if (!sums_.touched(t)) continue;
         for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) {
             if (sums_.untouched(i)) return;  // untouched pixels stay bit-exact
-            const vec3 v = out[i] + vec3(sums_.mean_delta(i));
+            const vec3 v = out[i] + vec3(sums_.mean_pixel_change(i));
             if (is_finite(v)) out[i] = v;
         });
     }
     return out;
 }
 
-Image ProgressiveRenderer::delta_layer() const {
+Image ProgressiveRenderer::dL_layer() const {
     Image out(plan_.width, plan_.height);
     for (uint32_t t = 0; t < sums_.tiles(); ++t)
         if (sums_.touched(t))

@@ -48,7 +48,7 @@ public:
     bool render_pass(const std::atomic<bool>* cancel = nullptr) override;
     /// Renders exactly pass `pass` into its own images without accumulating (debugging), as a
     /// fresh render's pass would be (no tile stopped).
-    void render_single_pass(int pass, Image& delta, Image& dL, Image& alpha);
+    void render_single_pass(int pass, Image& pixel_change, Image& dL, Image& alpha);
 
     const RenderStats& stats() const override { return stats_; }
 
@@ -56,7 +56,7 @@ public:
     /// where the estimate is; clamp for display).
     Image image() const override;
     /// Mean signed change of radiance on real surfaces seen directly.
-    Image delta_layer() const override;
+    Image dL_layer() const override;
     /// Fraction of samples that saw a virtual object first (grey RGB).
     Image alpha_layer() const override;
     /// Fraction of pixels the last pass left as the photo, with no ray and no gather.

@@ -17,7 +17,7 @@ std::unique_ptr<PassRenderer> make_differential(std::shared_ptr<const RenderScen
 void RenderUpdate::pull_images() {
     if (!source) return;
     image = source->image();
-    delta = source->delta_layer();
+    dL = source->dL_layer();
     alpha = source->alpha_layer();
 }
 

@@ -21,9 +21,9 @@ struct RenderUpdate {
     bool cancelled = false;   ///< the run was cancelled after this update's passes
 
     Image image;  ///< augmented photo (linear), after pull_images()
-    Image delta;  ///< signed dL on real surfaces, after pull_images()
+    Image dL;     ///< signed change of the real surfaces' radiance, after pull_images()
     Image alpha;  ///< virtual-object coverage, after pull_images()
-    /// Builds image, delta and alpha from the renderer. Only during RenderSink::on_update.
+    /// Builds image, dL and alpha from the renderer. Only during RenderSink::on_update.
     void pull_images();
     bool has_images() const { return !image.empty(); }
 

@@ -135,14 +135,14 @@ SampleResult Shader::shade_camera(int x, int y, float px, float py, PixelSampler
     if (!hit.surface->is_virtual) {
         const DirectSamples direct = DirectSamples::from(sampler, work.direct_weight);
         r.dL = real_delta(hit, ray.dir, rng, work.direct_weight > 0 ? &direct : nullptr, work.gather);
-        r.delta = r.dL;
+        r.pixel_change = r.dL;
         return r;
     }
     r.alpha = 1;
     const vec3 L = hit.surface->material.kind == Material::Kind::Diffuse
                        ? virtual_diffuse_radiance(hit, ray.dir, rng, 0, camera_diffuse_samples_, &sampler)
                        : specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
-    r.delta = L - scene_.photo().at(x, y);
+    r.pixel_change = L - scene_.photo().at(x, y);
     return r;
 }
 

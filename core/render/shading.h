@@ -16,7 +16,7 @@ struct PassMaps {
 
 /// What one camera sample sees, as a change against the photo pixel.
 struct SampleResult {
-    vec3 delta{0};   ///< L' - L_photo(pixel)
+    vec3 pixel_change{0};  ///< L' - L_photo(pixel): what the pixel gains or loses
     vec3 dL{0};      ///< change of radiance on a real surface seen directly (signed)
     float alpha = 0; ///< 1 if the sample sees a virtual object first
 };

@@ -32,27 +32,27 @@ size_t TileAccumulator::add_tile(uint32_t tile, bool odd, const SampleResult* sa
         for (int lx = 0; lx < tile_; ++lx) {
             if (x0 + lx >= width_ || y0 + ly >= height_) continue;
             const SampleResult& r = samples[ly * tile_ + lx];
-            if (!is_finite(r.delta) || !is_finite(r.dL) || !std::isfinite(r.alpha)) {
+            if (!is_finite(r.pixel_change) || !is_finite(r.dL) || !std::isfinite(r.alpha)) {
                 ++bad;
                 continue;
             }
-            if (r.delta == vec3(0) && r.dL == vec3(0) && r.alpha == 0) continue;
+            if (r.pixel_change == vec3(0) && r.dL == vec3(0) && r.alpha == 0) continue;
             if (!block) {
                 block = std::make_unique<PixelSums[]>(size_t(tile_) * tile_);
                 ++touched_;
             }
             PixelSums& s = block[size_t(ly) * tile_ + lx];
-            s.delta += dvec3(r.delta);
+            s.pixel_change += dvec3(r.pixel_change);
             s.dL += dvec3(r.dL);
             s.alpha += r.alpha;
-            if (odd) s.odd_luminance += luminance(dvec3(r.delta));
+            if (odd) s.odd_luminance += luminance(dvec3(r.pixel_change));
         }
     return bad;
 }
 
-dvec3 TileAccumulator::mean_delta(size_t pixel) const {
+dvec3 TileAccumulator::mean_pixel_change(size_t pixel) const {
     const PixelSums* s = sums(pixel);
-    return s ? s->delta / double(tile_passes(tile_of(pixel))) : dvec3(0);
+    return s ? s->pixel_change / double(tile_passes(tile_of(pixel))) : dvec3(0);
 }
 
 dvec3 TileAccumulator::mean_dL(size_t pixel) const {
@@ -67,7 +67,7 @@ double TileAccumulator::mean_alpha(size_t pixel) const {
 
 bool TileAccumulator::untouched(size_t pixel) const {
     const PixelSums* s = sums(pixel);
-    return !s || s->delta == dvec3(0);
+    return !s || s->pixel_change == dvec3(0);
 }
 
 double TileAccumulator::error2(size_t pixel, double base, double ceiling) const {
@@ -75,7 +75,7 @@ double TileAccumulator::error2(size_t pixel, double base, double ceiling) const 
     if (n_even == 0) return std::numeric_limits<double>::infinity();
     const PixelSums* s = sums(pixel);
     if (!s) return 0;
-    const double total = luminance(s->delta);
+    const double total = luminance(s->pixel_change);
     const double odd = std::clamp(base + s->odd_luminance / n_odd, 0.0, ceiling);
     const double even = std::clamp(base + (total - s->odd_luminance) / n_even, 0.0, ceiling);
     const double diff = odd - even;

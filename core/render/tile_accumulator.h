@@ -42,7 +42,7 @@ public:
     uint32_t tile_of(size_t pixel) const;
 
     /// Means over the passes of the pixel's tile (zero before the first pass or if untouched).
-    dvec3 mean_delta(size_t pixel) const;
+    dvec3 mean_pixel_change(size_t pixel) const;
     dvec3 mean_dL(size_t pixel) const;
     double mean_alpha(size_t pixel) const;
     /// True while no pass has changed the pixel: it keeps the photo bit for bit.
@@ -55,9 +55,9 @@ public:
 
 private:
     struct PixelSums {
-        dvec3 delta{0}, dL{0};
+        dvec3 pixel_change{0}, dL{0};
         double alpha = 0;
-        double odd_luminance = 0;  ///< luminance of delta summed over odd passes
+        double odd_luminance = 0;  ///< luminance of pixel_change summed over odd passes
     };
     const PixelSums* sums(size_t pixel) const;
 

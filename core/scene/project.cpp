@@ -1,5 +1,7 @@
 #include "scene/project.h"
 
+#include "base/euler.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace dp {
@@ -7,10 +9,7 @@ namespace dp {
 glm::mat4 Transform::matrix() const {
     // Column vectors: the rightmost factor acts first, so points are scaled, rotated about X,
     // then Y, then Z, and finally translated.
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), translation);
-    m = glm::rotate(m, glm::radians(rotation_deg.z), vec3(0, 0, 1));
-    m = glm::rotate(m, glm::radians(rotation_deg.y), vec3(0, 1, 0));
-    m = glm::rotate(m, glm::radians(rotation_deg.x), vec3(1, 0, 0));
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), translation) * glm::mat4(euler_xyz_deg(rotation_deg));
     return glm::scale(m, scale);
 }
 

@@ -56,5 +56,5 @@ grep -qE 'elapsed [0-9.]+s/0\.3s' stderr.txt || fail "time-budget progress shows
 # One pixel of one pass, for debugging.
 run render scene.json --pixel 32,30 --pass 2
 expect_rc 0 "render --pixel"
-for word in photo delta dL alpha result; do expect_stdout "  $word " "--pixel output"; done
+for word in photo change dL alpha result; do expect_stdout "  $word " "--pixel output"; done
 echo "PASS"

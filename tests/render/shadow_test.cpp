@@ -45,7 +45,7 @@ TEST(DirectionalShadow, InsideTheUmbraTheChangeCancelsThePhotoWithinTwoPercent) 
     ProgressiveRenderer renderer(s.scene, settings(200000, 7, s.project.render));
     for (int i = 0; i < 4; ++i) ASSERT_TRUE(renderer.render_pass());
     Image out = renderer.image();
-    Image dL = renderer.delta_layer();
+    Image dL = renderer.dL_layer();
     const Camera& cam = s.scene->camera();
     double sum_ratio = 0;
     int count = 0;

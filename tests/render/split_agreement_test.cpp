@@ -36,13 +36,13 @@ RegionSums region_sums(std::shared_ptr<RenderScene> scene, const RenderSettings&
     ProgressiveRenderer r(scene, settings(60000, seed, base));
     const Image& photo = scene->photo();
     for (int pass = 1; pass <= passes; ++pass) {
-        Image delta, dL, alpha;
-        r.render_single_pass(pass, delta, dL, alpha);
+        Image change, dL, alpha;
+        r.render_single_pass(pass, change, dL, alpha);
         std::array<double, 4> s{0, 0, 0, 0};
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
                 const size_t i = size_t(y) * kW + x;
-                const double d = luminance(delta[i]);
+                const double d = luminance(change[i]);
                 const int region = alpha[i].x > 0 ? 2 : (x < kW / 2 ? 0 : 1);
                 s[region] += d;
                 s[3] += d;

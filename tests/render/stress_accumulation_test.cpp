@@ -110,7 +110,7 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
                 worst_delta = std::max(worst_delta, std::abs(dL[c] - want_dL) / std::abs(want_dL));
                 pass_sum[k * 3 + c] += to_fixed(dL[c]);
             }
-            samples[k].delta = samples[k].dL = dL;
+            samples[k].pixel_change = samples[k].dL = dL;
             samples[k].alpha = 0;
         }
         ASSERT_EQ(acc.add_tile(0, pass % 2 == 1, samples.data()), 0u);
@@ -126,7 +126,7 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
     ASSERT_EQ(acc.passes(), kPasses);
     double worst_mean = 0;
     for (int k = 0; k < kPixels; ++k) {
-        const dvec3 mean = acc.mean_delta(size_t(k));
+        const dvec3 mean = acc.mean_pixel_change(size_t(k));
         const dvec3 mean_dL = acc.mean_dL(size_t(k));
         for (int c = 0; c < 3; ++c) {
             const double want = from_fixed(pass_sum[k * 3 + c]) / kPasses;
@@ -141,19 +141,19 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
 TEST(SignedAccumulation, ANonFiniteSampleIsDroppedWholeAndCounted) {
     TileAccumulator acc(3, 1, 8);
     std::vector<SampleResult> s(64);
-    s[0].delta = vec3(1, 2, 3);
-    s[1].delta = vec3(NAN, 0, 0);
+    s[0].pixel_change = vec3(1, 2, 3);
+    s[1].pixel_change = vec3(NAN, 0, 0);
     s[2].dL = vec3(0, INFINITY, 0);
-    s[2].delta = vec3(5);
+    s[2].pixel_change = vec3(5);
     EXPECT_EQ(acc.add_tile(0, true, s.data()), 2u);
     acc.finish_pass();
-    s[1].delta = vec3(4);
+    s[1].pixel_change = vec3(4);
     s[2].dL = vec3(0);
     EXPECT_EQ(acc.add_tile(0, false, s.data()), 0u);
     acc.finish_pass();
     // Check: pixel 1's NaN pass added nothing (its mean is 4/2), pixel 2's Inf pass likewise.
-    EXPECT_EQ(acc.mean_delta(0), dvec3(1, 2, 3));
-    EXPECT_EQ(acc.mean_delta(1), dvec3(2));
-    EXPECT_EQ(acc.mean_delta(2), dvec3(2.5));
+    EXPECT_EQ(acc.mean_pixel_change(0), dvec3(1, 2, 3));
+    EXPECT_EQ(acc.mean_pixel_change(1), dvec3(2));
+    EXPECT_EQ(acc.mean_pixel_change(2), dvec3(2.5));
     EXPECT_TRUE(acc.untouched(0) == false);
 }

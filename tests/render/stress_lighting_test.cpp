@@ -119,7 +119,7 @@ TEST(ExtremeLight, ASunOneDegreeAboveTheHorizonCastsTheWholeLongShadowAndNoLeaks
     // per pixel is ~3%).
     ProgressiveRenderer r(g.scene, settings(200000, 4, g.project.render));
     for (int i = 0; i < 4; ++i) ASSERT_TRUE(r.render_pass());
-    Image out = r.image(), dL = r.delta_layer();
+    Image out = r.image(), dL = r.dL_layer();
     EXPECT_EQ(count_non_finite(out), 0u);
     EXPECT_EQ(r.stats().non_finite_samples, 0u);
     const Camera& cam = g.scene->camera();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/euler.h"
 #include "base/rng.h"
 #include "base/sampling.h"
 #include "probe/probe.h"

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "base/euler.h"
 #include "base/rng.h"
 #include "base/sampling.h"
 #include "probe/probe_bounds.h"

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "base/euler.h"
 #include "base/rng.h"
 #include "probe/probe_lights.h"
 #include "probe/synthetic_probe.h"

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "base/euler.h"
 #include "base/rng.h"
 #include "probe/probe.h"
 #include "probe/synthetic_probe.h"

@@ -4,6 +4,7 @@
 #include <limits>
 #include <numbers>
 
+#include "base/euler.h"
 #include "base/rng.h"
 #include "base/sampling.h"
 #include "probe/probe.h"

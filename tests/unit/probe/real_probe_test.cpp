@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "base/euler.h"
 #include "base/rng.h"
 #include "image/image_io.h"
 #include "probe/probe.h"

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "base/euler.h"
 #include "base/error.h"
 #include "probe/probe.h"
 #include "reconstruction/probe_align.h"

@@ -45,7 +45,9 @@ TEST(Identity, AVirtualObjectBehindTheCameraLeavesThePhotoBitForBit) {
         for (int i = 0; i < 3; ++i) ASSERT_TRUE(r.render_pass());
         // The object does cast a shadow, out of view: shadow photons under the all-photon
         // estimator, rays under the split one (which stores no photon here).
-        if (e == Estimator::Photons) EXPECT_GT(r.stats().photons_stored, 0u);
+        if (e == Estimator::Photons) {
+            EXPECT_GT(r.stats().photons_stored, 0u);
+        }
         EXPECT_TRUE(r.image() == photo);
     }
 }

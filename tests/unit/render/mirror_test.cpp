@@ -48,7 +48,7 @@ TEST(Mirror, AReflectedRayReturnsTheBackProjectedPhotoValue) {
             Rng rng(1, 1);
             PixelSampler ps(1, 0, 0);
             SampleResult s = shader.shade_camera(x, y, float(x), float(y), ps, rng);
-            vec3 got = photo.at(x, y) + s.delta;
+            vec3 got = photo.at(x, y) + s.pixel_change;
             EXPECT_NEAR(got.x, expected.x, 2e-3f) << x << "," << y;
             EXPECT_NEAR(got.y, expected.y, 2e-3f) << x << "," << y;
             EXPECT_NEAR(got.z, expected.z, 2e-3f) << x << "," << y;
@@ -73,7 +73,7 @@ TEST(Mirror, ReflectionsOfTheSkyShowTheProbe) {
     ASSERT_TRUE(scene->camera().project(vec3(0, 1.45f, 0.2f), top));
     PixelSampler ps(1, 0, 0);
     SampleResult s = shader.shade_camera(int(top.x), int(top.y), top.x, top.y, ps, rng);
-    EXPECT_NEAR(s.delta.x, 1.0f, 1e-4f);
-    EXPECT_NEAR(s.delta.y, 2.4f, 1e-4f);
-    EXPECT_NEAR(s.delta.z, 4.0f, 1e-4f);
+    EXPECT_NEAR(s.pixel_change.x, 1.0f, 1e-4f);
+    EXPECT_NEAR(s.pixel_change.y, 2.4f, 1e-4f);
+    EXPECT_NEAR(s.pixel_change.z, 4.0f, 1e-4f);
 }

@@ -60,7 +60,7 @@ TEST(StandardDifferential, IndependentSimulationsWithoutVirtualObjectsAverageToT
     SunScene s(false);
     StandardDifferentialRenderer r(s.scene, s.project.render, Sampling::Independent, 8);
     ASSERT_TRUE(r.render_pass());
-    const Image d = r.delta_layer();
+    const Image d = r.dL_layer();
     double sum = 0, sum2 = 0, photo_sum = 0;
     size_t nonzero = 0;
     for (size_t i = 0; i < d.size(); ++i) {

@@ -1,0 +1,18 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "image/image.h"
+#include "render/session.h"
+
+namespace dp {
+
+/// Writes a render to the EXR file `path`: the augmented image as the main layer and, with
+/// `with_layers`, the layers compositors ask for: "dL" (signed change of the real surfaces),
+/// "alpha" (virtual coverage) and "shadow" (shadow_matte against `photo`, resampled to the
+/// render's size when it differs). Every layer passes the NaN policy (replace_non_finite) in
+/// place; one warning per layer that had NaN/Inf is returned, for the front end to show.
+std::vector<std::string> save_render_exr(const std::string& path, RenderUpdate& update, const Image& photo,
+                                         bool with_layers);
+
+}  // namespace dp
