@@ -11,7 +11,7 @@
 #include "bench_common.h"
 #include "render/photon_tracer.h"
 #include "render/progressive.h"
-#include "render/shading.h"
+#include "render/camera_gather.h"
 
 namespace dp {
 namespace {

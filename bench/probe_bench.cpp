@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "base/euler.h"
 #include "base/rng.h"
 #include "image/image_io.h"
 #include "probe/probe.h"

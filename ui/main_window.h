@@ -42,15 +42,11 @@ public:
     Document* document() const { return doc_; }
     RenderController* renderer() const { return renderer_; }
     Viewport* viewport() const { return viewport_; }
-    ScenePanel* scenePanel() const { return scenePanel_; }
     MaterialPanel* materialPanel() const { return materialPanel_; }
-    ProbePanel* probePanel() const { return probePanel_; }
     CameraPanel* cameraPanel() const { return cameraPanel_; }
     CalibrationPanel* calibrationPanel() const { return calibrationPanel_; }
     ProxyPanel* proxyPanel() const { return proxyPanel_; }
-    ProbeAlignPanel* probeAlignPanel() const { return probeAlignPanel_; }
     Autosave* autosave() const { return autosave_; }
-    QLabel* statusLabel() const { return status_; }
     QAction* action(const QString& objectName) const;
 
     /// Display exposure in stops (the toolbar slider; PNG export uses it).

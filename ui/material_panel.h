@@ -19,8 +19,6 @@ class MaterialPanel : public QWidget {
 public:
     explicit MaterialPanel(Document* doc, QWidget* parent = nullptr);
 
-    QComboBox* kindBox() const { return kind_; }
-    QSlider* reflectanceSlider() const { return reflectance_; }
     QSlider* iorSlider() const { return ior_; }
     /// Sets the diffuse colour as the colour dialog would (sRGB).
     void setDiffuseColour(const QColor& colour);

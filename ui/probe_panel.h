@@ -17,8 +17,6 @@ class ProbePanel : public QWidget {
 public:
     explicit ProbePanel(Document* doc, QWidget* parent = nullptr);
 
-    QSlider* rotationSlider() const { return rotation_; }
-    QSlider* exposureSlider() const { return exposure_; }
 
 Q_SIGNALS:
     void strokeStarted();

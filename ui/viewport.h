@@ -29,13 +29,11 @@ public:
     QSize renderSize() const { return renderSize_; }
 
     void setViewMode(ViewMode mode);
-    ViewMode viewMode() const { return mode_; }
     void setExposure(float stops);
     float exposure() const { return exposure_; }
     void setOverlays(const OverlayOptions& o);
     OverlayOptions overlays() const { return overlays_; }
     void setGizmoMode(GizmoMode mode);
-    GizmoMode gizmoMode() const { return gizmo_; }
     /// Fits the render into the widget (zoom 1, no pan).
     void fitView();
 

@@ -35,14 +35,8 @@ LoadedScene load_scene(const std::string& project_path, const std::function<void
     Project project = load_project(project_path);
     if (edit) edit(project);
     AssetLibrary library;
-    SceneAssets assets = library.load(project);
-    for (const std::string& w : assets.warnings) warn(w);
-    const size_t printed = assets.warnings.size();
-    auto scene = std::make_shared<RenderScene>(project, std::move(assets));
-    // Building the scene can add warnings of its own (albedo estimation).
-    const auto& all = scene->assets().warnings;
-    for (size_t i = printed; i < all.size(); ++i) warn(all[i]);
-    check_scene(*scene, project_path);
+    auto scene = build_scene(library, project, 0, 0, project_path);
+    for (const std::string& w : scene->assets().warnings) warn(w);
     return {scene, project, project.render};
 }
 

@@ -208,7 +208,8 @@ CameraSpec scaled_camera(const CameraSpec& c, int photo_w, int photo_h, int widt
     return out;
 }
 
-std::shared_ptr<RenderScene> build_scene(AssetLibrary& library, const Project& project, int width, int height) {
+std::shared_ptr<RenderScene> build_scene(AssetLibrary& library, const Project& project, int width, int height,
+                                         const std::string& project_file) {
     SceneAssets a = library.load(project);
     Project p = project;
     const int pw = a.photo.width(), ph = a.photo.height();
@@ -217,7 +218,7 @@ std::shared_ptr<RenderScene> build_scene(AssetLibrary& library, const Project& p
         p.camera = scaled_camera(project.camera, pw, ph, width, height);
     }
     auto scene = std::make_shared<RenderScene>(p, std::move(a));
-    check_scene(*scene);
+    check_scene(*scene, project_file);
     return scene;
 }
 

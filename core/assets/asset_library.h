@@ -61,9 +61,10 @@ private:
 };
 
 /// A scene for `project` at `width` x `height` (0: the photo's size): the photo resampled and the
-/// camera's intrinsics scaled to match. Loads through `library`.
+/// camera's intrinsics scaled to match. Loads through `library`; check_scene's errors name
+/// `project_file`.
 std::shared_ptr<RenderScene> build_scene(AssetLibrary& library, const Project& project, int width = 0,
-                                         int height = 0);
+                                         int height = 0, const std::string& project_file = "");
 
 /// The project's camera for an image of `width` x `height` when the photo is `photo_w` x
 /// `photo_h`: intrinsics (in pixels) are scaled; a look-at camera follows the size by itself.

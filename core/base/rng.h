@@ -50,4 +50,31 @@ private:
     uint64_t state_, inc_;
 };
 
+/// The named random streams: one per use of randomness, so that no two uses draw the same
+/// numbers and one pass, pixel or photon can be reproduced alone from the seed.
+namespace rng_stream {
+inline constexpr uint64_t kReferenceSalt = 0x7265665f7074ull;  ///< "ref_pt": the path tracer's seeds
+
+/// Photon `index` of progressive pass `pass` (passes and pixels interleave: even keys).
+inline Rng photon(uint64_t seed, uint64_t pass, uint64_t index) { return Rng::keyed(seed, pass * 2, index); }
+/// Pixel `pixel`'s numbers in pass `pass` beyond the first bounce's Sobol' points (odd keys).
+inline Rng camera(uint64_t seed, uint64_t pass, uint64_t pixel) { return Rng::keyed(seed, pass * 2 + 1, pixel); }
+/// Pixel `pixel`'s draws when a probe is aligned to a grey card.
+inline Rng probe_alignment(uint64_t seed, uint64_t pixel) { return Rng::keyed(seed, pixel, 0xca7d); }
+/// Texel `texel`'s probe samples in an albedo texture estimate.
+inline Rng albedo_texel(uint64_t seed, uint64_t texel) { return Rng::keyed(seed, texel, 0xa1bed0); }
+/// The reference path tracer's path `sample` from pixel `pixel`.
+inline Rng reference_path(uint64_t seed, uint64_t pixel, uint64_t sample) {
+    return Rng::keyed(seed ^ kReferenceSalt, pixel, sample * 2);
+}
+/// A second, independent path per sample (standard differential's second image).
+inline Rng reference_second_path(uint64_t seed, uint64_t pixel, uint64_t sample) {
+    return Rng::keyed(seed ^ kReferenceSalt, pixel, sample * 2 + 1);
+}
+/// The pixel's Cranley-Patterson shift of its R2 sample positions in the reference.
+inline Rng reference_pixel_shift(uint64_t seed, uint64_t pixel) {
+    return Rng::keyed(seed ^ kReferenceSalt, pixel, ~uint64_t(0));
+}
+}  // namespace rng_stream
+
 }  // namespace dp

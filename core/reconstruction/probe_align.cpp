@@ -121,7 +121,7 @@ ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard&
                 throw InputError("", "card", "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                                                  ") of the card is clipped in the photo");
             vec3 n = glm::dot(hit.ng, camera.position() - hit.p) >= 0 ? hit.ng : -hit.ng;
-            Rng rng = Rng::keyed(seed, size_t(y) * photo.width() + x, 0xca7d);
+            Rng rng = rng_stream::probe_alignment(seed, size_t(y) * photo.width() + x);
             double E = luminance(real_irradiance(scene, hit.p, n, rng, probe_samples).E);
             sum_L += luminance(L);
             sum_E += E;

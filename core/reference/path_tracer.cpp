@@ -86,7 +86,7 @@ struct PathTracer {
 
 Ray reference_camera_ray(const RenderScene& scene, uint64_t seed, int x, int y, uint64_t sample) {
     const uint64_t pixel = uint64_t(y) * uint64_t(scene.camera().width()) + uint64_t(x);
-    Rng shift_rng = Rng::keyed(seed ^ 0x7265665f7074ull, pixel, ~uint64_t(0));
+    Rng shift_rng = rng_stream::reference_pixel_shift(seed, pixel);
     const vec2 shift(shift_rng.uniform(), shift_rng.uniform());
     const vec2 j = r2_point(sample, shift) - vec2(0.5f);
     return scene.camera_ray(float(x) + j.x, float(y) + j.y);
@@ -94,7 +94,7 @@ Ray reference_camera_ray(const RenderScene& scene, uint64_t seed, int x, int y, 
 
 vec3 reference_radiance(const RenderScene& scene, const ReferenceOptions& options, const Ray& ray,
                         uint64_t pixel, int sample) {
-    Rng rng = Rng::keyed(options.seed ^ 0x7265665f7074ull, pixel, uint64_t(sample) * 2 + 1);
+    Rng rng = rng_stream::reference_second_path(options.seed, pixel, uint64_t(sample));
     return PathTracer{scene, options}.radiance(ray, rng);
 }
 
@@ -111,7 +111,7 @@ Image render_reference(const RenderScene& scene, const ReferenceOptions& options
                 uint64_t pixel = uint64_t(y) * W + x;
                 dvec3 sum(0);
                 for (int s = 0; s < options.samples_per_pixel; ++s) {
-                    Rng rng = Rng::keyed(options.seed ^ 0x7265665f7074ull, pixel, uint64_t(s) * 2);
+                    Rng rng = rng_stream::reference_path(options.seed, pixel, uint64_t(s));
                     const Ray ray = reference_camera_ray(scene, options.seed, x, y, uint64_t(s));
                     vec3 L = pt.radiance(ray, rng);
                     if (is_finite(L)) sum += dvec3(L);

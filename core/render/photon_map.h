@@ -6,6 +6,11 @@
 
 namespace dp {
 
+/// What a photon carries: light the virtual objects add (positive flux, after reflection or
+/// refraction by them) or light they take away from the real surface behind them (a shadow
+/// photon, negative flux; it dies when it meets a virtual object again).
+enum class PhotonKind { Light, Shadow };
+
 /// A stored photon: signed RGB flux (negative for shadow photons) and the normal of the side
 /// of the surface it landed on.
 struct Photon {

@@ -51,8 +51,9 @@ struct Tracer {
     /// Follows a photon from a known first hit: stores on real surfaces (and caustics on
     /// virtual diffuse ones if `caustics`), bounces until absorbed. Negative photons die on
     /// virtual objects; their first landing is stored only if `store_first`.
-    void follow(Hit hit, vec3 dir, vec3 flux, bool negative, Rng& rng, Block& out, bool caustics = true,
+    void follow(Hit hit, vec3 dir, vec3 flux, PhotonKind kind, Rng& rng, Block& out, bool caustics = true,
                 bool store_first = true) const {
+        const bool negative = kind == PhotonKind::Shadow;
         bool specular_only = !negative && caustics;
         const vec3 flux0 = glm::abs(flux);
         const float flux0_max = std::max({flux0.x, flux0.y, flux0.z});
@@ -113,8 +114,8 @@ struct Tracer {
         ++out.stats.rays;
         if (scene.occluded_real(Ray{origin, w})) return;  // the probe never lit this line
         ++out.stats.hit_virtual;
-        if (hr) follow(hr, -w, -flux, true, rng, out, true, stores_first_shadow(hr, -w, out));
-        follow(hv, -w, flux, false, rng, out);
+        if (hr) follow(hr, -w, -flux, PhotonKind::Shadow, rng, out, true, stores_first_shadow(hr, -w, out));
+        follow(hv, -w, flux, PhotonKind::Light, rng, out);
     }
 
     /// How much a real point's radiance towards -dir has changed: the direct light the objects
@@ -166,10 +167,10 @@ struct Tracer {
         ++out.stats.rays;
         ++out.stats.surround_hit_virtual;
         if (hr && old_radiance != vec3(0))
-            follow(hr, down, -vec3(dvec3(old_radiance) * line.flux_per_radiance), true, rng, out, true,
+            follow(hr, down, -vec3(dvec3(old_radiance) * line.flux_per_radiance), PhotonKind::Shadow, rng, out, true,
                    stores_first_shadow(hr, down, out));
         if (new_radiance != vec3(0))
-            follow(hv, down, vec3(dvec3(new_radiance) * line.flux_per_radiance), false, rng, out, false);
+            follow(hv, down, vec3(dvec3(new_radiance) * line.flux_per_radiance), PhotonKind::Light, rng, out, false);
     }
 };
 
@@ -267,7 +268,7 @@ PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass,
                 const int64_t begin = probe ? b * kBlock : count + (b - probe_blocks) * kBlock;
                 const int64_t end = probe ? std::min(count, begin + kBlock) : std::min(total, begin + kBlock);
                 for (int64_t i = begin; i < end; ++i) {
-                    Rng rng = Rng::keyed(seed, pass * 2 + 0, uint64_t(i));
+                    Rng rng = rng_stream::photon(seed, uint64_t(pass), uint64_t(i));
                     if (probe)
                         tracer.trace_one(rng, out[b]);
                     else

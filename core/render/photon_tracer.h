@@ -35,7 +35,7 @@ struct EmittedPhoton {
     bool valid = false;  ///< false: a black pixel, or a line an earlier cluster owns
 };
 
-/// Samples photon starts (method.md, "Photon distribution"): a cluster by cross-section, a
+/// Samples photon starts (docs/method-notes.md, "Photons"): a cluster by cross-section, a
 /// probe pixel by the luminance of its flux, a direction inside it, a point on the cluster's
 /// disk; lines crossing several clusters belong to the first one.
 class PhotonEmitter {
@@ -94,7 +94,7 @@ struct PhotonPassOptions {
 };
 
 /// Shoots `count` photons from the probe at the emission clusters and traces their change to
-/// the light (method.md, "Photon distribution"), then count / kSurroundPhotonDivisor photons
+/// the light (docs/method-notes.md, "Photons"), then count / kSurroundPhotonDivisor photons
 /// of light from the real surroundings at the same clusters (their photographed radiance where
 /// they are blocked, their radiance as the probe photons and rays change it where an object
 /// reflects it on).

@@ -228,7 +228,7 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
                                       size_t& shaded, size_t& direct) const {
     out.assign(work.tiles.size() * kTilePixels, SampleResult{});
     std::atomic<size_t> count{0}, direct_count{0};
-    const Shader shader(*scene_, maps, diffuse_samples_, split_ && direct_ ? &*direct_ : nullptr, settings_.max_depth);
+    const CameraGather gather(*scene_, maps, diffuse_samples_, split_ && direct_ ? &*direct_ : nullptr, settings_.max_depth);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, work.tiles.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
         if (cancel && cancel->load(std::memory_order_relaxed)) return;
         size_t local = 0, local_direct = 0;
@@ -254,9 +254,9 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
                 }
                 PixelSampler sampler = PixelSampler::for_pass(seed_, i, pass, low_discrepancy_);
                 const vec2 j = sampler.next2d() - vec2(0.5f);
-                Rng rng = Rng::keyed(seed_, uint64_t(pass) * 2 + 1, i);
+                Rng rng = rng_stream::camera(seed_, uint64_t(pass), i);
                 const SampleResult splat = tile_out[slot];
-                SampleResult r1 = shader.shade_camera(x, y, float(x) + j.x, float(y) + j.y, sampler, rng, w);
+                SampleResult r1 = gather.shade_camera(x, y, float(x) + j.x, float(y) + j.y, sampler, rng, w);
                 r1.dL += splat.dL;
                 r1.pixel_change += splat.pixel_change;
                 tile_out[slot] = r1;

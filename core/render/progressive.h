@@ -11,7 +11,7 @@
 #include "assets/pass_renderer.h"
 #include "render/photon_tracer.h"
 #include "assets/render_scene.h"
-#include "render/shading.h"
+#include "render/camera_gather.h"
 #include "render/tile_accumulator.h"
 
 namespace dp {
@@ -41,7 +41,6 @@ public:
     const RenderSettings& settings() const { return settings_; }
     /// Gather radius of pass i (1-based): r_i^2 = r_1^2 prod_{k<i} (k + alpha) / (k + 1).
     float radius_for_pass(int pass) const;
-    float initial_radius() const { return r1_; }
 
     /// Renders and accumulates the next pass; returns false (accumulating nothing) if
     /// `cancel` became true meanwhile.
@@ -61,7 +60,7 @@ public:
     Image alpha_layer() const override;
     /// Fraction of pixels the last pass left as the photo, with no ray and no gather.
     double skipped_fraction() const;
-    /// Estimates per camera sample on virtual diffuse surfaces (shading.h).
+    /// Estimates per camera sample on virtual diffuse surfaces (camera_gather.h).
     int camera_diffuse_samples() const { return diffuse_samples_; }
     const FramePlan& plan() const { return plan_; }
     const TileAccumulator& accumulator() const { return sums_; }

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "base/math.h"
-#include "render/shading.h"
+#include "render/camera_gather.h"
 
 namespace dp {
 

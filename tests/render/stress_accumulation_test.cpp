@@ -1,5 +1,5 @@
 // A billion signed photons whose fluxes nearly cancel (a caustic inside a shadow), through the
-// real accumulation chain: PhotonMap::gather, Shader::real_delta, TileAccumulator. Each stage's
+// real accumulation chain: PhotonMap::gather, CameraGather::real_dL, TileAccumulator. Each stage's
 // result is compared with an exact sum computed in 128-bit fixed point.
 #include <gtest/gtest.h>
 
@@ -59,7 +59,7 @@ std::vector<Photon> cancelling_photons(size_t n, float radius, uint64_t seed) {
 }  // namespace
 
 TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABillion) {
-    // The scene only supplies the real surface that real_delta shades.
+    // The scene only supplies the real surface that real_dL shades.
     Project p = look_at_project(vec3(0, 2, 3), vec3(0, 0, 0), 40);
     p.real.push_back(ground_plane(vec3(0.5f)));
     SunProbe sun;
@@ -88,7 +88,7 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
         maps.radius = radius;
         maps.real.build(photons, radius);
         ASSERT_EQ(maps.real.size(), kPhotons);
-        Shader shader(*scene, maps);
+        CameraGather gather(*scene, maps);
         Rng rng(pass, 5);
         for (int k = 0; k < kPixels; ++k) {
             Hit hit;
@@ -97,7 +97,7 @@ TEST(SignedAccumulation, ABillionNearlyCancellingPhotonsStayExactToOnePartInABil
             hit.ng = hit.ns = vec3(0, 1, 0);
             const vec3 down(0, -1, 0);
             const dvec3 phi = maps.real.gather(hit.p, vec3(0, 1, 0));
-            const vec3 dL = shader.real_delta(hit, down, rng, nullptr);
+            const vec3 dL = gather.real_dL(hit, down, rng, nullptr);
             accumulated += kPhotons;
             const dvec3 rho = dvec3(ground.reflectance_at(hit.uv));
             for (int c = 0; c < 3; ++c) {

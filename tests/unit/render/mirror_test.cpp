@@ -2,7 +2,7 @@
 // where the camera sees them.
 #include <gtest/gtest.h>
 
-#include "render/shading.h"
+#include "render/camera_gather.h"
 #include "common/test_scenes.h"
 
 using namespace dp;
@@ -22,7 +22,7 @@ TEST(Mirror, AReflectedRayReturnsTheBackProjectedPhotoValue) {
     auto scene = build(p, photo, sun.image());
     PassMaps empty;
     empty.radius = 0.01f;
-    Shader shader(*scene, empty);
+    CameraGather gather(*scene, empty);
     const Camera& cam = scene->camera();
     int checked = 0;
     for (int y = 0; y < H; y += 3)
@@ -47,7 +47,7 @@ TEST(Mirror, AReflectedRayReturnsTheBackProjectedPhotoValue) {
             vec3 expected = photo.bilinear(px.x, px.y);
             Rng rng(1, 1);
             PixelSampler ps(1, 0, 0);
-            SampleResult s = shader.shade_camera(x, y, float(x), float(y), ps, rng);
+            SampleResult s = gather.shade_camera(x, y, float(x), float(y), ps, rng);
             vec3 got = photo.at(x, y) + s.pixel_change;
             EXPECT_NEAR(got.x, expected.x, 2e-3f) << x << "," << y;
             EXPECT_NEAR(got.y, expected.y, 2e-3f) << x << "," << y;
@@ -66,13 +66,13 @@ TEST(Mirror, ReflectionsOfTheSkyShowTheProbe) {
     auto scene = build(p, Image(64, 48), probe);
     PassMaps empty;
     empty.radius = 0.01f;
-    Shader shader(*scene, empty);
+    CameraGather gather(*scene, empty);
     Rng rng(1, 1);
     // The top of the sphere reflects the sky straight up.
     vec2 top;
     ASSERT_TRUE(scene->camera().project(vec3(0, 1.45f, 0.2f), top));
     PixelSampler ps(1, 0, 0);
-    SampleResult s = shader.shade_camera(int(top.x), int(top.y), top.x, top.y, ps, rng);
+    SampleResult s = gather.shade_camera(int(top.x), int(top.y), top.x, top.y, ps, rng);
     EXPECT_NEAR(s.pixel_change.x, 1.0f, 1e-4f);
     EXPECT_NEAR(s.pixel_change.y, 2.4f, 1e-4f);
     EXPECT_NEAR(s.pixel_change.z, 4.0f, 1e-4f);

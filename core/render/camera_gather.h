@@ -58,15 +58,16 @@ struct CameraWork {
     double direct_weight = 1;    ///< 0: no direct-light estimate this pass (roulette)
 };
 
-/// Shades camera rays against the photo and one pass's photon maps (method.md, "Display").
+/// The camera pass: gathers one pass's photon maps (and the direct change) where camera rays
+/// meet real surfaces, and shades the virtual ones (docs/method-notes.md, "Display").
 /// With a DirectChange (the split estimator) the direct light the objects block at real
 /// points is estimated by rays and the photons carry the rest; without one, photons carry all.
-class Shader {
+class CameraGather {
 public:
     /// `camera_diffuse_samples`: estimates averaged per camera sample on a virtual diffuse
     /// surface (see camera_diffuse_samples()).
-    Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples = 2,
-           const DirectChange* direct = nullptr, int max_depth = 8);
+    CameraGather(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples = 2,
+                 const DirectChange* direct = nullptr, int max_depth = 8);
 
     /// One jittered sample at continuous pixel coordinates (px, py) of pixel (x, y). The first
     /// bounce's numbers come from `sampler` (the pixel's low-discrepancy stream for this pass),
@@ -76,7 +77,7 @@ public:
 
     /// dL at a real hit seen from direction `dir`: rho/pi (dE_direct + sum(phi) / (pi r^2)).
     /// `direct` null leaves the direct-light estimate out (or there is no DirectChange).
-    vec3 real_delta(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct,
+    vec3 real_dL(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct,
                     bool gather = true) const;
     /// Radiance leaving a real point towards -dir in the augmented scene: the photo where the
     /// camera sees the point, rho E / pi elsewhere, plus dL.

@@ -1,4 +1,4 @@
-#include "render/shading.h"
+#include "render/camera_gather.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,14 +21,14 @@ int camera_diffuse_samples(int64_t photons_per_pass, size_t pixels_near_virtual)
     return int(std::clamp(std::floor(balanced), 2.0, 8.0));
 }
 
-Shader::Shader(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples,
-               const DirectChange* direct, int max_depth)
+CameraGather::CameraGather(const RenderScene& scene, const PassMaps& maps, int camera_diffuse_samples,
+                           const DirectChange* direct, int max_depth)
     : scene_(scene), maps_(maps), direct_(direct), camera_diffuse_samples_(std::max(1, camera_diffuse_samples)),
       max_depth_(std::max(1, max_depth)) {
     inv_area_ = maps.radius > 0 ? 1.0 / (double(kPi) * maps.radius * maps.radius) : 0.0;
 }
 
-vec3 Shader::real_delta(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct, bool gather) const {
+vec3 CameraGather::real_dL(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct, bool gather) const {
     const vec3 n = facing_normal(hit.ng, dir);
     dvec3 E(0);
     if (direct_ && direct && direct->weight > 0)
@@ -38,12 +38,12 @@ vec3 Shader::real_delta(const Hit& hit, const vec3& dir, Rng& rng, const DirectS
     return vec3(dvec3(hit.surface->reflectance_at(hit.uv)) * double(kInvPi) * E);
 }
 
-vec3 Shader::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
+vec3 CameraGather::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
     const DirectSamples direct = DirectSamples::from(rng);
-    return photographed_radiance(scene_, hit, dir, rng) + real_delta(hit, dir, rng, &direct);
+    return photographed_radiance(scene_, hit, dir, rng) + real_dL(hit, dir, rng, &direct);
 }
 
-vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples,
+vec3 CameraGather::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples,
                                       const PixelSampler* sampler) const {
     const Surface& s = *hit.surface;
     const vec3 rho = s.reflectance_at(hit.uv);
@@ -96,11 +96,11 @@ vec3 Shader::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng,
     return L;
 }
 
-vec3 Shader::incoming(const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const {
+vec3 CameraGather::incoming(const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const {
     return radiance_at(scene_.intersect(ray), ray, rng, depth, from_diffuse, splits);
 }
 
-vec3 Shader::radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse,
+vec3 CameraGather::radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse,
                          int splits) const {
     if (!hit) return from_diffuse ? vec3(0) : scene_.probe().radiance(ray.dir);
     if (!hit.surface->is_virtual) return real_radiance(hit, ray.dir, rng);
@@ -109,7 +109,7 @@ vec3 Shader::radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bo
     return specular_radiance(hit, ray.dir, rng, depth, from_diffuse, splits);
 }
 
-vec3 Shader::specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,
+vec3 CameraGather::specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,
                                int splits) const {
     if (depth >= max_depth_) return vec3(0);
     const Material& m = hit.surface->material;
@@ -126,7 +126,7 @@ vec3 Shader::specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int de
     return follow(scatter_specular(m, hit, dir, rng.uniform()), 0);
 }
 
-SampleResult Shader::shade_camera(int x, int y, float px, float py, PixelSampler& sampler, Rng& rng,
+SampleResult CameraGather::shade_camera(int x, int y, float px, float py, PixelSampler& sampler, Rng& rng,
                                   const CameraWork& work) const {
     SampleResult r;
     const Ray ray = scene_.camera_ray(px, py);
@@ -134,7 +134,7 @@ SampleResult Shader::shade_camera(int x, int y, float px, float py, PixelSampler
     if (!hit) return r;  // nothing modelled here: the photo stands
     if (!hit.surface->is_virtual) {
         const DirectSamples direct = DirectSamples::from(sampler, work.direct_weight);
-        r.dL = real_delta(hit, ray.dir, rng, work.direct_weight > 0 ? &direct : nullptr, work.gather);
+        r.dL = real_dL(hit, ray.dir, rng, work.direct_weight > 0 ? &direct : nullptr, work.gather);
         r.pixel_change = r.dL;
         return r;
     }
