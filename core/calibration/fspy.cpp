@@ -5,9 +5,8 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
-#include <numbers>
-
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "base/error.h"
 #include "calibration/cv_util.h"
@@ -56,10 +55,10 @@ FspyImport read_fspy(const std::string& path) {
         throw InputError(path, "", "unsupported fSpy project version " + std::to_string(version));
     const uint64_t state_size = le32(&bytes[8]), image_size = le32(&bytes[12]);
     if (16 + state_size + image_size > bytes.size())
-        throw InputError(path, "", "the file is truncated (the header announces " +
-                                       std::to_string(16 + state_size + image_size) +
-                                       " bytes, the file has " + std::to_string(bytes.size()) +
-                                       ")");
+        throw InputError(path, "",
+                         "the file is truncated (the header announces " +
+                             std::to_string(16 + state_size + image_size) +
+                             " bytes, the file has " + std::to_string(bytes.size()) + ")");
     json state;
     try {
         state = json::parse(bytes.begin() + 16, bytes.begin() + 16 + std::ptrdiff_t(state_size));
@@ -108,11 +107,10 @@ FspyImport read_fspy(const std::string& path) {
                                           "': lengths are taken as metres");
             unit = 1.0;
         }
-        const bool has_reference = state.contains("calibrationSettingsBase") &&
-                                   state["calibrationSettingsBase"].contains(
-                                       "referenceDistanceAxis") &&
-                                   !state["calibrationSettingsBase"]["referenceDistanceAxis"]
-                                        .is_null();
+        const bool has_reference =
+            state.contains("calibrationSettingsBase") &&
+            state["calibrationSettingsBase"].contains("referenceDistanceAxis") &&
+            !state["calibrationSettingsBase"]["referenceDistanceAxis"].is_null();
         if (!has_reference || out.unit == "None")
             out.result.warnings.push_back(
                 "the fSpy project sets no reference distance: the scene's scale is arbitrary");

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-
 #include <opencv2/core.hpp>
 
 #include "base/error.h"
@@ -20,8 +19,12 @@ using calib::LeastSquaresResult;
 
 constexpr const char* kAxisName[3] = {"x", "y", "z"};
 
-glm::dvec3 homog(const ImagePoint& p) { return glm::dvec3(p, 1.0); }
-glm::dvec3 column(const glm::dmat3& R, int a) { return glm::dvec3(R[a][0], R[a][1], R[a][2]); }
+glm::dvec3 homog(const ImagePoint& p) {
+    return glm::dvec3(p, 1.0);
+}
+glm::dvec3 column(const glm::dmat3& R, int a) {
+    return glm::dvec3(R[a][0], R[a][1], R[a][2]);
+}
 
 /// The segments of the directions in use.
 struct Axes {
@@ -184,9 +187,9 @@ Axes check_axes(const VanishingInput& in, double image_size, const std::string& 
         const auto& segs = *ax.segs[size_t(a)];
         if (segs.empty()) continue;
         if (segs.size() < 2)
-            throw InputError(source, kAxisName[a],
-                             "need at least 2 line segments per direction, got " +
-                                 std::to_string(segs.size()));
+            throw InputError(
+                source, kAxisName[a],
+                "need at least 2 line segments per direction, got " + std::to_string(segs.size()));
         for (const LineSegment& s : segs) {
             if (!std::isfinite(s.a.x) || !std::isfinite(s.a.y) || !std::isfinite(s.b.x) ||
                 !std::isfinite(s.b.y))
@@ -272,7 +275,8 @@ void check_orthogonal(const std::array<glm::dvec3, 3>& vp, const Axes& ax, const
             if (!(f2 > 0))
                 throw InputError(source, "",
                                  "these directions cannot be orthogonal in a pinhole photo (the "
-                                 "focal length squared would be " + std::to_string(f2) +
+                                 "focal length squared would be " +
+                                     std::to_string(f2) +
                                      " px^2 <= 0): check that each group's lines are parallel "
                                      "in the world (a line in the wrong group?) and the groups "
                                      "are at right angles");
@@ -290,8 +294,8 @@ glm::dvec3 vanishing_point(const std::vector<LineSegment>& segments) {
     scale = scale > 0 ? scale : 1;
     cv::Mat A(int(segments.size()), 3, CV_64F);
     for (size_t i = 0; i < segments.size(); ++i) {
-        glm::dvec3 l = glm::cross(homog((segments[i].a - o) / scale),
-                                  homog((segments[i].b - o) / scale));
+        glm::dvec3 l =
+            glm::cross(homog((segments[i].a - o) / scale), homog((segments[i].b - o) / scale));
         l /= glm::length(glm::dvec2(l));
         A.at<double>(int(i), 0) = l.x, A.at<double>(int(i), 1) = l.y, A.at<double>(int(i), 2) = l.z;
     }
@@ -318,8 +322,9 @@ CalibrationResult calibrate_vanishing(const VanishingInput& in, int width, int h
     std::vector<std::string> warnings;
     if (in.free_principal_point) {
         if (ax.count < 3) {
-            warnings.push_back("the principal point needs lines along all three directions: it "
-                               "is held at the image centre");
+            warnings.push_back(
+                "the principal point needs lines along all three directions: it "
+                "is held at the image centre");
         } else {
             LineFit free = fit_lines(ax, {fit.camera()}, free_focal, true, size, click);
             const double s = std::max(free.sigma_pp(0), free.sigma_pp(1));

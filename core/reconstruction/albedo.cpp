@@ -1,21 +1,19 @@
 #include "reconstruction/albedo.h"
 
-#include <cctype>
-
-#include "image/image_io.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "assets/irradiance.h"
 #include "base/error.h"
 #include "base/rng.h"
 #include "base/sampling.h"
-#include "assets/irradiance.h"
+#include "image/image_io.h"
 
 namespace dp {
 
@@ -33,15 +31,18 @@ std::vector<TexelPoint> texel_points(const TriangleMesh& mesh, int W, int H, int
     std::vector<TexelPoint> out;
     for (const glm::uvec3& tri : mesh.triangles) {
         const vec2 a = mesh.uvs[tri.x], b = mesh.uvs[tri.y], c = mesh.uvs[tri.z];
-        const vec3 pa = mesh.positions[tri.x], pb = mesh.positions[tri.y], pc = mesh.positions[tri.z];
+        const vec3 pa = mesh.positions[tri.x], pb = mesh.positions[tri.y],
+                   pc = mesh.positions[tri.z];
         vec3 ng = glm::cross(pb - pa, pc - pa);
         float area = glm::length(ng);
         float det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
         if (!(area > 0) || det == 0) continue;
         ng /= area;
         vec2 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
-        int i0 = std::max(0, int(std::floor(lo.x * W))), i1 = std::min(W - 1, int(std::floor(hi.x * W)));
-        int j0 = std::max(0, int(std::floor(lo.y * H))), j1 = std::min(H - 1, int(std::floor(hi.y * H)));
+        int i0 = std::max(0, int(std::floor(lo.x * W))),
+            i1 = std::min(W - 1, int(std::floor(hi.x * W)));
+        int j0 = std::max(0, int(std::floor(lo.y * H))),
+            j1 = std::min(H - 1, int(std::floor(hi.y * H)));
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i)
                 for (int sy = 0; sy < n; ++sy)
@@ -92,7 +93,9 @@ bool photographed_radiance(const RenderScene& scene, const std::vector<int>& pur
     vec3 to_eye = camera.position() - y.p;
     float dist = glm::length(to_eye);
     vec2 px;
-    if (!(dist > 0) || glm::dot(ny, to_eye) <= 0 || !camera.project(y.p, px) || !camera.in_image(px)) return false;
+    if (!(dist > 0) || glm::dot(ny, to_eye) <= 0 || !camera.project(y.p, px) ||
+        !camera.in_image(px))
+        return false;
     int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
     int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
     if (pure[size_t(iy) * photo.width() + ix] != y.surface->index) return false;
@@ -100,7 +103,8 @@ bool photographed_radiance(const RenderScene& scene, const std::vector<int>& pur
     hy.ng = ny;
     vec3 dir = to_eye / dist;
     vec3 org = scene.offset_origin(hy, dir);
-    if (scene.occluded_real(Ray{org, dir}, glm::length(camera.position() - org) * (1 - 1e-4f))) return false;
+    if (scene.occluded_real(Ray{org, dir}, glm::length(camera.position() - org) * (1 - 1e-4f)))
+        return false;
     L = photo.at(ix, iy);
     return true;
 }
@@ -110,8 +114,8 @@ bool photographed_radiance(const RenderScene& scene, const std::vector<int>& pur
 /// the same radiance every way, so where the camera sees it that is its photo pixel; where it
 /// does not, its albedo times its own irradiance over pi (probe light plus, `depth` > 0, the
 /// light it gets from photographed surfaces).
-dvec3 bounce_irradiance(const RenderScene& scene, const std::vector<int>& pure, const vec3& p, const vec3& n,
-                        Rng& rng, int samples, int depth) {
+dvec3 bounce_irradiance(const RenderScene& scene, const std::vector<int>& pure, const vec3& p,
+                        const vec3& n, Rng& rng, int samples, int depth) {
     if (samples <= 0) return dvec3(0.0);
     const Frame frame(n);
     Hit at;
@@ -185,18 +189,25 @@ bool fill_flagged_texels(Image& image, const Image& mask) {
     return true;
 }
 
-AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const AlbedoTextureOptions& o) {
+AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy,
+                                      const AlbedoTextureOptions& o) {
     const auto& proxies = scene.project().real;
     if (proxy < 0 || size_t(proxy) >= proxies.size())
         throw InputError("", "real", "no real proxy number " + std::to_string(proxy));
     const std::string field = "real[" + std::to_string(proxy) + "]";
     const Surface& surface = scene.real_surfaces()[size_t(proxy)];
     if (surface.analytic_sphere || proxies[size_t(proxy)].shape.kind == Shape::Kind::Sphere)
-        throw InputError("", field, "albedo textures are estimated for planes, boxes and meshes with UVs, not spheres");
+        throw InputError(
+            "", field,
+            "albedo textures are estimated for planes, boxes and meshes with UVs, not spheres");
     if (!surface.mesh || surface.mesh->uvs.empty())
-        throw InputError("", field, "the proxy's mesh has no texture coordinates (UVs) to estimate a texture on");
-    if (o.subsamples < 1 || o.probe_samples < 1 || o.max_resolution < 1 || o.width < 0 || o.height < 0)
-        throw InputError("", "options", "texture size, subsamples and probe samples must be positive");
+        throw InputError(
+            "", field,
+            "the proxy's mesh has no texture coordinates (UVs) to estimate a texture on");
+    if (o.subsamples < 1 || o.probe_samples < 1 || o.max_resolution < 1 || o.width < 0 ||
+        o.height < 0)
+        throw InputError("", "options",
+                         "texture size, subsamples and probe samples must be positive");
 
     int W = o.width, H = o.height;
     if (W == 0 || H == 0) {
@@ -205,8 +216,10 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
         const vec3 s = proxies[size_t(proxy)].transform.scale;
         if (shape.kind == Shape::Kind::Plane) {
             float sx = std::abs(shape.size.x * s.x), sz = std::abs(shape.size.z * s.z);
-            if (sx > sz) H = std::max(1, int(std::lround(o.max_resolution * sz / sx)));
-            else W = std::max(1, int(std::lround(o.max_resolution * sx / sz)));
+            if (sx > sz)
+                H = std::max(1, int(std::lround(o.max_resolution * sz / sx)));
+            else
+                W = std::max(1, int(std::lround(o.max_resolution * sx / sz)));
         }
     }
 
@@ -226,47 +239,52 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
         o.bounce_samples > 0 ? std::max(4, o.bounce_samples / (o.subsamples * o.subsamples)) : 0;
     const std::vector<int> pure = pure_pixels(scene);
     std::vector<TexelSum> sums(size_t(W) * H);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, size_t(W) * H, 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t t = r.begin(); t != r.end(); ++t) {
-            TexelSum& s = sums[t];
-            Rng rng = Rng::keyed(o.seed, t, 0xa1bed0);
-            std::vector<SurfacePoint> lit_points;
-            for (size_t k = first[t]; k < first[t + 1]; ++k) {
-                const TexelPoint& tp = points[k];
-                vec3 to_eye = eye - tp.p;
-                float dist = glm::length(to_eye);
-                if (!(dist > 0)) continue;
-                to_eye /= dist;
-                vec3 n = tp.n;
-                if (glm::dot(n, to_eye) <= 0) continue;  // the camera sees this face from behind
-                vec2 px;
-                if (!camera.project(tp.p, px) || !camera.in_image(px)) continue;
-                Hit at;
-                at.p = tp.p;
-                at.ng = n;
-                vec3 org = scene.offset_origin(at, to_eye);
-                if (scene.occluded_real(Ray{org, to_eye}, glm::length(eye - org) * (1 - 1e-4f))) continue;
-                int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
-                int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
-                if (pure[size_t(iy) * photo.width() + ix] != proxy) continue;
-                vec3 L = photo.at(ix, iy);
-                if (std::max({L.x, L.y, L.z}) >= o.clip_level) {
-                    ++s.clipped;
-                    continue;
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, size_t(W) * H, 64), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t t = r.begin(); t != r.end(); ++t) {
+                TexelSum& s = sums[t];
+                Rng rng = Rng::keyed(o.seed, t, 0xa1bed0);
+                std::vector<SurfacePoint> lit_points;
+                for (size_t k = first[t]; k < first[t + 1]; ++k) {
+                    const TexelPoint& tp = points[k];
+                    vec3 to_eye = eye - tp.p;
+                    float dist = glm::length(to_eye);
+                    if (!(dist > 0)) continue;
+                    to_eye /= dist;
+                    vec3 n = tp.n;
+                    if (glm::dot(n, to_eye) <= 0)
+                        continue;  // the camera sees this face from behind
+                    vec2 px;
+                    if (!camera.project(tp.p, px) || !camera.in_image(px)) continue;
+                    Hit at;
+                    at.p = tp.p;
+                    at.ng = n;
+                    vec3 org = scene.offset_origin(at, to_eye);
+                    if (scene.occluded_real(Ray{org, to_eye}, glm::length(eye - org) * (1 - 1e-4f)))
+                        continue;
+                    int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
+                    int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
+                    if (pure[size_t(iy) * photo.width() + ix] != proxy) continue;
+                    vec3 L = photo.at(ix, iy);
+                    if (std::max({L.x, L.y, L.z}) >= o.clip_level) {
+                        ++s.clipped;
+                        continue;
+                    }
+                    dvec3 bounce =
+                        bounce_irradiance(scene, pure, tp.p, n, rng, bounce_per_point, 1);
+                    s.L += dvec3(L);
+                    s.E_bounce += bounce;
+                    lit_points.push_back({tp.p, n});
+                    ++s.seen;
                 }
-                dvec3 bounce = bounce_irradiance(scene, pure, tp.p, n, rng, bounce_per_point, 1);
-                s.L += dvec3(L);
-                s.E_bounce += bounce;
-                lit_points.push_back({tp.p, n});
-                ++s.seen;
+                if (s.seen == 0) continue;
+                // One estimate over all the texel's points: sum(E) = count * mean(E).
+                IrradianceEstimate e =
+                    mean_real_irradiance(scene, lit_points, rng, o.probe_samples, 0.5f);
+                s.E = e.E * double(s.seen) + s.E_bounce;
+                s.E_var = std::pow(e.luminance_std_error * s.seen, 2);
             }
-            if (s.seen == 0) continue;
-            // One estimate over all the texel's points: sum(E) = count * mean(E).
-            IrradianceEstimate e = mean_real_irradiance(scene, lit_points, rng, o.probe_samples, 0.5f);
-            s.E = e.E * double(s.seen) + s.E_bounce;
-            s.E_var = std::pow(e.luminance_std_error * s.seen, 2);
-        }
-    });
+        });
 
     // Unlit: irradiance far below the typical texel's (deep shadow under an opaque probe).
     std::vector<double> lit;
@@ -311,10 +329,11 @@ AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const
         ++out.valid;
     }
     if (out.valid == 0)
-        throw InputError("", field,
-                         "the photo never sees this proxy lit and unclipped; no albedo can be estimated (" +
-                             std::to_string(out.unseen) + " texels unseen, " + std::to_string(out.clipped) +
-                             " clipped, " + std::to_string(out.unlit) + " unlit)");
+        throw InputError(
+            "", field,
+            "the photo never sees this proxy lit and unclipped; no albedo can be estimated (" +
+                std::to_string(out.unseen) + " texels unseen, " + std::to_string(out.clipped) +
+                " clipped, " + std::to_string(out.unlit) + " unlit)");
     out.mean_albedo = vec3(rho_sum / double(out.valid));
     out.irradiance_rel_error = rel_error_sum / double(out.valid);
     out.bounce_fraction = E_total > 0 ? E_bounce / E_total : 0;
@@ -327,7 +346,8 @@ namespace {
 /// A proxy's name as a file name part: letters, digits, '-' and '_' kept, the rest '_'.
 std::string file_stem(const std::string& name, int index) {
     std::string s;
-    for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    for (char c : name)
+        s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
     return s.empty() ? "real" + std::to_string(index) : s;
 }
 
@@ -337,13 +357,16 @@ std::string attach_albedo_texture(Project& project, int proxy, const AlbedoTextu
                                   const std::filesystem::path& project_file, bool saved_there) {
     namespace fs = std::filesystem;
     const fs::path folder = fs::absolute(project_file).parent_path();
-    const std::string stem = project_file.stem().string() + "_" + file_stem(project.real[size_t(proxy)].name, proxy) + "_albedo";
+    const std::string stem = project_file.stem().string() + "_" +
+                             file_stem(project.real[size_t(proxy)].name, proxy) + "_albedo";
     save_exr((folder / (stem + ".exr")).string(), {{"", &texture.albedo}});
-    if (!texture.mask.empty()) save_exr((folder / (stem + "_mask.exr")).string(), {{"", &texture.mask}});
+    if (!texture.mask.empty())
+        save_exr((folder / (stem + "_mask.exr")).string(), {{"", &texture.mask}});
     RealProxy& r = project.real[size_t(proxy)];
     r.albedo.kind = Albedo::Kind::Texture;
     std::error_code ec;
-    const bool beside = saved_there || (!project.base_dir.empty() && fs::equivalent(project.base_dir, folder, ec));
+    const bool beside =
+        saved_there || (!project.base_dir.empty() && fs::equivalent(project.base_dir, folder, ec));
     r.albedo.texture_path = beside ? stem + ".exr" : (folder / (stem + ".exr")).string();
     return r.albedo.texture_path;
 }

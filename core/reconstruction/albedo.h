@@ -1,11 +1,11 @@
 #pragma once
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <string>
-#include <cstdint>
 
-#include "image/image.h"
 #include "assets/render_scene.h"
+#include "image/image.h"
 
 namespace dp {
 
@@ -41,7 +41,8 @@ struct AlbedoTexture {
     Image albedo;
     /// Per texel: red 1 = every photo pixel it projects to is clipped; green 1 = the camera
     /// does not see it (outside the photo, facing away, hidden by real geometry, or only in
-    /// pixels that also show another surface or the background); blue 1 = unlit (E too small). All zero for a texel estimated from the photo.
+    /// pixels that also show another surface or the background); blue 1 = unlit (E too small). All
+    /// zero for a texel estimated from the photo.
     Image mask;
     size_t valid = 0, clipped = 0, unseen = 0, unlit = 0;
     /// Mean relative Monte Carlo standard error of the probe part of E over the valid texels
@@ -73,6 +74,7 @@ bool fill_flagged_texels(Image& image, const Image& mask);
 /// folder or is about to be saved to `project_file` (`saved_there`), by its absolute path
 /// otherwise. Returns the path as written into the project.
 std::string attach_albedo_texture(Project& project, int proxy, const AlbedoTexture& texture,
-                                  const std::filesystem::path& project_file, bool saved_there = false);
+                                  const std::filesystem::path& project_file,
+                                  bool saved_there = false);
 
 }  // namespace dp

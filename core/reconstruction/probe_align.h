@@ -1,9 +1,9 @@
 #pragma once
 #include <string>
 
+#include "assets/render_scene.h"
 #include "camera/camera.h"
 #include "image/image.h"
-#include "assets/render_scene.h"
 
 namespace dp {
 
@@ -42,7 +42,8 @@ struct ProbeYaw {
 /// Turns the probe (current Euler angles `rotation_deg`) about world Y so that the brightest
 /// region `bright_probe` (probe space) has the azimuth of `target_world`. Throws InputError when
 /// either direction is vertical (no azimuth).
-ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg, const vec3& target_world);
+ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg,
+                         const vec3& target_world);
 
 /// Euler XYZ angles in degrees (as euler_xyz_deg reads them) of a rotation matrix.
 vec3 euler_xyz_from_matrix(const glm::mat3& R);
@@ -55,9 +56,9 @@ struct GreyCard {
 
 /// Probe intensity that makes rho * E / pi match the photo on a grey card.
 struct ExposureMatch {
-    float intensity = 1;      ///< the new probe intensity
-    float scale = 1;          ///< new intensity / current intensity
-    int pixels = 0;           ///< card pixels used
+    float intensity = 1;  ///< the new probe intensity
+    float scale = 1;      ///< new intensity / current intensity
+    int pixels = 0;       ///< card pixels used
     /// Coefficient of variation of the per-pixel ratios pi L / (rho E) over the card: how
     /// evenly the card is lit and seen (noise, shading, a wrong reflectance do not show here).
     float spread = 0;

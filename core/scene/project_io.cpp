@@ -4,9 +4,9 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <set>
-#include <iterator>
 #include <string_view>
 
 #include "base/error.h"
@@ -55,7 +55,7 @@ size_t edit_distance(std::string_view a, std::string_view b) {
 
 /// Validating accessors; every failure names the file and the JSON path of the field.
 class Reader {
-public:
+  public:
     explicit Reader(std::string file) : file_(std::move(file)) {}
 
     [[noreturn]] void fail(const std::string& field, const std::string& msg) const {
@@ -194,7 +194,7 @@ public:
         fail(path, "unknown " + std::string(what) + " '" + s + "' (valid: " + valid + ")");
     }
 
-private:
+  private:
     std::string file_;
 };
 
@@ -256,8 +256,8 @@ Albedo parse_albedo(const Reader& r, const json& j, const std::string& path, boo
     } else if (j.is_string()) {
         std::string s = j.get<std::string>();
         if (s == "estimate" && !allow_estimate)
-            r.fail(path, "\"estimate\" is only valid for real proxies; expected " +
-                             std::string(forms));
+            r.fail(path,
+                   "\"estimate\" is only valid for real proxies; expected " + std::string(forms));
         if (s != "estimate") r.fail(path, "unknown albedo '" + s + "' (expected " + forms + ")");
         a.kind = Albedo::Kind::Estimate;
     } else {
@@ -269,11 +269,11 @@ Albedo parse_albedo(const Reader& r, const json& j, const std::string& path, boo
 Material parse_material(const Reader& r, const json& j, const std::string& path) {
     if (!j.is_object()) r.wrong_type(j, path, "an object");
     Material m;
-    m.kind = r.choice<Material::Kind>(r.required(j, path, "type"), join(path, "type"),
-                                      "material type",
-                                      {{"diffuse", Material::Kind::Diffuse},
-                                       {"mirror", Material::Kind::Mirror},
-                                       {"glass", Material::Kind::Glass}});
+    m.kind =
+        r.choice<Material::Kind>(r.required(j, path, "type"), join(path, "type"), "material type",
+                                 {{"diffuse", Material::Kind::Diffuse},
+                                  {"mirror", Material::Kind::Mirror},
+                                  {"glass", Material::Kind::Glass}});
     std::string ctx = " for material type '" + j["type"].get<std::string>() + "'";
     switch (m.kind) {
         case Material::Kind::Diffuse:
@@ -357,9 +357,9 @@ void parse_opencv(const Reader& r, const json& j, CameraSpec& c) {
         // not supported.
         const std::string p = "camera.distortion";
         if (!v->is_array()) r.wrong_type(*v, p, "an array [k1, k2, p1, p2, k3]");
-        r.check(v->size() == 4 || v->size() == 5, p,
-                "expected 4 or 5 coefficients [k1, k2, p1, p2, k3], got " +
-                    std::to_string(v->size()));
+        r.check(
+            v->size() == 4 || v->size() == 5, p,
+            "expected 4 or 5 coefficients [k1, k2, p1, p2, k3], got " + std::to_string(v->size()));
         auto k = r.numbers(*v, p, v->size());
         c.distortion = Distortion{k[0], k[1], k[2], k[3], k.size() == 5 ? k[4] : 0.0f};
     }
@@ -384,10 +384,9 @@ void parse_opencv(const Reader& r, const json& j, CameraSpec& c) {
 CameraSpec parse_camera(const Reader& r, const json& j) {
     if (!j.is_object()) r.wrong_type(j, "camera", "an object");
     CameraSpec c;
-    c.model = r.choice<CameraSpec::Model>(r.required(j, "camera", "model"), "camera.model",
-                                          "camera model",
-                                          {{"lookat", CameraSpec::Model::LookAt},
-                                           {"opencv", CameraSpec::Model::Intrinsics}});
+    c.model = r.choice<CameraSpec::Model>(
+        r.required(j, "camera", "model"), "camera.model", "camera model",
+        {{"lookat", CameraSpec::Model::LookAt}, {"opencv", CameraSpec::Model::Intrinsics}});
     if (c.model == CameraSpec::Model::LookAt) {
         r.object(j, "camera", {"model", "eye", "target", "up", "vfov_deg"},
                  " for camera model 'lookat'");
@@ -402,9 +401,10 @@ CameraSpec parse_camera(const Reader& r, const json& j) {
 }
 
 RenderSettings parse_render(const Reader& r, const json& j) {
-    r.object(j, "render", {"photons_per_pass", "passes", "time_budget_s", "initial_radius", "alpha",
-                           "max_depth", "seed", "threads", "estimator", "adaptive_threshold",
-                           "adaptive_min_passes", "low_discrepancy"});
+    r.object(j, "render",
+             {"photons_per_pass", "passes", "time_budget_s", "initial_radius", "alpha", "max_depth",
+              "seed", "threads", "estimator", "adaptive_threshold", "adaptive_min_passes",
+              "low_discrepancy"});
     constexpr int64_t kIntMax = std::numeric_limits<int>::max();
     constexpr int64_t kInt64Max = std::numeric_limits<int64_t>::max();
     RenderSettings s;
@@ -433,16 +433,19 @@ RenderSettings parse_render(const Reader& r, const json& j) {
     if (auto* v = r.optional(j, "threads"))
         s.threads = int(r.integer(*v, "render.threads", 0, kIntMax));
     if (auto* v = r.optional(j, "estimator"))
-        s.estimator = r.choice<Estimator>(*v, "render.estimator", "estimator",
-                                          {{"split", Estimator::Split}, {"photons", Estimator::Photons}});
+        s.estimator =
+            r.choice<Estimator>(*v, "render.estimator", "estimator",
+                                {{"split", Estimator::Split}, {"photons", Estimator::Photons}});
     if (auto* v = r.optional(j, "adaptive_threshold")) {
         s.adaptive_threshold = r.real(*v, "render.adaptive_threshold");
         r.check(s.adaptive_threshold >= 0 && s.adaptive_threshold < 1, "render.adaptive_threshold",
-                "must be in [0, 1) (got " + shortest(s.adaptive_threshold) + "; 0 turns adaptive sampling off)");
+                "must be in [0, 1) (got " + shortest(s.adaptive_threshold) +
+                    "; 0 turns adaptive sampling off)");
     }
     if (auto* v = r.optional(j, "adaptive_min_passes"))
         s.adaptive_min_passes = int(r.integer(*v, "render.adaptive_min_passes", 2, kIntMax));
-    if (auto* v = r.optional(j, "low_discrepancy")) s.low_discrepancy = r.boolean(*v, "render.low_discrepancy");
+    if (auto* v = r.optional(j, "low_discrepancy"))
+        s.low_discrepancy = r.boolean(*v, "render.low_discrepancy");
     return s;
 }
 
@@ -476,9 +479,12 @@ J write_shape(const Shape& s) {
     switch (s.kind) {
         case Shape::Kind::Plane:  // size [x, z]: a plane has no extent along its normal
             return J{{"type", "plane"}, {"size", J::array({num(s.size.x), num(s.size.z)})}};
-        case Shape::Kind::Box: return J{{"type", "box"}, {"size", vec<J>(s.size)}};
-        case Shape::Kind::Sphere: return J{{"type", "sphere"}, {"radius", num(s.radius)}};
-        case Shape::Kind::Mesh: return J{{"type", "mesh"}, {"path", s.mesh_path}};
+        case Shape::Kind::Box:
+            return J{{"type", "box"}, {"size", vec<J>(s.size)}};
+        case Shape::Kind::Sphere:
+            return J{{"type", "sphere"}, {"radius", num(s.radius)}};
+        case Shape::Kind::Mesh:
+            return J{{"type", "mesh"}, {"path", s.mesh_path}};
     }
     return J();
 }
@@ -486,9 +492,12 @@ J write_shape(const Shape& s) {
 template <class J>
 J write_albedo(const Albedo& a) {
     switch (a.kind) {
-        case Albedo::Kind::Constant: return vec<J>(a.rgb);
-        case Albedo::Kind::Texture: return J{{"texture", a.texture_path}};
-        case Albedo::Kind::Estimate: return J("estimate");
+        case Albedo::Kind::Constant:
+            return vec<J>(a.rgb);
+        case Albedo::Kind::Texture:
+            return J{{"texture", a.texture_path}};
+        case Albedo::Kind::Estimate:
+            return J("estimate");
     }
     return J();
 }
@@ -509,8 +518,11 @@ J write_material(const Material& m) {
 template <class J>
 J write_camera(const CameraSpec& c) {
     if (c.model == CameraSpec::Model::LookAt) {
-        return J{{"model", "lookat"}, {"eye", vec<J>(c.eye)}, {"target", vec<J>(c.target)},
-                 {"up", vec<J>(c.up)}, {"vfov_deg", num(c.vfov_deg)}};
+        return J{{"model", "lookat"},
+                 {"eye", vec<J>(c.eye)},
+                 {"target", vec<J>(c.target)},
+                 {"up", vec<J>(c.up)},
+                 {"vfov_deg", num(c.vfov_deg)}};
     }
     const Distortion& d = c.distortion;
     J rows = J::array();
@@ -518,10 +530,14 @@ J write_camera(const CameraSpec& c) {
         const glm::mat3& R = c.rotation;
         rows.push_back(J::array({num(R[0][row]), num(R[1][row]), num(R[2][row])}));
     }
-    return J{{"model", "opencv"}, {"fx", num(c.fx)}, {"fy", num(c.fy)}, {"cx", num(c.cx)},
+    return J{{"model", "opencv"},
+             {"fx", num(c.fx)},
+             {"fy", num(c.fy)},
+             {"cx", num(c.cx)},
              {"cy", num(c.cy)},
              {"distortion", J::array({num(d.k1), num(d.k2), num(d.p1), num(d.p2), num(d.k3)})},
-             {"rotation", rows}, {"translation", vec<J>(c.translation)}};
+             {"rotation", rows},
+             {"translation", vec<J>(c.translation)}};
 }
 
 template <class J>
@@ -529,22 +545,24 @@ J write_project(const Project& p) {
     J doc;
     doc["schema_version"] = p.schema_version;
     doc["photo"] = J{{"path", p.photo.path}, {"exposure", num(p.photo.exposure)}};
-    doc["probe"] = J{{"path", p.probe.path},
-                     {"format", p.probe.format == ProbeSpec::Format::LatLong ? "latlong"
-                                                                              : "mirrorball"},
-                     {"rotation_deg", vec<J>(p.probe.rotation_deg)},
-                     {"intensity", num(p.probe.intensity)},
-                     {"mirror_ball_fov_deg", num(p.probe.mirror_ball_fov_deg)}};
+    doc["probe"] =
+        J{{"path", p.probe.path},
+          {"format", p.probe.format == ProbeSpec::Format::LatLong ? "latlong" : "mirrorball"},
+          {"rotation_deg", vec<J>(p.probe.rotation_deg)},
+          {"intensity", num(p.probe.intensity)},
+          {"mirror_ball_fov_deg", num(p.probe.mirror_ball_fov_deg)}};
     doc["camera"] = write_camera<J>(p.camera);
     doc["real"] = J::array();
     for (const RealProxy& r : p.real) {
-        doc["real"].push_back(J{{"name", r.name}, {"shape", write_shape<J>(r.shape)},
+        doc["real"].push_back(J{{"name", r.name},
+                                {"shape", write_shape<J>(r.shape)},
                                 {"transform", write_transform<J>(r.transform)},
                                 {"albedo", write_albedo<J>(r.albedo)}});
     }
     doc["objects"] = J::array();
     for (const VirtualObject& o : p.objects) {
-        doc["objects"].push_back(J{{"name", o.name}, {"shape", write_shape<J>(o.shape)},
+        doc["objects"].push_back(J{{"name", o.name},
+                                   {"shape", write_shape<J>(o.shape)},
                                    {"transform", write_transform<J>(o.transform)},
                                    {"material", write_material<J>(o.material)},
                                    {"visible", o.visible}});
@@ -569,12 +587,16 @@ J write_project(const Project& p) {
 
 /// Rejects repeated keys in one object, which nlohmann would otherwise resolve silently.
 class DuplicateKeyCheck {
-public:
+  public:
     explicit DuplicateKeyCheck(const Reader& r) : reader_(r) {}
     bool operator()(int, json::parse_event_t event, json& parsed) {
         switch (event) {
-            case json::parse_event_t::object_start: stack_.push_back(Frame(false)); break;
-            case json::parse_event_t::array_start: stack_.push_back(Frame(true)); break;
+            case json::parse_event_t::object_start:
+                stack_.push_back(Frame(false));
+                break;
+            case json::parse_event_t::array_start:
+                stack_.push_back(Frame(true));
+                break;
             case json::parse_event_t::key: {
                 Frame& f = stack_.back();
                 f.key = parsed.get<std::string>();
@@ -593,7 +615,7 @@ public:
         return true;
     }
 
-private:
+  private:
     struct Frame {
         explicit Frame(bool is_array) : array(is_array) {}
         bool array;
@@ -640,7 +662,8 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     if (auto* e = r.optional(photo, "exposure")) p.photo.exposure = r.real(*e, "photo.exposure");
 
     const json& probe = r.required(doc, "", "probe");
-    r.object(probe, "probe", {"path", "format", "rotation_deg", "intensity", "mirror_ball_fov_deg"});
+    r.object(probe, "probe",
+             {"path", "format", "rotation_deg", "intensity", "mirror_ball_fov_deg"});
     p.probe.path = r.string(r.required(probe, "probe", "path"), "probe.path");
     if (auto* f = r.optional(probe, "format")) {
         p.probe.format =
@@ -671,9 +694,8 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
         if (!arr->is_array()) r.wrong_type(*arr, key, "an array");
         for (size_t i = 0; i < arr->size(); ++i) parse((*arr)[i], at(key, i));
     };
-    each("real", [&](const json& j, const std::string& path) {
-        p.real.push_back(parse_real(r, j, path));
-    });
+    each("real",
+         [&](const json& j, const std::string& path) { p.real.push_back(parse_real(r, j, path)); });
     each("objects", [&](const json& j, const std::string& path) {
         p.objects.push_back(parse_object(r, j, path));
     });
@@ -681,7 +703,9 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     return p;
 }
 
-json to_json(const Project& project) { return write_project<json>(project); }
+json to_json(const Project& project) {
+    return write_project<json>(project);
+}
 
 Project load_project(const std::string& path) {
     Reader r(path);
