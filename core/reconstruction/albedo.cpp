@@ -149,6 +149,13 @@ struct TexelSum {
 
 }  // namespace
 
+std::vector<size_t> texturable_real_proxies(const Project& project) {
+    std::vector<size_t> out;
+    for (size_t i = 0; i < project.real.size(); ++i)
+        if (project.real[i].shape.kind != Shape::Kind::Sphere) out.push_back(i);
+    return out;
+}
+
 bool fill_flagged_texels(Image& image, const Image& mask) {
     const int W = image.width(), H = image.height();
     std::vector<uint8_t> valid(image.size());

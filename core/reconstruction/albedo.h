@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "assets/render_scene.h"
 #include "image/image.h"
@@ -63,6 +64,10 @@ struct AlbedoTexture {
 /// proxy, a mesh without UVs, or a proxy the photo never sees lit.
 AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy,
                                       const AlbedoTextureOptions& options = {});
+
+/// Indices into `project.real` of the proxies an albedo texture can be estimated for: planes,
+/// boxes and meshes (a sphere has no texture layout).
+std::vector<size_t> texturable_real_proxies(const Project& project);
 
 /// Fills texels whose `mask` pixel is non-zero from their valid neighbours, ring by ring.
 /// Returns false when there is no valid texel at all (nothing is changed then).

@@ -44,6 +44,11 @@ vec3 sun_direction_from_shadow(const Camera& camera, const ShadowCue& cue) {
     return glm::normalize(d);
 }
 
+Bearing bearing_of(const vec3& d) {
+    constexpr float kDegPerRad = 180.0f / kPi;
+    return {std::atan2(d.x, -d.z) * kDegPerRad, std::asin(d.y) * kDegPerRad};
+}
+
 vec3 brightest_direction(const Image& map, float fraction, float cone_deg,
                          const std::string& field) {
     const int W = map.width(), H = map.height();

@@ -29,6 +29,15 @@ vec3 sun_direction_from_shadow(const Camera& camera, const ShadowCue& cue);
 vec3 brightest_direction(const Image& latlong, float fraction = 0.5f, float cone_deg = 20.0f,
                          const std::string& field = "probe.path");
 
+/// Compass bearing of a world direction, in degrees.
+struct Bearing {
+    float azimuth_deg = 0;    ///< from -Z towards +X, as the probe's lat-long map counts it
+    float elevation_deg = 0;  ///< above the horizon
+};
+
+/// Azimuth and elevation of unit world direction `d` (e.g. the sun's).
+Bearing bearing_of(const vec3& d);
+
 /// A yaw (rotation about world +Y) that brings the probe's brightest region onto a direction.
 struct ProbeYaw {
     vec3 rotation_deg{0.0f};  ///< the probe's new Euler XYZ angles (world Y turn applied last)

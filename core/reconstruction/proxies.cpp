@@ -244,4 +244,16 @@ ProxyFit box_proxy(const Camera& camera, const std::vector<vec2>& corners, float
     return fit;
 }
 
+bool add_or_replace_real_proxy(Project& project, RealProxy proxy) {
+    auto same = std::find_if(project.real.begin(), project.real.end(),
+                             [&](const RealProxy& r) { return r.name == proxy.name; });
+    if (same == project.real.end()) {
+        project.real.push_back(std::move(proxy));
+        return false;
+    }
+    proxy.albedo = same->albedo;
+    *same = std::move(proxy);
+    return true;
+}
+
 }  // namespace dp

@@ -46,4 +46,9 @@ ProxyFit wall_proxy(const Camera& camera, vec2 a, vec2 b, float height, float th
 ProxyFit box_proxy(const Camera& camera, const std::vector<vec2>& corners, float height,
                    const std::string& name = "box");
 
+/// Puts `proxy` into `project.real`: it replaces the proxy of the same name, which keeps its
+/// albedo (a refitted shape does not undo what was estimated or set for it), or is appended.
+/// Returns true when it replaced one.
+bool add_or_replace_real_proxy(Project& project, RealProxy proxy);
+
 }  // namespace dp
