@@ -210,7 +210,9 @@ Command add_calibrate_command(CLI::App& app) {
     for (Group add_group : {&add_calibrate_camera_commands})
         for (Command& c : add_group(*sub)) commands->push_back(std::move(c));
     // proxy, albedo and probe run from their own CLI11 callbacks while parsing.
-    add_calibrate_scene_commands(*sub);
+    add_calibrate_proxy_command(*sub);
+    add_calibrate_albedo_command(*sub);
+    add_calibrate_probe_command(*sub);
     return {sub, [commands] {
                 for (const Command& c : *commands)
                     if (c.app->parsed()) return c.run();
