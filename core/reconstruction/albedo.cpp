@@ -147,6 +147,199 @@ struct TexelSum {
     int seen = 0, clipped = 0;
 };
 
+/// The surface of real proxy `proxy`, after checking that a texture can be estimated on it with
+/// options `o`. Throws InputError as estimate_albedo_texture documents.
+const Surface& texturable_surface(const RenderScene& scene, int proxy,
+                                  const AlbedoTextureOptions& o) {
+    const auto& proxies = scene.project().real;
+    if (proxy < 0 || size_t(proxy) >= proxies.size())
+        throw InputError("", "real", "no real proxy number " + std::to_string(proxy));
+    const std::string field = "real[" + std::to_string(proxy) + "]";
+    const Surface& surface = scene.real_surfaces()[size_t(proxy)];
+    if (surface.analytic_sphere || proxies[size_t(proxy)].shape.kind == Shape::Kind::Sphere)
+        throw InputError(
+            "", field,
+            "albedo textures are estimated for planes, boxes and meshes with UVs, not spheres");
+    if (!surface.mesh || surface.mesh->uvs.empty())
+        throw InputError(
+            "", field,
+            "the proxy's mesh has no texture coordinates (UVs) to estimate a texture on");
+    if (o.subsamples < 1 || o.probe_samples < 1 || o.max_resolution < 1 || o.width < 0 ||
+        o.height < 0)
+        throw InputError("", "options",
+                         "texture size, subsamples and probe samples must be positive");
+    return surface;
+}
+
+struct TextureSize {
+    int width = 0, height = 0;
+    size_t texels() const { return size_t(width) * height; }
+};
+
+/// The size asked for, else `max_resolution` square; a plane's texture follows its aspect so
+/// that texels stay square on the surface.
+TextureSize texture_size(const RealProxy& proxy, const AlbedoTextureOptions& o) {
+    if (o.width != 0 && o.height != 0) return {o.width, o.height};
+    TextureSize size{o.max_resolution, o.max_resolution};
+    const Shape& shape = proxy.shape;
+    const vec3 s = proxy.transform.scale;
+    if (shape.kind == Shape::Kind::Plane) {
+        float sx = std::abs(shape.size.x * s.x), sz = std::abs(shape.size.z * s.z);
+        if (sx > sz)
+            size.height = std::max(1, int(std::lround(o.max_resolution * sz / sx)));
+        else
+            size.width = std::max(1, int(std::lround(o.max_resolution * sx / sz)));
+    }
+    return size;
+}
+
+/// The texels' sample points grouped by texel.
+struct TexelRuns {
+    std::vector<TexelPoint> points;  ///< sorted by texel
+    std::vector<size_t> first;       ///< texel t's points are [first[t], first[t + 1])
+};
+
+/// Every texel's sample points, grouped so that each texel can be gathered on its own (in
+/// parallel, with one random stream per texel: the result does not depend on the thread count).
+TexelRuns texel_runs(const TriangleMesh& mesh, TextureSize size, int subsamples) {
+    TexelRuns runs;
+    runs.points = texel_points(mesh, size.width, size.height, subsamples);
+    std::vector<TexelPoint>& points = runs.points;
+    std::stable_sort(points.begin(), points.end(),
+                     [](const TexelPoint& a, const TexelPoint& b) { return a.texel < b.texel; });
+    std::vector<size_t>& first = runs.first;
+    first.assign(size.texels() + 1, points.size());
+    for (size_t k = points.size(); k-- > 0;) first[points[k].texel] = k;
+    for (size_t t = size.texels(); t-- > 0;) first[t] = std::min(first[t], first[t + 1]);
+    return runs;
+}
+
+/// The photo pixel that shows texel point `tp` of proxy `proxy`, if the camera sees the point
+/// from the front, unoccluded, in a pixel that shows that proxy alone.
+bool photographed_texel_point(const RenderScene& scene, const std::vector<int>& pure, int proxy,
+                              const TexelPoint& tp, vec3& L) {
+    const Camera& camera = scene.camera();
+    const Image& photo = scene.photo();
+    const vec3 eye = camera.position();
+    vec3 to_eye = eye - tp.p;
+    float dist = glm::length(to_eye);
+    if (!(dist > 0)) return false;
+    to_eye /= dist;
+    if (glm::dot(tp.n, to_eye) <= 0) return false;  // the camera sees this face from behind
+    vec2 px;
+    if (!camera.project(tp.p, px) || !camera.in_image(px)) return false;
+    Hit at;
+    at.p = tp.p;
+    at.ng = tp.n;
+    vec3 org = scene.offset_origin(at, to_eye);
+    if (scene.occluded_real(Ray{org, to_eye}, glm::length(eye - org) * (1 - 1e-4f))) return false;
+    int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
+    int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
+    if (pure[size_t(iy) * photo.width() + ix] != proxy) return false;
+    L = photo.at(ix, iy);
+    return true;
+}
+
+/// Photographed radiance and irradiance summed over one texel's points [begin, end).
+TexelSum gather_texel(const RenderScene& scene, const std::vector<int>& pure, int proxy,
+                      const TexelPoint* begin, const TexelPoint* end, const AlbedoTextureOptions& o,
+                      int bounce_per_point, Rng& rng) {
+    TexelSum s;
+    std::vector<SurfacePoint> lit_points;
+    for (const TexelPoint* tp = begin; tp != end; ++tp) {
+        vec3 L;
+        if (!photographed_texel_point(scene, pure, proxy, *tp, L)) continue;
+        if (std::max({L.x, L.y, L.z}) >= o.clip_level) {
+            ++s.clipped;
+            continue;
+        }
+        s.L += dvec3(L);
+        s.E_bounce += bounce_irradiance(scene, pure, tp->p, tp->n, rng, bounce_per_point, 1);
+        lit_points.push_back({tp->p, tp->n});
+        ++s.seen;
+    }
+    if (s.seen == 0) return s;
+    // One estimate over all the texel's points: sum(E) = count * mean(E).
+    IrradianceEstimate e = mean_real_irradiance(scene, lit_points, rng, o.probe_samples, 0.5f);
+    s.E = e.E * double(s.seen) + s.E_bounce;
+    s.E_var = std::pow(e.luminance_std_error * s.seen, 2);
+    return s;
+}
+
+/// Every texel's sums, in parallel.
+std::vector<TexelSum> gather_texels(const RenderScene& scene, int proxy, const TexelRuns& runs,
+                                    size_t texels, const AlbedoTextureOptions& o) {
+    // The bounce budget is per texel; each point gets its share, at least a few rays.
+    const int bounce_per_point =
+        o.bounce_samples > 0 ? std::max(4, o.bounce_samples / (o.subsamples * o.subsamples)) : 0;
+    const std::vector<int> pure = pure_pixels(scene);
+    std::vector<TexelSum> sums(texels);
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, texels, 64), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t t = r.begin(); t != r.end(); ++t) {
+                Rng rng = Rng::keyed(o.seed, t, 0xa1bed0);
+                const TexelPoint* points = runs.points.data();
+                sums[t] = gather_texel(scene, pure, proxy, points + runs.first[t],
+                                       points + runs.first[t + 1], o, bounce_per_point, rng);
+            }
+        });
+    return sums;
+}
+
+/// Median irradiance per point over the texels the camera sees: the typical texel's, against
+/// which deep shadow (under an opaque probe) counts as unlit.
+double median_irradiance(const std::vector<TexelSum>& sums) {
+    std::vector<double> lit;
+    for (const TexelSum& s : sums)
+        if (s.seen > 0) lit.push_back(luminance(s.E) / s.seen);
+    if (lit.empty()) return 0;
+    std::nth_element(lit.begin(), lit.begin() + lit.size() / 2, lit.end());
+    return lit[lit.size() / 2];
+}
+
+/// rho = pi L / E per texel, the mask of texels without an estimate and the figures over the
+/// valid ones (left at zero when there is none).
+AlbedoTexture divide_out_irradiance(const std::vector<TexelSum>& sums, TextureSize size,
+                                    double median_E, const AlbedoTextureOptions& o) {
+    AlbedoTexture out;
+    out.albedo = Image(size.width, size.height);
+    out.mask = Image(size.width, size.height);
+    double rel_error_sum = 0, E_total = 0, E_bounce = 0;
+    dvec3 rho_sum(0.0);
+    for (size_t t = 0; t < sums.size(); ++t) {
+        const TexelSum& s = sums[t];
+        if (s.seen == 0) {
+            if (s.clipped > 0) {
+                out.mask[t] = vec3(1, 0, 0);
+                ++out.clipped;
+            } else {
+                out.mask[t] = vec3(0, 1, 0);
+                ++out.unseen;
+            }
+            continue;
+        }
+        double e_lum = luminance(s.E);
+        if (!(e_lum > 0) || e_lum / s.seen < o.min_irradiance_fraction * median_E) {
+            out.mask[t] = vec3(0, 0, 1);
+            ++out.unlit;
+            continue;
+        }
+        dvec3 rho = double(kPi) * s.L / glm::max(s.E, dvec3(1e-30 * e_lum));
+        rho = glm::clamp(rho, dvec3(0.0), dvec3(0.98));
+        out.albedo[t] = vec3(rho);
+        rho_sum += rho;
+        rel_error_sum += std::sqrt(s.E_var) / e_lum;
+        E_total += e_lum;
+        E_bounce += luminance(s.E_bounce);
+        ++out.valid;
+    }
+    if (out.valid == 0) return out;
+    out.mean_albedo = vec3(rho_sum / double(out.valid));
+    out.irradiance_rel_error = rel_error_sum / double(out.valid);
+    out.bounce_fraction = E_total > 0 ? E_bounce / E_total : 0;
+    return out;
+}
+
 }  // namespace
 
 std::vector<size_t> texturable_real_proxies(const Project& project) {
@@ -198,152 +391,17 @@ bool fill_flagged_texels(Image& image, const Image& mask) {
 
 AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy,
                                       const AlbedoTextureOptions& o) {
-    const auto& proxies = scene.project().real;
-    if (proxy < 0 || size_t(proxy) >= proxies.size())
-        throw InputError("", "real", "no real proxy number " + std::to_string(proxy));
-    const std::string field = "real[" + std::to_string(proxy) + "]";
-    const Surface& surface = scene.real_surfaces()[size_t(proxy)];
-    if (surface.analytic_sphere || proxies[size_t(proxy)].shape.kind == Shape::Kind::Sphere)
-        throw InputError(
-            "", field,
-            "albedo textures are estimated for planes, boxes and meshes with UVs, not spheres");
-    if (!surface.mesh || surface.mesh->uvs.empty())
-        throw InputError(
-            "", field,
-            "the proxy's mesh has no texture coordinates (UVs) to estimate a texture on");
-    if (o.subsamples < 1 || o.probe_samples < 1 || o.max_resolution < 1 || o.width < 0 ||
-        o.height < 0)
-        throw InputError("", "options",
-                         "texture size, subsamples and probe samples must be positive");
-
-    int W = o.width, H = o.height;
-    if (W == 0 || H == 0) {
-        W = H = o.max_resolution;
-        const Shape& shape = proxies[size_t(proxy)].shape;
-        const vec3 s = proxies[size_t(proxy)].transform.scale;
-        if (shape.kind == Shape::Kind::Plane) {
-            float sx = std::abs(shape.size.x * s.x), sz = std::abs(shape.size.z * s.z);
-            if (sx > sz)
-                H = std::max(1, int(std::lround(o.max_resolution * sz / sx)));
-            else
-                W = std::max(1, int(std::lround(o.max_resolution * sx / sz)));
-        }
-    }
-
-    std::vector<TexelPoint> points = texel_points(*surface.mesh, W, H, o.subsamples);
-    std::stable_sort(points.begin(), points.end(),
-                     [](const TexelPoint& a, const TexelPoint& b) { return a.texel < b.texel; });
-    // Ranges of `points` per texel, processed in parallel with one random stream per texel so
-    // that the result does not depend on the thread count.
-    std::vector<size_t> first(size_t(W) * H + 1, points.size());
-    for (size_t k = points.size(); k-- > 0;) first[points[k].texel] = k;
-    for (size_t t = size_t(W) * H; t-- > 0;) first[t] = std::min(first[t], first[t + 1]);
-
-    const Camera& camera = scene.camera();
-    const Image& photo = scene.photo();
-    const vec3 eye = camera.position();
-    const int bounce_per_point =
-        o.bounce_samples > 0 ? std::max(4, o.bounce_samples / (o.subsamples * o.subsamples)) : 0;
-    const std::vector<int> pure = pure_pixels(scene);
-    std::vector<TexelSum> sums(size_t(W) * H);
-    tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, size_t(W) * H, 64), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t t = r.begin(); t != r.end(); ++t) {
-                TexelSum& s = sums[t];
-                Rng rng = Rng::keyed(o.seed, t, 0xa1bed0);
-                std::vector<SurfacePoint> lit_points;
-                for (size_t k = first[t]; k < first[t + 1]; ++k) {
-                    const TexelPoint& tp = points[k];
-                    vec3 to_eye = eye - tp.p;
-                    float dist = glm::length(to_eye);
-                    if (!(dist > 0)) continue;
-                    to_eye /= dist;
-                    vec3 n = tp.n;
-                    if (glm::dot(n, to_eye) <= 0)
-                        continue;  // the camera sees this face from behind
-                    vec2 px;
-                    if (!camera.project(tp.p, px) || !camera.in_image(px)) continue;
-                    Hit at;
-                    at.p = tp.p;
-                    at.ng = n;
-                    vec3 org = scene.offset_origin(at, to_eye);
-                    if (scene.occluded_real(Ray{org, to_eye}, glm::length(eye - org) * (1 - 1e-4f)))
-                        continue;
-                    int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
-                    int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
-                    if (pure[size_t(iy) * photo.width() + ix] != proxy) continue;
-                    vec3 L = photo.at(ix, iy);
-                    if (std::max({L.x, L.y, L.z}) >= o.clip_level) {
-                        ++s.clipped;
-                        continue;
-                    }
-                    dvec3 bounce =
-                        bounce_irradiance(scene, pure, tp.p, n, rng, bounce_per_point, 1);
-                    s.L += dvec3(L);
-                    s.E_bounce += bounce;
-                    lit_points.push_back({tp.p, n});
-                    ++s.seen;
-                }
-                if (s.seen == 0) continue;
-                // One estimate over all the texel's points: sum(E) = count * mean(E).
-                IrradianceEstimate e =
-                    mean_real_irradiance(scene, lit_points, rng, o.probe_samples, 0.5f);
-                s.E = e.E * double(s.seen) + s.E_bounce;
-                s.E_var = std::pow(e.luminance_std_error * s.seen, 2);
-            }
-        });
-
-    // Unlit: irradiance far below the typical texel's (deep shadow under an opaque probe).
-    std::vector<double> lit;
-    for (const TexelSum& s : sums)
-        if (s.seen > 0) lit.push_back(luminance(s.E) / s.seen);
-    double median_E = 0;
-    if (!lit.empty()) {
-        std::nth_element(lit.begin(), lit.begin() + lit.size() / 2, lit.end());
-        median_E = lit[lit.size() / 2];
-    }
-
-    AlbedoTexture out;
-    out.albedo = Image(W, H);
-    out.mask = Image(W, H);
-    double rel_error_sum = 0, E_total = 0, E_bounce = 0;
-    dvec3 rho_sum(0.0);
-    for (size_t t = 0; t < sums.size(); ++t) {
-        const TexelSum& s = sums[t];
-        if (s.seen == 0) {
-            if (s.clipped > 0) {
-                out.mask[t] = vec3(1, 0, 0);
-                ++out.clipped;
-            } else {
-                out.mask[t] = vec3(0, 1, 0);
-                ++out.unseen;
-            }
-            continue;
-        }
-        double e_lum = luminance(s.E);
-        if (!(e_lum > 0) || e_lum / s.seen < o.min_irradiance_fraction * median_E) {
-            out.mask[t] = vec3(0, 0, 1);
-            ++out.unlit;
-            continue;
-        }
-        dvec3 rho = double(kPi) * s.L / glm::max(s.E, dvec3(1e-30 * e_lum));
-        rho = glm::clamp(rho, dvec3(0.0), dvec3(0.98));
-        out.albedo[t] = vec3(rho);
-        rho_sum += rho;
-        rel_error_sum += std::sqrt(s.E_var) / e_lum;
-        E_total += e_lum;
-        E_bounce += luminance(s.E_bounce);
-        ++out.valid;
-    }
+    const Surface& surface = texturable_surface(scene, proxy, o);
+    const TextureSize size = texture_size(scene.project().real[size_t(proxy)], o);
+    const TexelRuns runs = texel_runs(*surface.mesh, size, o.subsamples);
+    const std::vector<TexelSum> sums = gather_texels(scene, proxy, runs, size.texels(), o);
+    AlbedoTexture out = divide_out_irradiance(sums, size, median_irradiance(sums), o);
     if (out.valid == 0)
         throw InputError(
-            "", field,
+            "", "real[" + std::to_string(proxy) + "]",
             "the photo never sees this proxy lit and unclipped; no albedo can be estimated (" +
                 std::to_string(out.unseen) + " texels unseen, " + std::to_string(out.clipped) +
                 " clipped, " + std::to_string(out.unlit) + " unlit)");
-    out.mean_albedo = vec3(rho_sum / double(out.valid));
-    out.irradiance_rel_error = rel_error_sum / double(out.valid);
-    out.bounce_fraction = E_total > 0 ? E_bounce / E_total : 0;
     fill_flagged_texels(out.albedo, out.mask);
     return out;
 }
