@@ -334,11 +334,10 @@ void MainWindow::endInteraction() {
 void MainWindow::addObject(Shape::Kind kind) {
     if (!doc_->isOpen()) return;
     Project p = doc_->project();
-    static const char* names[] = {"plane", "box", "sphere", "mesh"};
     // New objects appear where the camera looks, on the ground.
     vec3 at = p.camera.model == CameraSpec::Model::LookAt ? p.camera.target : vec3(0);
-    p.objects.push_back(make_object(kind, at, unique_name(p, names[int(kind)])));
-    doc_->edit(tr("Add %1").arg(names[int(kind)]), p);
+    p.objects.push_back(make_object(kind, at, unique_name(p, shape_kind_name(kind))));
+    doc_->edit(tr("Add %1").arg(shape_kind_name(kind)), p);
     doc_->select(int(p.objects.size()) - 1);
 }
 

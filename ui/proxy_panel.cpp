@@ -141,10 +141,9 @@ ProxyPanel::ProxyPanel(Document* doc, Viewport* viewport, ErrorReporter* reporte
 void ProxyPanel::refresh() {
     const int row = list_->currentRow();
     list_->clear();
-    static const char* kinds[] = {"plane", "box", "sphere", "mesh"};
     for (const RealProxy& r : doc_->project().real) {
         QString text = QStringLiteral("%1 (%2)").arg(QString::fromStdString(r.name),
-                                                    kinds[int(r.shape.kind)]);
+                                                    shape_kind_name(r.shape.kind));
         if (r.albedo.kind == Albedo::Kind::Texture) text += tr(", textured");
         list_->addItem(text);
     }

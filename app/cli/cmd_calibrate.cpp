@@ -51,8 +51,8 @@ ChessboardSpec parse_board(const std::string& text, double square) {
         spec.rows = std::stoi(text.substr(x + 1), &b);
         if (a != x || b != text.size() - x - 1) throw std::invalid_argument("junk");
     } catch (const std::exception&) {
-        throw InputError("", "--board", "expected COLSxROWS inner corners (e.g. 9x6), got '" +
-                                            text + "'");
+        throw InputError("", "--board",
+                         "expected COLSxROWS inner corners (e.g. 9x6), got '" + text + "'");
     }
     spec.square_size = square;
     return spec;
@@ -72,11 +72,12 @@ int run_chessboard(const ChessboardOptions& o) {
         ChessboardCalibration c = calibrate_chessboard(views, spec);
         for (size_t i = 0; i < views.size(); ++i) {
             const glm::dvec3 pos = c.poses[i].position();
-            std::printf("photo %s: rms_px %.4f position %.4f %.4f %.4f ± %.2g m "
-                        "rotation ± %.2g°%s\n",
-                        views[i].source.c_str(), c.view_rms_px[i], pos.x, pos.y, pos.z,
-                        c.view_uncertainty[i].position_m, c.view_uncertainty[i].rotation_deg,
-                        c.duplicate_of[i] >= 0 ? " (duplicate, not in the lens fit)" : "");
+            std::printf(
+                "photo %s: rms_px %.4f position %.4f %.4f %.4f ± %.2g m "
+                "rotation ± %.2g°%s\n",
+                views[i].source.c_str(), c.view_rms_px[i], pos.x, pos.y, pos.z,
+                c.view_uncertainty[i].position_m, c.view_uncertainty[i].rotation_deg,
+                c.duplicate_of[i] >= 0 ? " (duplicate, not in the lens fit)" : "");
         }
         if (!o.poses.empty()) poses = chessboard_poses_json(c, views, spec);
         const size_t keep = project_photo(o.project, o.photos);
@@ -127,8 +128,7 @@ int run_exif(const ExifOptions& o) {
         r.pose.t = glm::dvec3(cam.translation());
         r.intrinsics.distortion = cam.distortion();
     }
-    std::printf("exif: %s%s%s\n", e.camera.c_str(), e.camera.empty() ? "" : ", ",
-                e.method.c_str());
+    std::printf("exif: %s%s%s\n", e.camera.c_str(), e.camera.empty() ? "" : ", ", e.method.c_str());
     print_result(r, "EXIF focal length (pose kept from the project)");
     write_camera(o.project, r, o.photo);
     return 0;
@@ -171,9 +171,7 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
                         "first's). One photo: give the focal length or let the board estimate it")
             ->required();
         sub->add_option("--board", o->board, "Inner corners COLSxROWS (default 9x6)");
-        sub->add_option("--square", o->square, "Square size in metres")
-            ->required()
-            ->check(kFinite);
+        sub->add_option("--square", o->square, "Square size in metres")->required()->check(kFinite);
         o->focal.add_to(sub);
         sub->add_option("--poses", o->poses,
                         "Write every photo's pose (and its corners) to this JSON file");
@@ -184,8 +182,7 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
         CLI::App* sub = calibrate.add_subcommand(
             "exif", "Focal length from the photo's EXIF data (keeps the camera's pose)");
         sub->add_option("project", o->project, "Project file to write or update")->required();
-        sub->add_option("photo", o->photo, "Photo with EXIF data (JPEG, TIFF, raw...)")
-            ->required();
+        sub->add_option("photo", o->photo, "Photo with EXIF data (JPEG, TIFF, raw...)")->required();
         sub->add_option("--sensor-width", o->sensor_width, "Sensor width in millimetres")
             ->check(kFinite);
         out.push_back({sub, [o] { return run_exif(*o); }});
@@ -213,7 +210,9 @@ Command add_calibrate_command(CLI::App& app) {
     for (Group add_group : {&add_calibrate_camera_commands})
         for (Command& c : add_group(*sub)) commands->push_back(std::move(c));
     // proxy, albedo and probe run from their own CLI11 callbacks while parsing.
-    add_calibrate_scene_commands(*sub);
+    add_calibrate_proxy_command(*sub);
+    add_calibrate_albedo_command(*sub);
+    add_calibrate_probe_command(*sub);
     return {sub, [commands] {
                 for (const Command& c : *commands)
                     if (c.app->parsed()) return c.run();

@@ -1,8 +1,7 @@
 #pragma once
+#include <CLI/CLI.hpp>
 #include <functional>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 namespace dp::cli {
 
@@ -26,10 +25,13 @@ Command add_bench_command(CLI::App& app);
 Command add_calibrate_command(CLI::App& app);
 /// Camera matching: chessboard, rectangle, points, vanishing, exif, fspy.
 std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate);
-/// `calibrate proxy|albedo|probe`: real proxies, albedo textures and probe alignment, added to
-/// the `calibrate` command. Each subcommand runs from its CLI11 callback and throws InputError
-/// for bad input.
-void add_calibrate_scene_commands(CLI::App& calibrate);
+/// `calibrate proxy`, `albedo` and `probe` (cmd_calibrate_proxy.cpp, cmd_calibrate_albedo.cpp,
+/// cmd_calibrate_probe.cpp): real proxies, albedo textures and probe alignment, added to the
+/// `calibrate` command. Each subcommand runs from its CLI11 callback and throws InputError for
+/// bad input.
+void add_calibrate_proxy_command(CLI::App& calibrate);
+void add_calibrate_albedo_command(CLI::App& calibrate);
+void add_calibrate_probe_command(CLI::App& calibrate);
 /// Hidden: writes constant images and synthetic probes for the shell tests.
 Command add_make_test_image_command(CLI::App& app);
 

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-
 #include <opencv2/core.hpp>
 
 #include "base/error.h"
@@ -20,8 +19,12 @@ using calib::LeastSquaresResult;
 
 constexpr const char* kAxisName[3] = {"x", "y", "z"};
 
-glm::dvec3 homog(const ImagePoint& p) { return glm::dvec3(p, 1.0); }
-glm::dvec3 column(const glm::dmat3& R, int a) { return glm::dvec3(R[a][0], R[a][1], R[a][2]); }
+glm::dvec3 homog(const ImagePoint& p) {
+    return glm::dvec3(p, 1.0);
+}
+glm::dvec3 column(const glm::dmat3& R, int a) {
+    return glm::dvec3(R[a][0], R[a][1], R[a][2]);
+}
 
 /// The segments of the directions in use.
 struct Axes {
@@ -184,9 +187,9 @@ Axes check_axes(const VanishingInput& in, double image_size, const std::string& 
         const auto& segs = *ax.segs[size_t(a)];
         if (segs.empty()) continue;
         if (segs.size() < 2)
-            throw InputError(source, kAxisName[a],
-                             "need at least 2 line segments per direction, got " +
-                                 std::to_string(segs.size()));
+            throw InputError(
+                source, kAxisName[a],
+                "need at least 2 line segments per direction, got " + std::to_string(segs.size()));
         for (const LineSegment& s : segs) {
             if (!std::isfinite(s.a.x) || !std::isfinite(s.a.y) || !std::isfinite(s.b.x) ||
                 !std::isfinite(s.b.y))
@@ -272,11 +275,130 @@ void check_orthogonal(const std::array<glm::dvec3, 3>& vp, const Axes& ax, const
             if (!(f2 > 0))
                 throw InputError(source, "",
                                  "these directions cannot be orthogonal in a pinhole photo (the "
-                                 "focal length squared would be " + std::to_string(f2) +
+                                 "focal length squared would be " +
+                                     std::to_string(f2) +
                                      " px^2 <= 0): check that each group's lines are parallel "
                                      "in the world (a line in the wrong group?) and the groups "
                                      "are at right angles");
         }
+}
+
+/// What the steps of the fit share: the checked input and the figures derived from it.
+struct LineProblem {
+    const VanishingInput& in;
+    const std::string& source;
+    int width = 0, height = 0;
+    Axes ax;
+    double size = 0;   ///< the longer image side, pixels: the scale of every tolerance
+    double click = 0;  ///< the click noise floor, pixels
+    bool free_focal = false;
+};
+
+/// Throws InputError for an empty image, unusable segments or a focal length <= 0.
+LineProblem checked_problem(const VanishingInput& in, int width, int height,
+                            const std::string& source) {
+    if (width <= 0 || height <= 0)
+        throw InputError(source, "size", "the image size must be positive");
+    const double size = double(std::max(width, height));
+    const Axes ax = check_axes(in, size, source);
+    if (in.focal_px) check_focal(*in.focal_px, source, "focal");
+    return {in, source, width, height, ax, size, std::max(0.0, in.click_sigma_px), !in.focal_px};
+}
+
+/// `fit` refitted with the principal point free where the lines pin it down (three directions,
+/// to within 5 % of the image size); otherwise `fit` itself, and a warning says why.
+LineFit with_free_principal_point(const LineProblem& p, const LineFit& fit,
+                                  std::vector<std::string>& warnings) {
+    if (p.ax.count < 3) {
+        warnings.push_back(
+            "the principal point needs lines along all three directions: it "
+            "is held at the image centre");
+        return fit;
+    }
+    LineFit free = fit_lines(p.ax, {fit.camera()}, p.free_focal, true, p.size, p.click);
+    const double s = std::max(free.sigma_pp(0), free.sigma_pp(1));
+    if (s < 0.05 * p.size) return free;
+    char buf[256];
+    std::snprintf(buf, sizeof(buf),
+                  "the lines do not pin down the principal point (± %.0f px): it is "
+                  "held at the image centre",
+                  s);
+    warnings.push_back(buf);
+    return fit;
+}
+
+/// Throws InputError when the fit gives no usable camera: directions that cannot be
+/// orthogonal, a focal length the lines leave free, or residuals far beyond click noise.
+/// `r` holds the fit's intrinsics and RMS error.
+void refuse_unusable_fit(const LineProblem& p, const LineFit& fit,
+                         const std::array<glm::dvec3, 3>& vp, const CalibrationResult& r) {
+    const LineCamera& cam = fit.camera();
+    // A poor fit whose directions' own vanishing points contradict orthogonality is a
+    // grouping mistake; say so before anything the fit then did to reconcile them.
+    check_orthogonal(vp, p.ax, cam.c, p.size, fit.cost, p.click, false, p.source);
+    if (p.free_focal && !(fit.relative_sigma_focal() < 1.0)) {
+        check_orthogonal(vp, p.ax, cam.c, p.size, fit.cost, p.click, true, p.source);
+        throw InputError(p.source, "focal",
+                         "the focal length is not determined by these lines: " +
+                             undetermined_focal(cam, p.ax, p.size));
+    }
+    check_usable_fit(r, p.source, "",
+                     "check that each group's lines are parallel in the world and the groups "
+                     "are at right angles (a line in the wrong group?)");
+}
+
+/// The world-to-camera pose: the fitted rotation, the centre placed by the origin and scale.
+Pose placed_pose(const LineProblem& p, const LineCamera& cam, const Intrinsics& k) {
+    const glm::dvec3 C = calib::place_camera(cam.R, k, p.in, p.source);
+    Pose pose;
+    pose.R = cam.R;
+    pose.t = -(cam.R * C);
+    return pose;
+}
+
+/// Covariance (m^2) of the camera centre from the click noise `sigma` of the origin and scale
+/// points, which the line fit's parameters do not carry: central differences per coordinate.
+glm::dmat3 placement_click_covariance(const LineProblem& p, const LineCamera& cam,
+                                      const Intrinsics& k, double sigma) {
+    const std::vector<ImagePoint> clicks = calib::placement_points(p.in);
+    cv::Mat Jc(3, int(2 * clicks.size()), CV_64F);
+    for (size_t i = 0; i < 2 * clicks.size(); ++i) {
+        std::vector<ImagePoint> plus = clicks, minus = clicks;
+        plus[i / 2][int(i % 2)] += 1e-3;
+        minus[i / 2][int(i % 2)] -= 1e-3;
+        auto at = [&](const std::vector<ImagePoint>& points) {
+            return calib::place_camera(cam.R, k, calib::with_placement_points(p.in, points),
+                                       p.source);
+        };
+        const glm::dvec3 d = (at(plus) - at(minus)) / 2e-3;
+        for (int j = 0; j < 3; ++j) Jc.at<double>(j, int(i)) = d[j];
+    }
+    const cv::Mat click_cov = sigma * sigma * Jc * Jc.t();
+    glm::dmat3 cov(0.0);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) cov[j][i] = click_cov.at<double>(i, j);
+    return cov;
+}
+
+/// The fit's covariance carried to the intrinsics and the camera centre, plus the click noise
+/// of the origin and scale points.
+Uncertainty line_fit_uncertainty(const LineProblem& p, const LineFit& fit, const Intrinsics& k) {
+    const LineCamera& cam = fit.camera();
+    Uncertainty u;
+    u.known = true;
+    u.point_sigma_px = fit.sigma;
+    u.focal_free = p.free_focal;
+    u.principal_free = fit.params.free_pp;
+    u.fx = u.fy = cam.f * fit.relative_sigma_focal();
+    u.cx = fit.sigma_pp(0), u.cy = fit.sigma_pp(1);
+    calib::pose_uncertainty(
+        fit.cov, std::vector<double>(size_t(fit.params.count()), 0.0),
+        [&](const std::vector<double>& x) {
+            const LineCamera c = fit.params.apply(x);
+            return calib::place_camera(c.R, c.intrinsics(p.width, p.height), p.in, p.source);
+        },
+        u, placement_click_covariance(p, cam, k, fit.sigma));
+    return u;
 }
 
 }  // namespace
@@ -290,8 +412,8 @@ glm::dvec3 vanishing_point(const std::vector<LineSegment>& segments) {
     scale = scale > 0 ? scale : 1;
     cv::Mat A(int(segments.size()), 3, CV_64F);
     for (size_t i = 0; i < segments.size(); ++i) {
-        glm::dvec3 l = glm::cross(homog((segments[i].a - o) / scale),
-                                  homog((segments[i].b - o) / scale));
+        glm::dvec3 l =
+            glm::cross(homog((segments[i].a - o) / scale), homog((segments[i].b - o) / scale));
         l /= glm::length(glm::dvec2(l));
         A.at<double>(int(i), 0) = l.x, A.at<double>(int(i), 1) = l.y, A.at<double>(int(i), 2) = l.z;
     }
@@ -304,93 +426,22 @@ glm::dvec3 vanishing_point(const std::vector<LineSegment>& segments) {
 
 CalibrationResult calibrate_vanishing(const VanishingInput& in, int width, int height,
                                       const std::string& source) {
-    if (width <= 0 || height <= 0)
-        throw InputError(source, "size", "the image size must be positive");
-    const double size = double(std::max(width, height));
-    const Axes ax = check_axes(in, size, source);
-    if (in.focal_px) check_focal(*in.focal_px, source, "focal");
-    const bool free_focal = !in.focal_px;
-    const double click = std::max(0.0, in.click_sigma_px);
+    const LineProblem p = checked_problem(in, width, height, source);
     const ImagePoint centre(0.5 * (width - 1), 0.5 * (height - 1));
-
-    std::array<glm::dvec3, 3> vp{};
-    LineFit fit = fit_lines(ax, starts(ax, in, centre, size, vp), free_focal, false, size, click);
+    std::array<glm::dvec3, 3> vp{};  // each direction's own vanishing point, from `starts`
+    LineFit fit =
+        fit_lines(p.ax, starts(p.ax, in, centre, p.size, vp), p.free_focal, false, p.size, p.click);
     std::vector<std::string> warnings;
-    if (in.free_principal_point) {
-        if (ax.count < 3) {
-            warnings.push_back("the principal point needs lines along all three directions: it "
-                               "is held at the image centre");
-        } else {
-            LineFit free = fit_lines(ax, {fit.camera()}, free_focal, true, size, click);
-            const double s = std::max(free.sigma_pp(0), free.sigma_pp(1));
-            char buf[256];
-            if (s < 0.05 * size) {
-                fit = free;
-            } else {
-                std::snprintf(buf, sizeof(buf),
-                              "the lines do not pin down the principal point (± %.0f px): it is "
-                              "held at the image centre",
-                              s);
-                warnings.push_back(buf);
-            }
-        }
-    }
+    if (in.free_principal_point) fit = with_free_principal_point(p, fit, warnings);
+
     CalibrationResult r;
-    const LineCamera& cam = fit.camera();
-    r.intrinsics = cam.intrinsics(width, height);
+    r.intrinsics = fit.camera().intrinsics(width, height);
     r.rms_px = fit.rms();
-    // A poor fit whose directions' own vanishing points contradict orthogonality is a
-    // grouping mistake; say so before anything the fit then did to reconcile them.
-    check_orthogonal(vp, ax, cam.c, size, fit.cost, click, false, source);
-    if (free_focal && !(fit.relative_sigma_focal() < 1.0)) {
-        check_orthogonal(vp, ax, cam.c, size, fit.cost, click, true, source);
-        throw InputError(source, "focal",
-                         "the focal length is not determined by these lines: " +
-                             undetermined_focal(cam, ax, size));
-    }
-    check_usable_fit(r, source, "",
-                     "check that each group's lines are parallel in the world and the groups "
-                     "are at right angles (a line in the wrong group?)");
-    const glm::dvec3 C = calib::place_camera(cam.R, r.intrinsics, in, source);
-    r.pose.R = cam.R;
-    r.pose.t = -(cam.R * C);
-
-    // Uncertainty: the fit's covariance carried to the camera centre, plus the click noise of
-    // the origin and scale points.
-    Uncertainty& u = r.uncertainty;
-    u.known = true;
-    u.point_sigma_px = fit.sigma;
-    u.focal_free = free_focal;
-    u.principal_free = fit.params.free_pp;
-    u.fx = u.fy = cam.f * fit.relative_sigma_focal();
-    u.cx = fit.sigma_pp(0), u.cy = fit.sigma_pp(1);
-    const std::vector<ImagePoint> clicks = calib::placement_points(in);
-    cv::Mat Jc(3, int(2 * clicks.size()), CV_64F);
-    for (size_t i = 0; i < 2 * clicks.size(); ++i) {
-        std::vector<ImagePoint> plus = clicks, minus = clicks;
-        plus[i / 2][int(i % 2)] += 1e-3;
-        minus[i / 2][int(i % 2)] -= 1e-3;
-        auto at = [&](const std::vector<ImagePoint>& p) {
-            return calib::place_camera(cam.R, r.intrinsics, calib::with_placement_points(in, p),
-                                       source);
-        };
-        const glm::dvec3 d = (at(plus) - at(minus)) / 2e-3;
-        for (int k = 0; k < 3; ++k) Jc.at<double>(k, int(i)) = d[k];
-    }
-    const cv::Mat click_cov = fit.sigma * fit.sigma * Jc * Jc.t();
-    glm::dmat3 extra(0.0);
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) extra[j][i] = click_cov.at<double>(i, j);
-    calib::pose_uncertainty(
-        fit.cov, std::vector<double>(size_t(fit.params.count()), 0.0),
-        [&](const std::vector<double>& x) {
-            const LineCamera c = fit.params.apply(x);
-            return calib::place_camera(c.R, c.intrinsics(width, height), in, source);
-        },
-        u, extra);
-
+    refuse_unusable_fit(p, fit, vp, r);
+    r.pose = placed_pose(p, fit.camera(), r.intrinsics);
+    r.uncertainty = line_fit_uncertainty(p, fit, r.intrinsics);
     r.warnings = warnings;
-    for (std::string& w : calib::scale_warnings(cam.R, r.intrinsics, in, fit.sigma))
+    for (std::string& w : calib::scale_warnings(fit.camera().R, r.intrinsics, in, fit.sigma))
         r.warnings.push_back(std::move(w));
     add_quality_warnings(r);
     return r;

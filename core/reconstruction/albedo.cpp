@@ -1,21 +1,19 @@
 #include "reconstruction/albedo.h"
 
-#include <cctype>
-
-#include "image/image_io.h"
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "assets/irradiance.h"
 #include "base/error.h"
 #include "base/rng.h"
 #include "base/sampling.h"
-#include "assets/irradiance.h"
+#include "image/image_io.h"
 
 namespace dp {
 
@@ -33,15 +31,18 @@ std::vector<TexelPoint> texel_points(const TriangleMesh& mesh, int W, int H, int
     std::vector<TexelPoint> out;
     for (const glm::uvec3& tri : mesh.triangles) {
         const vec2 a = mesh.uvs[tri.x], b = mesh.uvs[tri.y], c = mesh.uvs[tri.z];
-        const vec3 pa = mesh.positions[tri.x], pb = mesh.positions[tri.y], pc = mesh.positions[tri.z];
+        const vec3 pa = mesh.positions[tri.x], pb = mesh.positions[tri.y],
+                   pc = mesh.positions[tri.z];
         vec3 ng = glm::cross(pb - pa, pc - pa);
         float area = glm::length(ng);
         float det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
         if (!(area > 0) || det == 0) continue;
         ng /= area;
         vec2 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
-        int i0 = std::max(0, int(std::floor(lo.x * W))), i1 = std::min(W - 1, int(std::floor(hi.x * W)));
-        int j0 = std::max(0, int(std::floor(lo.y * H))), j1 = std::min(H - 1, int(std::floor(hi.y * H)));
+        int i0 = std::max(0, int(std::floor(lo.x * W))),
+            i1 = std::min(W - 1, int(std::floor(hi.x * W)));
+        int j0 = std::max(0, int(std::floor(lo.y * H))),
+            j1 = std::min(H - 1, int(std::floor(hi.y * H)));
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i)
                 for (int sy = 0; sy < n; ++sy)
@@ -83,26 +84,26 @@ std::vector<int> pure_pixels(const RenderScene& scene) {
     return out;
 }
 
+/// The photo's radiance at real point `p` of proxy `proxy`, if the camera sees the point from
+/// the side `n` faces, unoccluded, in a pixel that shows that proxy alone.
+bool photographed_pure(const RenderScene& scene, const std::vector<int>& pure, int proxy, const vec3& p,
+                       const vec3& n, vec3& L) {
+    if (!(glm::dot(n, scene.camera().position() - p) > 0)) return false;  // seen from behind
+    vec2 px;
+    if (!scene.camera_sees(p, n, &px)) return false;
+    const Image& photo = scene.photo();
+    const int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
+    const int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
+    if (pure[size_t(iy) * photo.width() + ix] != proxy) return false;
+    L = photo.at(ix, iy);
+    return true;
+}
+
 /// Radiance the camera photographed leaving real point `y` (facing side `ny`), if the camera
 /// sees it in a pixel that shows its proxy alone.
 bool photographed_radiance(const RenderScene& scene, const std::vector<int>& pure, const Hit& y,
                            const vec3& ny, vec3& L) {
-    const Camera& camera = scene.camera();
-    const Image& photo = scene.photo();
-    vec3 to_eye = camera.position() - y.p;
-    float dist = glm::length(to_eye);
-    vec2 px;
-    if (!(dist > 0) || glm::dot(ny, to_eye) <= 0 || !camera.project(y.p, px) || !camera.in_image(px)) return false;
-    int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
-    int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
-    if (pure[size_t(iy) * photo.width() + ix] != y.surface->index) return false;
-    Hit hy = y;
-    hy.ng = ny;
-    vec3 dir = to_eye / dist;
-    vec3 org = scene.offset_origin(hy, dir);
-    if (scene.occluded_real(Ray{org, dir}, glm::length(camera.position() - org) * (1 - 1e-4f))) return false;
-    L = photo.at(ix, iy);
-    return true;
+    return photographed_pure(scene, pure, y.surface->index, y.p, ny, L);
 }
 
 /// Irradiance at (p, n) from light the other real surfaces reflect: cosine-distributed rays,
@@ -110,8 +111,8 @@ bool photographed_radiance(const RenderScene& scene, const std::vector<int>& pur
 /// the same radiance every way, so where the camera sees it that is its photo pixel; where it
 /// does not, its albedo times its own irradiance over pi (probe light plus, `depth` > 0, the
 /// light it gets from photographed surfaces).
-dvec3 bounce_irradiance(const RenderScene& scene, const std::vector<int>& pure, const vec3& p, const vec3& n,
-                        Rng& rng, int samples, int depth) {
+dvec3 bounce_irradiance(const RenderScene& scene, const std::vector<int>& pure, const vec3& p,
+                        const vec3& n, Rng& rng, int samples, int depth) {
     if (samples <= 0) return dvec3(0.0);
     const Frame frame(n);
     Hit at;
@@ -143,7 +144,188 @@ struct TexelSum {
     int seen = 0, clipped = 0;
 };
 
+/// The surface of real proxy `proxy`, after checking that a texture can be estimated on it with
+/// options `o`. Throws InputError as estimate_albedo_texture documents.
+const Surface& texturable_surface(const RenderScene& scene, int proxy,
+                                  const AlbedoTextureOptions& o) {
+    const auto& proxies = scene.project().real;
+    if (proxy < 0 || size_t(proxy) >= proxies.size())
+        throw InputError("", "real", "no real proxy number " + std::to_string(proxy));
+    const std::string field = "real[" + std::to_string(proxy) + "]";
+    const Surface& surface = scene.real_surfaces()[size_t(proxy)];
+    if (surface.analytic_sphere || proxies[size_t(proxy)].shape.kind == Shape::Kind::Sphere)
+        throw InputError(
+            "", field,
+            "albedo textures are estimated for planes, boxes and meshes with UVs, not spheres");
+    if (!surface.mesh || surface.mesh->uvs.empty())
+        throw InputError(
+            "", field,
+            "the proxy's mesh has no texture coordinates (UVs) to estimate a texture on");
+    if (o.subsamples < 1 || o.probe_samples < 1 || o.max_resolution < 1 || o.width < 0 ||
+        o.height < 0)
+        throw InputError("", "options",
+                         "texture size, subsamples and probe samples must be positive");
+    return surface;
+}
+
+struct TextureSize {
+    int width = 0, height = 0;
+    size_t texels() const { return size_t(width) * height; }
+};
+
+/// The size asked for, else `max_resolution` square; a plane's texture follows its aspect so
+/// that texels stay square on the surface.
+TextureSize texture_size(const RealProxy& proxy, const AlbedoTextureOptions& o) {
+    if (o.width != 0 && o.height != 0) return {o.width, o.height};
+    TextureSize size{o.max_resolution, o.max_resolution};
+    const Shape& shape = proxy.shape;
+    const vec3 s = proxy.transform.scale;
+    if (shape.kind == Shape::Kind::Plane) {
+        float sx = std::abs(shape.size.x * s.x), sz = std::abs(shape.size.z * s.z);
+        if (sx > sz)
+            size.height = std::max(1, int(std::lround(o.max_resolution * sz / sx)));
+        else
+            size.width = std::max(1, int(std::lround(o.max_resolution * sx / sz)));
+    }
+    return size;
+}
+
+/// The texels' sample points grouped by texel.
+struct TexelRuns {
+    std::vector<TexelPoint> points;  ///< sorted by texel
+    std::vector<size_t> first;       ///< texel t's points are [first[t], first[t + 1])
+};
+
+/// Every texel's sample points, grouped so that each texel can be gathered on its own (in
+/// parallel, with one random stream per texel: the result does not depend on the thread count).
+TexelRuns texel_runs(const TriangleMesh& mesh, TextureSize size, int subsamples) {
+    TexelRuns runs;
+    runs.points = texel_points(mesh, size.width, size.height, subsamples);
+    std::vector<TexelPoint>& points = runs.points;
+    std::stable_sort(points.begin(), points.end(),
+                     [](const TexelPoint& a, const TexelPoint& b) { return a.texel < b.texel; });
+    std::vector<size_t>& first = runs.first;
+    first.assign(size.texels() + 1, points.size());
+    for (size_t k = points.size(); k-- > 0;) first[points[k].texel] = k;
+    for (size_t t = size.texels(); t-- > 0;) first[t] = std::min(first[t], first[t + 1]);
+    return runs;
+}
+
+/// The photo pixel that shows texel point `tp` of proxy `proxy`, if the camera sees the point
+/// from the front, unoccluded, in a pixel that shows that proxy alone.
+bool photographed_texel_point(const RenderScene& scene, const std::vector<int>& pure, int proxy,
+                              const TexelPoint& tp, vec3& L) {
+    return photographed_pure(scene, pure, proxy, tp.p, tp.n, L);
+}
+
+/// Photographed radiance and irradiance summed over one texel's points [begin, end).
+TexelSum gather_texel(const RenderScene& scene, const std::vector<int>& pure, int proxy,
+                      const TexelPoint* begin, const TexelPoint* end, const AlbedoTextureOptions& o,
+                      int bounce_per_point, Rng& rng) {
+    TexelSum s;
+    std::vector<SurfacePoint> lit_points;
+    for (const TexelPoint* tp = begin; tp != end; ++tp) {
+        vec3 L;
+        if (!photographed_texel_point(scene, pure, proxy, *tp, L)) continue;
+        if (std::max({L.x, L.y, L.z}) >= o.clip_level) {
+            ++s.clipped;
+            continue;
+        }
+        s.L += dvec3(L);
+        s.E_bounce += bounce_irradiance(scene, pure, tp->p, tp->n, rng, bounce_per_point, 1);
+        lit_points.push_back({tp->p, tp->n});
+        ++s.seen;
+    }
+    if (s.seen == 0) return s;
+    // One estimate over all the texel's points: sum(E) = count * mean(E).
+    IrradianceEstimate e = mean_real_irradiance(scene, lit_points, rng, o.probe_samples, 0.5f);
+    s.E = e.E * double(s.seen) + s.E_bounce;
+    s.E_var = std::pow(e.luminance_std_error * s.seen, 2);
+    return s;
+}
+
+/// Every texel's sums, in parallel.
+std::vector<TexelSum> gather_texels(const RenderScene& scene, int proxy, const TexelRuns& runs,
+                                    size_t texels, const AlbedoTextureOptions& o) {
+    // The bounce budget is per texel; each point gets its share, at least a few rays.
+    const int bounce_per_point =
+        o.bounce_samples > 0 ? std::max(4, o.bounce_samples / (o.subsamples * o.subsamples)) : 0;
+    const std::vector<int> pure = pure_pixels(scene);
+    std::vector<TexelSum> sums(texels);
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, texels, 64), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t t = r.begin(); t != r.end(); ++t) {
+                Rng rng = rng_stream::albedo_texel(o.seed, t);
+                const TexelPoint* points = runs.points.data();
+                sums[t] = gather_texel(scene, pure, proxy, points + runs.first[t],
+                                       points + runs.first[t + 1], o, bounce_per_point, rng);
+            }
+        });
+    return sums;
+}
+
+/// Median irradiance per point over the texels the camera sees: the typical texel's, against
+/// which deep shadow (under an opaque probe) counts as unlit.
+double median_irradiance(const std::vector<TexelSum>& sums) {
+    std::vector<double> lit;
+    for (const TexelSum& s : sums)
+        if (s.seen > 0) lit.push_back(luminance(s.E) / s.seen);
+    if (lit.empty()) return 0;
+    std::nth_element(lit.begin(), lit.begin() + lit.size() / 2, lit.end());
+    return lit[lit.size() / 2];
+}
+
+/// rho = pi L / E per texel, the mask of texels without an estimate and the figures over the
+/// valid ones (left at zero when there is none).
+AlbedoTexture divide_out_irradiance(const std::vector<TexelSum>& sums, TextureSize size,
+                                    double median_E, const AlbedoTextureOptions& o) {
+    AlbedoTexture out;
+    out.albedo = Image(size.width, size.height);
+    out.mask = Image(size.width, size.height);
+    double rel_error_sum = 0, E_total = 0, E_bounce = 0;
+    dvec3 rho_sum(0.0);
+    for (size_t t = 0; t < sums.size(); ++t) {
+        const TexelSum& s = sums[t];
+        if (s.seen == 0) {
+            if (s.clipped > 0) {
+                out.mask[t] = vec3(1, 0, 0);
+                ++out.clipped;
+            } else {
+                out.mask[t] = vec3(0, 1, 0);
+                ++out.unseen;
+            }
+            continue;
+        }
+        double e_lum = luminance(s.E);
+        if (!(e_lum > 0) || e_lum / s.seen < o.min_irradiance_fraction * median_E) {
+            out.mask[t] = vec3(0, 0, 1);
+            ++out.unlit;
+            continue;
+        }
+        dvec3 rho = double(kPi) * s.L / glm::max(s.E, dvec3(1e-30 * e_lum));
+        rho = glm::clamp(rho, dvec3(0.0), dvec3(0.98));
+        out.albedo[t] = vec3(rho);
+        rho_sum += rho;
+        rel_error_sum += std::sqrt(s.E_var) / e_lum;
+        E_total += e_lum;
+        E_bounce += luminance(s.E_bounce);
+        ++out.valid;
+    }
+    if (out.valid == 0) return out;
+    out.mean_albedo = vec3(rho_sum / double(out.valid));
+    out.irradiance_rel_error = rel_error_sum / double(out.valid);
+    out.bounce_fraction = E_total > 0 ? E_bounce / E_total : 0;
+    return out;
+}
+
 }  // namespace
+
+std::vector<size_t> texturable_real_proxies(const Project& project) {
+    std::vector<size_t> out;
+    for (size_t i = 0; i < project.real.size(); ++i)
+        if (project.real[i].shape.kind != Shape::Kind::Sphere) out.push_back(i);
+    return out;
+}
 
 bool fill_flagged_texels(Image& image, const Image& mask) {
     const int W = image.width(), H = image.height();
@@ -185,139 +367,19 @@ bool fill_flagged_texels(Image& image, const Image& mask) {
     return true;
 }
 
-AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy, const AlbedoTextureOptions& o) {
-    const auto& proxies = scene.project().real;
-    if (proxy < 0 || size_t(proxy) >= proxies.size())
-        throw InputError("", "real", "no real proxy number " + std::to_string(proxy));
-    const std::string field = "real[" + std::to_string(proxy) + "]";
-    const Surface& surface = scene.real_surfaces()[size_t(proxy)];
-    if (surface.analytic_sphere || proxies[size_t(proxy)].shape.kind == Shape::Kind::Sphere)
-        throw InputError("", field, "albedo textures are estimated for planes, boxes and meshes with UVs, not spheres");
-    if (!surface.mesh || surface.mesh->uvs.empty())
-        throw InputError("", field, "the proxy's mesh has no texture coordinates (UVs) to estimate a texture on");
-    if (o.subsamples < 1 || o.probe_samples < 1 || o.max_resolution < 1 || o.width < 0 || o.height < 0)
-        throw InputError("", "options", "texture size, subsamples and probe samples must be positive");
-
-    int W = o.width, H = o.height;
-    if (W == 0 || H == 0) {
-        W = H = o.max_resolution;
-        const Shape& shape = proxies[size_t(proxy)].shape;
-        const vec3 s = proxies[size_t(proxy)].transform.scale;
-        if (shape.kind == Shape::Kind::Plane) {
-            float sx = std::abs(shape.size.x * s.x), sz = std::abs(shape.size.z * s.z);
-            if (sx > sz) H = std::max(1, int(std::lround(o.max_resolution * sz / sx)));
-            else W = std::max(1, int(std::lround(o.max_resolution * sx / sz)));
-        }
-    }
-
-    std::vector<TexelPoint> points = texel_points(*surface.mesh, W, H, o.subsamples);
-    std::stable_sort(points.begin(), points.end(),
-                     [](const TexelPoint& a, const TexelPoint& b) { return a.texel < b.texel; });
-    // Ranges of `points` per texel, processed in parallel with one random stream per texel so
-    // that the result does not depend on the thread count.
-    std::vector<size_t> first(size_t(W) * H + 1, points.size());
-    for (size_t k = points.size(); k-- > 0;) first[points[k].texel] = k;
-    for (size_t t = size_t(W) * H; t-- > 0;) first[t] = std::min(first[t], first[t + 1]);
-
-    const Camera& camera = scene.camera();
-    const Image& photo = scene.photo();
-    const vec3 eye = camera.position();
-    const int bounce_per_point =
-        o.bounce_samples > 0 ? std::max(4, o.bounce_samples / (o.subsamples * o.subsamples)) : 0;
-    const std::vector<int> pure = pure_pixels(scene);
-    std::vector<TexelSum> sums(size_t(W) * H);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, size_t(W) * H, 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t t = r.begin(); t != r.end(); ++t) {
-            TexelSum& s = sums[t];
-            Rng rng = Rng::keyed(o.seed, t, 0xa1bed0);
-            std::vector<SurfacePoint> lit_points;
-            for (size_t k = first[t]; k < first[t + 1]; ++k) {
-                const TexelPoint& tp = points[k];
-                vec3 to_eye = eye - tp.p;
-                float dist = glm::length(to_eye);
-                if (!(dist > 0)) continue;
-                to_eye /= dist;
-                vec3 n = tp.n;
-                if (glm::dot(n, to_eye) <= 0) continue;  // the camera sees this face from behind
-                vec2 px;
-                if (!camera.project(tp.p, px) || !camera.in_image(px)) continue;
-                Hit at;
-                at.p = tp.p;
-                at.ng = n;
-                vec3 org = scene.offset_origin(at, to_eye);
-                if (scene.occluded_real(Ray{org, to_eye}, glm::length(eye - org) * (1 - 1e-4f))) continue;
-                int ix = std::clamp(int(std::lround(px.x)), 0, photo.width() - 1);
-                int iy = std::clamp(int(std::lround(px.y)), 0, photo.height() - 1);
-                if (pure[size_t(iy) * photo.width() + ix] != proxy) continue;
-                vec3 L = photo.at(ix, iy);
-                if (std::max({L.x, L.y, L.z}) >= o.clip_level) {
-                    ++s.clipped;
-                    continue;
-                }
-                dvec3 bounce = bounce_irradiance(scene, pure, tp.p, n, rng, bounce_per_point, 1);
-                s.L += dvec3(L);
-                s.E_bounce += bounce;
-                lit_points.push_back({tp.p, n});
-                ++s.seen;
-            }
-            if (s.seen == 0) continue;
-            // One estimate over all the texel's points: sum(E) = count * mean(E).
-            IrradianceEstimate e = mean_real_irradiance(scene, lit_points, rng, o.probe_samples, 0.5f);
-            s.E = e.E * double(s.seen) + s.E_bounce;
-            s.E_var = std::pow(e.luminance_std_error * s.seen, 2);
-        }
-    });
-
-    // Unlit: irradiance far below the typical texel's (deep shadow under an opaque probe).
-    std::vector<double> lit;
-    for (const TexelSum& s : sums)
-        if (s.seen > 0) lit.push_back(luminance(s.E) / s.seen);
-    double median_E = 0;
-    if (!lit.empty()) {
-        std::nth_element(lit.begin(), lit.begin() + lit.size() / 2, lit.end());
-        median_E = lit[lit.size() / 2];
-    }
-
-    AlbedoTexture out;
-    out.albedo = Image(W, H);
-    out.mask = Image(W, H);
-    double rel_error_sum = 0, E_total = 0, E_bounce = 0;
-    dvec3 rho_sum(0.0);
-    for (size_t t = 0; t < sums.size(); ++t) {
-        const TexelSum& s = sums[t];
-        if (s.seen == 0) {
-            if (s.clipped > 0) {
-                out.mask[t] = vec3(1, 0, 0);
-                ++out.clipped;
-            } else {
-                out.mask[t] = vec3(0, 1, 0);
-                ++out.unseen;
-            }
-            continue;
-        }
-        double e_lum = luminance(s.E);
-        if (!(e_lum > 0) || e_lum / s.seen < o.min_irradiance_fraction * median_E) {
-            out.mask[t] = vec3(0, 0, 1);
-            ++out.unlit;
-            continue;
-        }
-        dvec3 rho = double(kPi) * s.L / glm::max(s.E, dvec3(1e-30 * e_lum));
-        rho = glm::clamp(rho, dvec3(0.0), dvec3(0.98));
-        out.albedo[t] = vec3(rho);
-        rho_sum += rho;
-        rel_error_sum += std::sqrt(s.E_var) / e_lum;
-        E_total += e_lum;
-        E_bounce += luminance(s.E_bounce);
-        ++out.valid;
-    }
+AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy,
+                                      const AlbedoTextureOptions& o) {
+    const Surface& surface = texturable_surface(scene, proxy, o);
+    const TextureSize size = texture_size(scene.project().real[size_t(proxy)], o);
+    const TexelRuns runs = texel_runs(*surface.mesh, size, o.subsamples);
+    const std::vector<TexelSum> sums = gather_texels(scene, proxy, runs, size.texels(), o);
+    AlbedoTexture out = divide_out_irradiance(sums, size, median_irradiance(sums), o);
     if (out.valid == 0)
-        throw InputError("", field,
-                         "the photo never sees this proxy lit and unclipped; no albedo can be estimated (" +
-                             std::to_string(out.unseen) + " texels unseen, " + std::to_string(out.clipped) +
-                             " clipped, " + std::to_string(out.unlit) + " unlit)");
-    out.mean_albedo = vec3(rho_sum / double(out.valid));
-    out.irradiance_rel_error = rel_error_sum / double(out.valid);
-    out.bounce_fraction = E_total > 0 ? E_bounce / E_total : 0;
+        throw InputError(
+            "", "real[" + std::to_string(proxy) + "]",
+            "the photo never sees this proxy lit and unclipped; no albedo can be estimated (" +
+                std::to_string(out.unseen) + " texels unseen, " + std::to_string(out.clipped) +
+                " clipped, " + std::to_string(out.unlit) + " unlit)");
     fill_flagged_texels(out.albedo, out.mask);
     return out;
 }
@@ -327,7 +389,8 @@ namespace {
 /// A proxy's name as a file name part: letters, digits, '-' and '_' kept, the rest '_'.
 std::string file_stem(const std::string& name, int index) {
     std::string s;
-    for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    for (char c : name)
+        s += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
     return s.empty() ? "real" + std::to_string(index) : s;
 }
 
@@ -337,13 +400,16 @@ std::string attach_albedo_texture(Project& project, int proxy, const AlbedoTextu
                                   const std::filesystem::path& project_file, bool saved_there) {
     namespace fs = std::filesystem;
     const fs::path folder = fs::absolute(project_file).parent_path();
-    const std::string stem = project_file.stem().string() + "_" + file_stem(project.real[size_t(proxy)].name, proxy) + "_albedo";
+    const std::string stem = project_file.stem().string() + "_" +
+                             file_stem(project.real[size_t(proxy)].name, proxy) + "_albedo";
     save_exr((folder / (stem + ".exr")).string(), {{"", &texture.albedo}});
-    if (!texture.mask.empty()) save_exr((folder / (stem + "_mask.exr")).string(), {{"", &texture.mask}});
+    if (!texture.mask.empty())
+        save_exr((folder / (stem + "_mask.exr")).string(), {{"", &texture.mask}});
     RealProxy& r = project.real[size_t(proxy)];
     r.albedo.kind = Albedo::Kind::Texture;
     std::error_code ec;
-    const bool beside = saved_there || (!project.base_dir.empty() && fs::equivalent(project.base_dir, folder, ec));
+    const bool beside =
+        saved_there || (!project.base_dir.empty() && fs::equivalent(project.base_dir, folder, ec));
     r.albedo.texture_path = beside ? stem + ".exr" : (folder / (stem + ".exr")).string();
     return r.albedo.texture_path;
 }

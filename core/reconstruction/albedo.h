@@ -1,11 +1,12 @@
 #pragma once
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <string>
-#include <cstdint>
+#include <vector>
 
-#include "image/image.h"
 #include "assets/render_scene.h"
+#include "image/image.h"
 
 namespace dp {
 
@@ -34,22 +35,25 @@ struct AlbedoTextureOptions {
     uint64_t seed = 1;
 };
 
-/// Why a texel carries no estimate of its own (bits of the mask's channels).
+/// An estimated albedo texture, the mask of the texels that carry no estimate of their own, and
+/// how well the estimate went.
 struct AlbedoTexture {
     /// rho = pi L / E per texel in the proxy's UV layout, clamped to [0, 0.98]; flagged texels
     /// are filled from their valid neighbours.
     Image albedo;
-    /// Per texel: red 1 = every photo pixel it projects to is clipped; green 1 = the camera
-    /// does not see it (outside the photo, facing away, hidden by real geometry, or only in
-    /// pixels that also show another surface or the background); blue 1 = unlit (E too small). All zero for a texel estimated from the photo.
+    /// Why a texel carries no estimate of its own, per texel: red 1 = every photo pixel it
+    /// projects to is clipped; green 1 = the camera does not see it (outside the photo, facing
+    /// away, hidden by real geometry, or only in pixels that also show another surface or the
+    /// background); blue 1 = unlit (E too small). All zero for a texel estimated from the photo.
     Image mask;
+    /// Texel counts: estimated, and flagged red, green and blue in `mask`.
     size_t valid = 0, clipped = 0, unseen = 0, unlit = 0;
     /// Mean relative Monte Carlo standard error of the probe part of E over the valid texels
     /// (the photo's own noise is not in it).
     double irradiance_rel_error = 0;
     /// Share of the valid texels' summed E that other real surfaces reflect (0 without bounces).
     double bounce_fraction = 0;
-    /// Luminance-weighted mean rho over the valid texels.
+    /// Mean rho over the valid texels, per channel, each texel counted once.
     vec3 mean_albedo{0.0f};
 };
 
@@ -58,10 +62,14 @@ struct AlbedoTexture {
 /// face of a box maps onto the whole texture, so a box texel gathers all its faces), the world
 /// point is projected into the photo and rho = pi * sum(L) / sum(E), with E the probe
 /// irradiance under real-geometry visibility plus (`bounce_samples`) the light reflected by the
-/// other real surfaces. Throws InputError (field "real[i]") for a sphere
-/// proxy, a mesh without UVs, or a proxy the photo never sees lit.
+/// other real surfaces. Throws InputError (field "real[i]") for a sphere proxy, a mesh without
+/// UVs, or a proxy the photo never sees lit.
 AlbedoTexture estimate_albedo_texture(const RenderScene& scene, int proxy,
                                       const AlbedoTextureOptions& options = {});
+
+/// Indices into `project.real` of the proxies an albedo texture can be estimated for: planes,
+/// boxes and meshes (a sphere has no texture layout).
+std::vector<size_t> texturable_real_proxies(const Project& project);
 
 /// Fills texels whose `mask` pixel is non-zero from their valid neighbours, ring by ring.
 /// Returns false when there is no valid texel at all (nothing is changed then).
@@ -73,6 +81,7 @@ bool fill_flagged_texels(Image& image, const Image& mask);
 /// folder or is about to be saved to `project_file` (`saved_there`), by its absolute path
 /// otherwise. Returns the path as written into the project.
 std::string attach_albedo_texture(Project& project, int proxy, const AlbedoTexture& texture,
-                                  const std::filesystem::path& project_file, bool saved_there = false);
+                                  const std::filesystem::path& project_file,
+                                  bool saved_there = false);
 
 }  // namespace dp

@@ -5,11 +5,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "assets/irradiance.h"
 #include "base/error.h"
 #include "base/rng.h"
 #include "probe/probe.h"
 #include "reconstruction/proxies.h"
-#include "assets/irradiance.h"
 
 namespace dp {
 
@@ -28,20 +28,30 @@ double wrap_deg(double a) {
 
 vec3 sun_direction_from_shadow(const Camera& camera, const ShadowCue& cue) {
     if (!(cue.height > 0) || !std::isfinite(cue.height))
-        throw InputError("", "object_height", "the object point's height must be a positive number");
+        throw InputError("", "object_height",
+                         "the object point's height must be a positive number");
     vec3 tip = point_on_plane_y(camera, cue.shadow_px, 0, "shadow tip");
-    vec3 top = cue.object_is_base ? point_on_plane_y(camera, cue.object_px, 0, "object base") + vec3(0, cue.height, 0)
-                                  : point_on_plane_y(camera, cue.object_px, cue.height, "object point");
+    vec3 top =
+        cue.object_is_base
+            ? point_on_plane_y(camera, cue.object_px, 0, "object base") + vec3(0, cue.height, 0)
+            : point_on_plane_y(camera, cue.object_px, cue.height, "object point");
     vec3 d = top - tip;
     float horizontal = std::hypot(d.x, d.z);
     if (horizontal <= 1e-4f * cue.height)
-        throw InputError("", "shadow tip",
-                         "the shadow tip lies at the object's foot: the sun would be straight overhead, "
-                         "which gives no azimuth");
+        throw InputError(
+            "", "shadow tip",
+            "the shadow tip lies at the object's foot: the sun would be straight overhead, "
+            "which gives no azimuth");
     return glm::normalize(d);
 }
 
-vec3 brightest_direction(const Image& map, float fraction, float cone_deg, const std::string& field) {
+Bearing bearing_of(const vec3& d) {
+    constexpr float kDegPerRad = 180.0f / kPi;
+    return {std::atan2(d.x, -d.z) * kDegPerRad, std::asin(d.y) * kDegPerRad};
+}
+
+vec3 brightest_direction(const Image& map, float fraction, float cone_deg,
+                         const std::string& field) {
     const int W = map.width(), H = map.height();
     size_t best = 0;
     float best_lum = 0;
@@ -52,7 +62,8 @@ vec3 brightest_direction(const Image& map, float fraction, float cone_deg, const
             best = i;
         }
     }
-    if (!(best_lum > 0)) throw InputError("", field, "the light probe is black: it has no bright region");
+    if (!(best_lum > 0))
+        throw InputError("", field, "the light probe is black: it has no bright region");
     auto dir = [&](int i, int j) { return latlong_direction((i + 0.5f) / W, (j + 0.5f) / H); };
     const vec3 peak = dir(int(best % W), int(best / W));
     const float cos_cone = std::cos(cone_deg / float(kDeg));
@@ -71,11 +82,14 @@ vec3 brightest_direction(const Image& map, float fraction, float cone_deg, const
     return vec3(glm::normalize(sum));
 }
 
-ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg, const vec3& target_world) {
+ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg,
+                         const vec3& target_world) {
     const glm::mat3 R = euler_xyz_deg(rotation_deg);
     const vec3 a = glm::normalize(R * bright_probe), b = glm::normalize(target_world);
     const double ha = std::hypot(a.x, a.z), hb = std::hypot(b.x, b.z);
-    if (ha < 1e-4) throw InputError("", "probe", "the probe's brightest region is straight up or down: it has no azimuth");
+    if (ha < 1e-4)
+        throw InputError("", "probe",
+                         "the probe's brightest region is straight up or down: it has no azimuth");
     if (hb < 1e-4) throw InputError("", "sun", "the sun direction is vertical: it has no azimuth");
     // Turn about +Y taking a's azimuth to b's: sine from the Y component of the cross product.
     double s = double(a.z) * b.x - double(a.x) * b.z, c = double(a.x) * b.x + double(a.z) * b.z;
@@ -91,22 +105,25 @@ ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg, con
     }
     out.bright_world = glm::normalize(turned * bright_probe);
     out.elevation_mismatch_deg =
-        float((std::asin(std::clamp(double(out.bright_world.y), -1.0, 1.0)) - std::asin(std::clamp(double(b.y), -1.0, 1.0))) * kDeg);
+        float((std::asin(std::clamp(double(out.bright_world.y), -1.0, 1.0)) -
+               std::asin(std::clamp(double(b.y), -1.0, 1.0))) *
+              kDeg);
     return out;
 }
 
-ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard& card, float clip_level,
-                                       int probe_samples, uint64_t seed) {
+ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard& card,
+                                       float clip_level, int probe_samples, uint64_t seed) {
     const Image& photo = scene.photo();
     if (!(card.reflectance > 0 && card.reflectance <= 1))
         throw InputError("", "reflectance", "the card's reflectance must be in (0, 1]");
     int x0 = std::min(card.x0, card.x1), x1 = std::max(card.x0, card.x1);
     int y0 = std::min(card.y0, card.y1), y1 = std::max(card.y0, card.y1);
     if (x0 < 0 || y0 < 0 || x1 >= photo.width() || y1 >= photo.height())
-        throw InputError("", "card", "the card rectangle (" + std::to_string(x0) + ", " + std::to_string(y0) + ") - (" +
-                                         std::to_string(x1) + ", " + std::to_string(y1) +
-                                         ") is not inside the photo (" + std::to_string(photo.width()) + "x" +
-                                         std::to_string(photo.height()) + ")");
+        throw InputError("", "card",
+                         "the card rectangle (" + std::to_string(x0) + ", " + std::to_string(y0) +
+                             ") - (" + std::to_string(x1) + ", " + std::to_string(y1) +
+                             ") is not inside the photo (" + std::to_string(photo.width()) + "x" +
+                             std::to_string(photo.height()) + ")");
     const Camera& camera = scene.camera();
     double sum_L = 0, sum_E = 0;
     std::vector<double> ratios;
@@ -114,12 +131,14 @@ ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard&
         for (int x = x0; x <= x1; ++x) {
             Hit hit = scene.intersect_real(camera.generate_ray(float(x), float(y)));
             if (!hit)
-                throw InputError("", "card", "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                                 ") of the card shows no real proxy; put the card on one");
+                throw InputError("", "card",
+                                 "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                     ") of the card shows no real proxy; put the card on one");
             vec3 L = photo.at(x, y);
             if (std::max({L.x, L.y, L.z}) >= clip_level)
-                throw InputError("", "card", "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                                 ") of the card is clipped in the photo");
+                throw InputError("", "card",
+                                 "pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                                     ") of the card is clipped in the photo");
             vec3 n = glm::dot(hit.ng, camera.position() - hit.p) >= 0 ? hit.ng : -hit.ng;
             Rng rng = rng_stream::probe_alignment(seed, size_t(y) * photo.width() + x);
             double E = luminance(real_irradiance(scene, hit.p, n, rng, probe_samples).E);
@@ -128,7 +147,9 @@ ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard&
             if (E > 0) ratios.push_back(double(kPi) * luminance(L) / (card.reflectance * E));
         }
     if (!(sum_E > 0))
-        throw InputError("", "card", "the probe gives the card no light (probe intensity 0, or the card in full shadow)");
+        throw InputError(
+            "", "card",
+            "the probe gives the card no light (probe intensity 0, or the card in full shadow)");
     if (!(sum_L > 0)) throw InputError("", "card", "the card is black in the photo");
     ExposureMatch out;
     out.pixels = int(ratios.size());

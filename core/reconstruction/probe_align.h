@@ -1,9 +1,9 @@
 #pragma once
 #include <string>
 
+#include "assets/render_scene.h"
 #include "camera/camera.h"
 #include "image/image.h"
-#include "assets/render_scene.h"
 
 namespace dp {
 
@@ -29,6 +29,15 @@ vec3 sun_direction_from_shadow(const Camera& camera, const ShadowCue& cue);
 vec3 brightest_direction(const Image& latlong, float fraction = 0.5f, float cone_deg = 20.0f,
                          const std::string& field = "probe.path");
 
+/// Compass bearing of a world direction, in degrees.
+struct Bearing {
+    float azimuth_deg = 0;    ///< from -Z towards +X, as the probe's lat-long map counts it
+    float elevation_deg = 0;  ///< above the horizon
+};
+
+/// Azimuth and elevation of unit world direction `d` (e.g. the sun's).
+Bearing bearing_of(const vec3& d);
+
 /// A yaw (rotation about world +Y) that brings the probe's brightest region onto a direction.
 struct ProbeYaw {
     vec3 rotation_deg{0.0f};  ///< the probe's new Euler XYZ angles (world Y turn applied last)
@@ -42,7 +51,8 @@ struct ProbeYaw {
 /// Turns the probe (current Euler angles `rotation_deg`) about world Y so that the brightest
 /// region `bright_probe` (probe space) has the azimuth of `target_world`. Throws InputError when
 /// either direction is vertical (no azimuth).
-ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg, const vec3& target_world);
+ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg,
+                         const vec3& target_world);
 
 /// A patch of known reflectance in the photo (pixel rectangle, corners inclusive).
 struct GreyCard {
@@ -52,9 +62,9 @@ struct GreyCard {
 
 /// Probe intensity that makes rho * E / pi match the photo on a grey card.
 struct ExposureMatch {
-    float intensity = 1;      ///< the new probe intensity
-    float scale = 1;          ///< new intensity / current intensity
-    int pixels = 0;           ///< card pixels used
+    float intensity = 1;  ///< the new probe intensity
+    float scale = 1;      ///< new intensity / current intensity
+    int pixels = 0;       ///< card pixels used
     /// Coefficient of variation of the per-pixel ratios pi L / (rho E) over the card: how
     /// evenly the card is lit and seen (noise, shading, a wrong reflectance do not show here).
     float spread = 0;

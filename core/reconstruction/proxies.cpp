@@ -21,7 +21,9 @@ vec3 rotate_y(const vec3& v, float theta) {
 }
 
 /// Yaw (radians) of a horizontal direction, such that rotate_y(+X, yaw) points along it.
-float yaw_of(const vec3& d) { return std::atan2(-d.z, d.x); }
+float yaw_of(const vec3& d) {
+    return std::atan2(-d.z, d.x);
+}
 
 std::string pixel_text(vec2 p) {
     char buf[64];
@@ -46,8 +48,9 @@ float rms_reprojection(const Camera& camera, const std::vector<vec2>& clicks,
 
 void check_size(float value, const char* field, const char* what) {
     if (!(value > 0) || !std::isfinite(value))
-        throw InputError("", field, std::string(what) + " must be a positive number (got " +
-                                        std::to_string(value) + ")");
+        throw InputError(
+            "", field,
+            std::string(what) + " must be a positive number (got " + std::to_string(value) + ")");
 }
 
 }  // namespace
@@ -58,25 +61,30 @@ vec3 point_on_plane_y(const Camera& camera, vec2 pixel, float height, const std:
     Ray ray = camera.generate_ray(pixel.x, pixel.y);
     const float dy = height - ray.org.y;
     const std::string where = "image point " + pixel_text(pixel);
-    if (dy == 0) throw InputError("", field, "the camera lies in the plane y = " + std::to_string(height));
+    if (dy == 0)
+        throw InputError("", field, "the camera lies in the plane y = " + std::to_string(height));
     if (ray.dir.y == 0 || (dy > 0) != (ray.dir.y > 0)) {
         if (height == 0 && dy < 0)
-            throw InputError("", field, where + " is above the horizon: its ray never meets the ground");
-        throw InputError("", field, where + ": its ray never meets the plane y = " + std::to_string(height));
+            throw InputError("", field,
+                             where + " is above the horizon: its ray never meets the ground");
+        throw InputError("", field,
+                         where + ": its ray never meets the plane y = " + std::to_string(height));
     }
     const float t = dy / ray.dir.y;
     vec3 p = ray.org + t * ray.dir;
     // Within about 0.06 degrees of the horizon the point's distance is ill-conditioned.
     float horizontal = std::hypot(p.x - ray.org.x, p.z - ray.org.z);
     if (!std::isfinite(t) || horizontal > 1000.0f * std::abs(dy))
-        throw InputError("", field, where + " is too close to the horizon to place it on the plane");
+        throw InputError("", field,
+                         where + " is too close to the horizon to place it on the plane");
     return p;
 }
 
 ProxyFit ground_proxy(const Camera& camera, float max_distance, const std::string& name) {
     const vec3 eye = camera.position();
     if (!(eye.y > 0))
-        throw InputError("", "camera", "the camera is not above the ground (y = " + std::to_string(eye.y) + ")");
+        throw InputError("", "camera",
+                         "the camera is not above the ground (y = " + std::to_string(eye.y) + ")");
     if (max_distance < 0 || !std::isfinite(max_distance))
         throw InputError("", "max_distance", "must be >= 0 (0 picks 20 times the camera height)");
     if (max_distance == 0) max_distance = 20.0f * eye.y;
@@ -110,7 +118,8 @@ ProxyFit ground_proxy(const Camera& camera, float max_distance, const std::strin
             points.push_back(vec3(eye.x, 0, eye.z) + flat * (max_distance / flat_len));
         }
     }
-    if (!sees_ground) throw InputError("", "camera", "the camera does not see the ground (y = 0) at all");
+    if (!sees_ground)
+        throw InputError("", "camera", "the camera does not see the ground (y = 0) at all");
 
     // Turn the rectangle to the camera's heading; looking straight down, to the image's up.
     vec3 heading(camera.forward().x, 0, camera.forward().z);
@@ -140,7 +149,8 @@ ProxyFit ground_proxy(const Camera& camera, float max_distance, const std::strin
     fit.proxy.shape.size = vec3(size.x, 1, size.z);
     fit.proxy.transform.translation = vec3(centre.x, 0, centre.z);
     fit.proxy.transform.rotation_deg = vec3(0, theta * kDegPerRad + 0.0f, 0);
-    for (vec3 c : {vec3(lo.x, 0, hi.z), vec3(hi.x, 0, hi.z), vec3(hi.x, 0, lo.z), vec3(lo.x, 0, lo.z)})
+    for (vec3 c :
+         {vec3(lo.x, 0, hi.z), vec3(hi.x, 0, hi.z), vec3(hi.x, 0, lo.z), vec3(lo.x, 0, lo.z)})
         fit.footprint.push_back(rotate_y(c, theta));
     return fit;
 }
@@ -176,7 +186,8 @@ ProxyFit box_proxy(const Camera& camera, const std::vector<vec2>& corners, float
                    const std::string& name) {
     if (corners.size() != 3 && corners.size() != 4)
         throw InputError("", "points",
-                         "a box footprint needs 3 or 4 corner points (got " + std::to_string(corners.size()) + ")");
+                         "a box footprint needs 3 or 4 corner points (got " +
+                             std::to_string(corners.size()) + ")");
     check_size(height, "height", "the box's height");
     std::vector<vec3> p;
     for (size_t i = 0; i < corners.size(); ++i)
@@ -194,12 +205,14 @@ ProxyFit box_proxy(const Camera& camera, const std::vector<vec2>& corners, float
             throw InputError("", "points", "two footprint corners fall on the same ground point");
         float turn = (e.z * f.x - e.x * f.z) / (le * lf);  // sine of the turn, + counter-clockwise
         if (std::abs(turn) < 0.02f)
-            throw InputError("", "points", "the footprint is degenerate: three corners are (nearly) collinear");
+            throw InputError("", "points",
+                             "the footprint is degenerate: three corners are (nearly) collinear");
         int s = turn > 0 ? 1 : -1;
         if (sign != 0 && s != sign)
-            throw InputError("", "points",
-                             "the footprint corners must go around the box in order (the outline crosses itself "
-                             "or is not convex)");
+            throw InputError(
+                "", "points",
+                "the footprint corners must go around the box in order (the outline crosses itself "
+                "or is not convex)");
         sign = s;
     }
     if (sign < 0) std::reverse(p.begin(), p.end());  // counter-clockwise seen from above
@@ -229,6 +242,18 @@ ProxyFit box_proxy(const Camera& camera, const std::vector<vec2>& corners, float
         fit.footprint.push_back(centroid + rotate_y(c, theta));
     fit.rms_error_px = rms_reprojection(camera, corners, fit.footprint);
     return fit;
+}
+
+bool add_or_replace_real_proxy(Project& project, RealProxy proxy) {
+    auto same = std::find_if(project.real.begin(), project.real.end(),
+                             [&](const RealProxy& r) { return r.name == proxy.name; });
+    if (same == project.real.end()) {
+        project.real.push_back(std::move(proxy));
+        return false;
+    }
+    proxy.albedo = same->albedo;
+    *same = std::move(proxy);
+    return true;
 }
 
 }  // namespace dp

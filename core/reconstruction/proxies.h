@@ -11,7 +11,8 @@ namespace dp {
 /// y = `height` (the ground is y = 0, as calibration defines it). Throws InputError (labelled
 /// with `field`) when the ray never reaches that plane: a point above the horizon for the
 /// ground, or a camera on the wrong side of the plane.
-vec3 point_on_plane_y(const Camera& camera, vec2 pixel, float height, const std::string& field = "");
+vec3 point_on_plane_y(const Camera& camera, vec2 pixel, float height,
+                      const std::string& field = "");
 
 /// A proxy made from clicked image points, with how well the fitted shape explains the clicks.
 struct ProxyFit {
@@ -28,7 +29,8 @@ struct ProxyFit {
 /// times the camera's height) and the plane is the rectangle around them, turned to the
 /// camera's heading. Throws InputError when the camera is not above the ground or sees none
 /// of it.
-ProxyFit ground_proxy(const Camera& camera, float max_distance = 0, const std::string& name = "ground");
+ProxyFit ground_proxy(const Camera& camera, float max_distance = 0,
+                      const std::string& name = "ground");
 
 /// A wall from two clicked points at its base on the ground: a box `thickness` deep behind the
 /// clicked line (away from the camera) and `height` tall. Throws InputError for points above
@@ -43,5 +45,10 @@ ProxyFit wall_proxy(const Camera& camera, vec2 a, vec2 b, float height, float th
 /// non-positive height.
 ProxyFit box_proxy(const Camera& camera, const std::vector<vec2>& corners, float height,
                    const std::string& name = "box");
+
+/// Puts `proxy` into `project.real`: it replaces the proxy of the same name, which keeps its
+/// albedo (a refitted shape does not undo what was estimated or set for it), or is appended.
+/// Returns true when it replaced one.
+bool add_or_replace_real_proxy(Project& project, RealProxy proxy);
 
 }  // namespace dp

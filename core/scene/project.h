@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "base/math.h"
@@ -31,6 +32,12 @@ struct Shape {
     std::string mesh_path;  ///< as written in the project (relative to the project file)
     bool operator==(const Shape&) const = default;
 };
+
+/// The shape kinds by the names the project file, the CLI and the studio use.
+inline constexpr std::pair<const char*, Shape::Kind> kShapeKinds[] = {
+    {"plane", Shape::Kind::Plane}, {"box", Shape::Kind::Box}, {"sphere", Shape::Kind::Sphere}, {"mesh", Shape::Kind::Mesh}};
+/// "plane", "box", "sphere" or "mesh".
+inline const char* shape_kind_name(Shape::Kind kind) { return kShapeKinds[int(kind)].first; }
 
 /// Diffuse reflectance: constant RGB, an image texture (sRGB/linear via image loading) mapped by
 /// the shape's UVs, or estimated from the photograph (rho = pi L_photo / E).

@@ -5,245 +5,62 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <set>
-#include <iterator>
 #include <string_view>
 
 #include "base/error.h"
+#include "scene/json_reader.h"
 
 namespace dp {
 namespace {
 
+// The project schema (docs/project-format.md) over the general JSON reader.
 using json = nlohmann::json;
-using Keys = std::initializer_list<std::string_view>;
 
-std::string join(const std::string& path, std::string_view key) {
-    return path.empty() ? std::string(key) : path + "." + std::string(key);
-}
-std::string at(const std::string& path, size_t i) {
-    return path + "[" + std::to_string(i) + "]";
-}
-
-std::string list(Keys names) {
-    std::string s;
-    for (std::string_view n : names) s += (s.empty() ? "" : ", ") + std::string(n);
-    return s;
-}
-
-/// Shortest decimal text that reads back as the same float (so 0.1f prints as 0.1).
-std::string shortest(double v) {
-    char buf[64];
-    auto res = std::to_chars(buf, buf + sizeof(buf), v);
-    if (float(v) == v) res = std::to_chars(buf, buf + sizeof(buf), float(v));
-    return std::string(buf, res.ptr);
-}
-
-size_t edit_distance(std::string_view a, std::string_view b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
-            diag = up;
-        }
-    }
-    return row[b.size()];
-}
-
-/// Validating accessors; every failure names the file and the JSON path of the field.
-class Reader {
-public:
-    explicit Reader(std::string file) : file_(std::move(file)) {}
-
-    [[noreturn]] void fail(const std::string& field, const std::string& msg) const {
-        throw InputError(file_, field, msg);
-    }
-    void check(bool ok, const std::string& field, const std::string& msg) const {
-        if (!ok) fail(field, msg);
-    }
-
-    [[noreturn]] void wrong_type(const json& j, const std::string& path, const char* want) const {
-        fail(path, std::string("expected ") + want + ", got " + j.type_name());
-    }
-
-    /// Requires an object whose keys are all in `allowed`; `context` qualifies the message.
-    void object(const json& j, const std::string& path, Keys allowed,
-                const std::string& context = "") const {
-        if (!j.is_object()) wrong_type(j, path, "an object");
-        for (const auto& item : j.items()) {
-            const std::string& key = item.key();
-            if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-            std::string msg = "unknown key '" + key + "'" + context;
-            std::string_view best;
-            size_t best_d = 3;  // suggest only close matches: typos, not different words
-            for (std::string_view a : allowed) {
-                size_t d = edit_distance(key, a);
-                if (d < best_d) best_d = d, best = a;
-            }
-            if (!best.empty()) msg += "; did you mean '" + std::string(best) + "'?";
-            fail(join(path, key), msg + " (valid keys: " + list(allowed) + ")");
-        }
-    }
-
-    const json& required(const json& obj, const std::string& path, const char* key) const {
-        auto it = obj.find(key);
-        if (it == obj.end()) fail(join(path, key), "required field is missing");
-        return *it;
-    }
-    static const json* optional(const json& obj, const char* key) {
-        auto it = obj.find(key);
-        return it == obj.end() ? nullptr : &*it;
-    }
-
-    double number(const json& j, const std::string& path) const {
-        if (!j.is_number()) wrong_type(j, path, "a number");
-        double d = j.get<double>();
-        check(std::isfinite(d), path, "must be a finite number");
-        return d;
-    }
-    float real(const json& j, const std::string& path) const {
-        double d = number(j, path);
-        check(std::isfinite(float(d)), path,
-              "must be a finite number (" + shortest(d) + " is outside the float range)");
-        return float(d);
-    }
-
-    /// An integer in [lo, hi]; a float with an integral value (2e5) is accepted too.
-    int64_t integer(const json& j, const std::string& path, int64_t lo, int64_t hi) const {
-        auto range = [&](const std::string& got) {
-            std::string msg = "must be an integer in [" + std::to_string(lo) + ", ";
-            msg += hi == std::numeric_limits<int64_t>::max() ? "inf)" : std::to_string(hi) + "]";
-            fail(path, msg + " (got " + got + ")");
-        };
-        int64_t v = 0;
-        if (j.is_number_unsigned()) {
-            uint64_t u = j.get<uint64_t>();
-            if (u > uint64_t(hi)) range(std::to_string(u));
-            v = int64_t(u);
-        } else if (j.is_number_integer()) {
-            v = j.get<int64_t>();
-        } else if (j.is_number_float()) {
-            double d = number(j, path);
-            if (d != std::floor(d)) fail(path, "must be an integer (got " + shortest(d) + ")");
-            if (d < double(lo) || d > double(hi)) range(shortest(d));
-            v = int64_t(d);
-        } else {
-            wrong_type(j, path, "an integer");
-        }
-        if (v < lo || v > hi) range(std::to_string(v));
-        return v;
-    }
-    uint64_t unsigned_integer(const json& j, const std::string& path) const {
-        if (j.is_number_unsigned()) return j.get<uint64_t>();
-        return uint64_t(integer(j, path, 0, std::numeric_limits<int64_t>::max()));
-    }
-
-    std::string string(const json& j, const std::string& path, bool non_empty = true) const {
-        if (!j.is_string()) wrong_type(j, path, "a string");
-        std::string s = j.get<std::string>();
-        check(!non_empty || !s.empty(), path, "must not be empty");
-        return s;
-    }
-    bool boolean(const json& j, const std::string& path) const {
-        if (!j.is_boolean()) wrong_type(j, path, "true or false");
-        return j.get<bool>();
-    }
-
-    /// An array of exactly n finite numbers.
-    std::vector<float> numbers(const json& j, const std::string& path, size_t n) const {
-        std::string want = "an array of " + std::to_string(n) + " numbers";
-        if (!j.is_array()) wrong_type(j, path, want.c_str());
-        check(j.size() == n, path,
-              "expected " + std::to_string(n) + " numbers, got " + std::to_string(j.size()));
-        std::vector<float> v;
-        for (size_t i = 0; i < n; ++i) v.push_back(real(j[i], at(path, i)));
-        return v;
-    }
-    vec3 vector3(const json& j, const std::string& path) const {
-        auto v = numbers(j, path, 3);
-        return vec3(v[0], v[1], v[2]);
-    }
-    /// Components must be strictly positive (sizes, scales).
-    vec3 positive3(const json& j, const std::string& path, size_t n = 3) const {
-        auto v = numbers(j, path, n);
-        for (size_t i = 0; i < n; ++i)
-            check(v[i] > 0, at(path, i), "must be > 0 (got " + shortest(v[i]) + ")");
-        return n == 3 ? vec3(v[0], v[1], v[2]) : vec3(v[0], 1.0f, v[1]);
-    }
-    /// RGB reflectance or transmittance: each component in [0, 1].
-    vec3 colour(const json& j, const std::string& path) const {
-        vec3 c = vector3(j, path);
-        for (int i = 0; i < 3; ++i)
-            check(c[i] >= 0 && c[i] <= 1, at(path, size_t(i)),
-                  "must be in [0, 1] (got " + shortest(c[i]) + ")");
-        return c;
-    }
-
-    template <class E>
-    E choice(const json& j, const std::string& path, const char* what,
-             std::initializer_list<std::pair<std::string_view, E>> options) const {
-        std::string s = string(j, path);
-        std::string valid;
-        for (const auto& [name, value] : options) {
-            if (name == s) return value;
-            valid += (valid.empty() ? "" : ", ") + std::string(name);
-        }
-        fail(path, "unknown " + std::string(what) + " '" + s + "' (valid: " + valid + ")");
-    }
-
-private:
-    std::string file_;
-};
-
-Transform parse_transform(const Reader& r, const json& j, const std::string& path) {
+Transform parse_transform(const JsonReader& r, const json& j, const std::string& path) {
     r.object(j, path, {"translation", "rotation_deg", "scale"});
     Transform t;
     if (auto* v = r.optional(j, "translation"))
-        t.translation = r.vector3(*v, join(path, "translation"));
+        t.translation = r.vector3(*v, json_join(path, "translation"));
     if (auto* v = r.optional(j, "rotation_deg"))
-        t.rotation_deg = r.vector3(*v, join(path, "rotation_deg"));
-    if (auto* v = r.optional(j, "scale")) t.scale = r.positive3(*v, join(path, "scale"));
+        t.rotation_deg = r.vector3(*v, json_join(path, "rotation_deg"));
+    if (auto* v = r.optional(j, "scale")) t.scale = r.positive3(*v, json_join(path, "scale"));
     return t;
 }
 
-Shape parse_shape(const Reader& r, const json& j, const std::string& path) {
+Shape parse_shape(const JsonReader& r, const json& j, const std::string& path) {
     if (!j.is_object()) r.wrong_type(j, path, "an object");
     Shape s;
-    s.kind = r.choice<Shape::Kind>(r.required(j, path, "type"), join(path, "type"), "shape type",
-                                   {{"plane", Shape::Kind::Plane},
-                                    {"box", Shape::Kind::Box},
-                                    {"sphere", Shape::Kind::Sphere},
-                                    {"mesh", Shape::Kind::Mesh}});
+    s.kind =
+        r.choice<Shape::Kind>(r.required(j, path, "type"), json_join(path, "type"), "shape type",
+                              kShapeKinds);
     std::string ctx = " for shape type '" + j["type"].get<std::string>() + "'";
     switch (s.kind) {
         case Shape::Kind::Plane:
             r.object(j, path, {"type", "size"}, ctx);
-            s.size = r.positive3(r.required(j, path, "size"), join(path, "size"), 2);
+            s.size = r.positive3(r.required(j, path, "size"), json_join(path, "size"), 2);
             break;
         case Shape::Kind::Box:
             r.object(j, path, {"type", "size"}, ctx);
-            s.size = r.positive3(r.required(j, path, "size"), join(path, "size"));
+            s.size = r.positive3(r.required(j, path, "size"), json_join(path, "size"));
             break;
         case Shape::Kind::Sphere: {
             r.object(j, path, {"type", "radius"}, ctx);
-            std::string p = join(path, "radius");
+            std::string p = json_join(path, "radius");
             s.radius = r.real(r.required(j, path, "radius"), p);
-            r.check(s.radius > 0, p, "must be > 0 (got " + shortest(s.radius) + ")");
+            r.check(s.radius > 0, p, "must be > 0 (got " + shortest_decimal(s.radius) + ")");
             break;
         }
         case Shape::Kind::Mesh:
             r.object(j, path, {"type", "path"}, ctx);
-            s.mesh_path = r.string(r.required(j, path, "path"), join(path, "path"));
+            s.mesh_path = r.string(r.required(j, path, "path"), json_join(path, "path"));
             break;
     }
     return s;
 }
 
 /// [r, g, b] | {"texture": path} | "estimate" (the last only where `allow_estimate`).
-Albedo parse_albedo(const Reader& r, const json& j, const std::string& path, bool allow_estimate) {
+Albedo parse_albedo(const JsonReader& r, const json& j, const std::string& path,
+                    bool allow_estimate) {
     Albedo a;
     const char* forms = allow_estimate ? "[r, g, b], {\"texture\": path} or \"estimate\""
                                        : "[r, g, b] or {\"texture\": path}";
@@ -252,12 +69,12 @@ Albedo parse_albedo(const Reader& r, const json& j, const std::string& path, boo
     } else if (j.is_object()) {
         r.object(j, path, {"texture"});
         a.kind = Albedo::Kind::Texture;
-        a.texture_path = r.string(r.required(j, path, "texture"), join(path, "texture"));
+        a.texture_path = r.string(r.required(j, path, "texture"), json_join(path, "texture"));
     } else if (j.is_string()) {
         std::string s = j.get<std::string>();
         if (s == "estimate" && !allow_estimate)
-            r.fail(path, "\"estimate\" is only valid for real proxies; expected " +
-                             std::string(forms));
+            r.fail(path,
+                   "\"estimate\" is only valid for real proxies; expected " + std::string(forms));
         if (s != "estimate") r.fail(path, "unknown albedo '" + s + "' (expected " + forms + ")");
         a.kind = Albedo::Kind::Estimate;
     } else {
@@ -266,10 +83,10 @@ Albedo parse_albedo(const Reader& r, const json& j, const std::string& path, boo
     return a;
 }
 
-Material parse_material(const Reader& r, const json& j, const std::string& path) {
+Material parse_material(const JsonReader& r, const json& j, const std::string& path) {
     if (!j.is_object()) r.wrong_type(j, path, "an object");
     Material m;
-    m.kind = r.choice<Material::Kind>(r.required(j, path, "type"), join(path, "type"),
+    m.kind = r.choice<Material::Kind>(r.required(j, path, "type"), json_join(path, "type"),
                                       "material type",
                                       {{"diffuse", Material::Kind::Diffuse},
                                        {"mirror", Material::Kind::Mirror},
@@ -279,62 +96,63 @@ Material parse_material(const Reader& r, const json& j, const std::string& path)
         case Material::Kind::Diffuse:
             r.object(j, path, {"type", "albedo"}, ctx);
             if (auto* v = r.optional(j, "albedo"))
-                m.albedo = parse_albedo(r, *v, join(path, "albedo"), false);
+                m.albedo = parse_albedo(r, *v, json_join(path, "albedo"), false);
             break;
         case Material::Kind::Mirror:
             r.object(j, path, {"type", "reflectance"}, ctx);
             if (auto* v = r.optional(j, "reflectance"))
-                m.reflectance = r.colour(*v, join(path, "reflectance"));
+                m.reflectance = r.colour(*v, json_join(path, "reflectance"));
             break;
         case Material::Kind::Glass:
             r.object(j, path, {"type", "ior", "tint"}, ctx);
             if (auto* v = r.optional(j, "ior")) {
-                m.ior = r.real(*v, join(path, "ior"));
-                r.check(m.ior > 0, join(path, "ior"), "must be > 0 (got " + shortest(m.ior) + ")");
+                m.ior = r.real(*v, json_join(path, "ior"));
+                r.check(m.ior > 0, json_join(path, "ior"),
+                        "must be > 0 (got " + shortest_decimal(m.ior) + ")");
             }
-            if (auto* v = r.optional(j, "tint")) m.tint = r.colour(*v, join(path, "tint"));
+            if (auto* v = r.optional(j, "tint")) m.tint = r.colour(*v, json_join(path, "tint"));
             break;
     }
     return m;
 }
 
-std::string parse_name(const Reader& r, const json& j, const std::string& path) {
+std::string parse_name(const JsonReader& r, const json& j, const std::string& path) {
     auto* v = r.optional(j, "name");
-    return v ? r.string(*v, join(path, "name"), false) : std::string();
+    return v ? r.string(*v, json_join(path, "name"), false) : std::string();
 }
 
-RealProxy parse_real(const Reader& r, const json& j, const std::string& path) {
+RealProxy parse_real(const JsonReader& r, const json& j, const std::string& path) {
     r.object(j, path, {"name", "shape", "transform", "albedo"});
     RealProxy p;
     p.name = parse_name(r, j, path);
-    p.shape = parse_shape(r, r.required(j, path, "shape"), join(path, "shape"));
+    p.shape = parse_shape(r, r.required(j, path, "shape"), json_join(path, "shape"));
     if (auto* v = r.optional(j, "transform"))
-        p.transform = parse_transform(r, *v, join(path, "transform"));
+        p.transform = parse_transform(r, *v, json_join(path, "transform"));
     if (auto* v = r.optional(j, "albedo"))
-        p.albedo = parse_albedo(r, *v, join(path, "albedo"), true);
+        p.albedo = parse_albedo(r, *v, json_join(path, "albedo"), true);
     return p;
 }
 
-VirtualObject parse_object(const Reader& r, const json& j, const std::string& path) {
+VirtualObject parse_object(const JsonReader& r, const json& j, const std::string& path) {
     r.object(j, path, {"name", "shape", "transform", "material", "visible"});
     VirtualObject o;
     o.name = parse_name(r, j, path);
-    o.shape = parse_shape(r, r.required(j, path, "shape"), join(path, "shape"));
+    o.shape = parse_shape(r, r.required(j, path, "shape"), json_join(path, "shape"));
     if (auto* v = r.optional(j, "transform"))
-        o.transform = parse_transform(r, *v, join(path, "transform"));
+        o.transform = parse_transform(r, *v, json_join(path, "transform"));
     if (auto* v = r.optional(j, "material"))
-        o.material = parse_material(r, *v, join(path, "material"));
-    if (auto* v = r.optional(j, "visible")) o.visible = r.boolean(*v, join(path, "visible"));
+        o.material = parse_material(r, *v, json_join(path, "material"));
+    if (auto* v = r.optional(j, "visible")) o.visible = r.boolean(*v, json_join(path, "visible"));
     return o;
 }
 
-void parse_lookat(const Reader& r, const json& j, CameraSpec& c) {
+void parse_lookat(const JsonReader& r, const json& j, CameraSpec& c) {
     c.eye = r.vector3(r.required(j, "camera", "eye"), "camera.eye");
     c.target = r.vector3(r.required(j, "camera", "target"), "camera.target");
     if (auto* v = r.optional(j, "up")) c.up = r.vector3(*v, "camera.up");
     if (auto* v = r.optional(j, "vfov_deg")) c.vfov_deg = r.real(*v, "camera.vfov_deg");
     r.check(c.vfov_deg > 0 && c.vfov_deg < 180, "camera.vfov_deg",
-            "must be in (0, 180) degrees (got " + shortest(c.vfov_deg) + ")");
+            "must be in (0, 180) degrees (got " + shortest_decimal(c.vfov_deg) + ")");
     vec3 forward = c.target - c.eye;
     r.check(glm::length(forward) > 0, "camera.target", "must differ from camera.eye");
     r.check(glm::length(c.up) > 0, "camera.up", "must not be the zero vector");
@@ -342,11 +160,11 @@ void parse_lookat(const Reader& r, const json& j, CameraSpec& c) {
     r.check(s > 1e-4f, "camera.up", "must not be parallel to the viewing direction");
 }
 
-void parse_opencv(const Reader& r, const json& j, CameraSpec& c) {
+void parse_opencv(const JsonReader& r, const json& j, CameraSpec& c) {
     auto focal = [&](const char* key, float& out) {
-        std::string p = join("camera", key);
+        std::string p = json_join("camera", key);
         out = r.real(r.required(j, "camera", key), p);
-        r.check(out > 0, p, "must be > 0 pixels (got " + shortest(out) + ")");
+        r.check(out > 0, p, "must be > 0 pixels (got " + shortest_decimal(out) + ")");
     };
     focal("fx", c.fx);
     focal("fy", c.fy);
@@ -357,9 +175,9 @@ void parse_opencv(const Reader& r, const json& j, CameraSpec& c) {
         // not supported.
         const std::string p = "camera.distortion";
         if (!v->is_array()) r.wrong_type(*v, p, "an array [k1, k2, p1, p2, k3]");
-        r.check(v->size() == 4 || v->size() == 5, p,
-                "expected 4 or 5 coefficients [k1, k2, p1, p2, k3], got " +
-                    std::to_string(v->size()));
+        r.check(
+            v->size() == 4 || v->size() == 5, p,
+            "expected 4 or 5 coefficients [k1, k2, p1, p2, k3], got " + std::to_string(v->size()));
         auto k = r.numbers(*v, p, v->size());
         c.distortion = Distortion{k[0], k[1], k[2], k[3], k.size() == 5 ? k[4] : 0.0f};
     }
@@ -367,7 +185,7 @@ void parse_opencv(const Reader& r, const json& j, CameraSpec& c) {
     if (!rot.is_array() || rot.size() != 3)
         r.fail("camera.rotation", "expected 3 rows of 3 numbers (row-major world-to-camera R)");
     for (int row = 0; row < 3; ++row) {
-        vec3 v = r.vector3(rot[size_t(row)], at("camera.rotation", size_t(row)));
+        vec3 v = r.vector3(rot[size_t(row)], json_at("camera.rotation", size_t(row)));
         for (int col = 0; col < 3; ++col) c.rotation[col][row] = v[col];  // glm: [column][row]
     }
     glm::mat3 e = c.rotation * glm::transpose(c.rotation) - glm::mat3(1.0f);
@@ -375,19 +193,18 @@ void parse_opencv(const Reader& r, const json& j, CameraSpec& c) {
     for (int i = 0; i < 3; ++i)
         err = std::max({err, std::abs(e[i].x), std::abs(e[i].y), std::abs(e[i].z)});
     r.check(err < 1e-3f, "camera.rotation",
-            "must be a rotation matrix (R R^T differs from I by " + shortest(err) + ")");
+            "must be a rotation matrix (R R^T differs from I by " + shortest_decimal(err) + ")");
     r.check(glm::determinant(c.rotation) > 0, "camera.rotation",
             "must be a rotation matrix (determinant is -1: a reflection)");
     c.translation = r.vector3(r.required(j, "camera", "translation"), "camera.translation");
 }
 
-CameraSpec parse_camera(const Reader& r, const json& j) {
+CameraSpec parse_camera(const JsonReader& r, const json& j) {
     if (!j.is_object()) r.wrong_type(j, "camera", "an object");
     CameraSpec c;
-    c.model = r.choice<CameraSpec::Model>(r.required(j, "camera", "model"), "camera.model",
-                                          "camera model",
-                                          {{"lookat", CameraSpec::Model::LookAt},
-                                           {"opencv", CameraSpec::Model::Intrinsics}});
+    c.model = r.choice<CameraSpec::Model>(
+        r.required(j, "camera", "model"), "camera.model", "camera model",
+        {{"lookat", CameraSpec::Model::LookAt}, {"opencv", CameraSpec::Model::Intrinsics}});
     if (c.model == CameraSpec::Model::LookAt) {
         r.object(j, "camera", {"model", "eye", "target", "up", "vfov_deg"},
                  " for camera model 'lookat'");
@@ -401,10 +218,11 @@ CameraSpec parse_camera(const Reader& r, const json& j) {
     return c;
 }
 
-RenderSettings parse_render(const Reader& r, const json& j) {
-    r.object(j, "render", {"photons_per_pass", "passes", "time_budget_s", "initial_radius", "alpha",
-                           "max_depth", "seed", "threads", "estimator", "adaptive_threshold",
-                           "adaptive_min_passes", "low_discrepancy"});
+RenderSettings parse_render(const JsonReader& r, const json& j) {
+    r.object(j, "render",
+             {"photons_per_pass", "passes", "time_budget_s", "initial_radius", "alpha", "max_depth",
+              "seed", "threads", "estimator", "adaptive_threshold", "adaptive_min_passes",
+              "low_discrepancy"});
     constexpr int64_t kIntMax = std::numeric_limits<int>::max();
     constexpr int64_t kInt64Max = std::numeric_limits<int64_t>::max();
     RenderSettings s;
@@ -415,17 +233,18 @@ RenderSettings parse_render(const Reader& r, const json& j) {
     if (auto* v = r.optional(j, "time_budget_s")) {
         s.time_budget_s = r.number(*v, "render.time_budget_s");
         r.check(s.time_budget_s >= 0, "render.time_budget_s",
-                "must be >= 0 seconds (got " + shortest(s.time_budget_s) + ")");
+                "must be >= 0 seconds (got " + shortest_decimal(s.time_budget_s) + ")");
     }
     if (auto* v = r.optional(j, "initial_radius"); v && !v->is_null()) {  // null: automatic
         float radius = r.real(*v, "render.initial_radius");
-        r.check(radius > 0, "render.initial_radius", "must be > 0 (got " + shortest(radius) + ")");
+        r.check(radius > 0, "render.initial_radius",
+                "must be > 0 (got " + shortest_decimal(radius) + ")");
         s.initial_radius = radius;
     }
     if (auto* v = r.optional(j, "alpha")) {
         s.alpha = r.real(*v, "render.alpha");
         r.check(s.alpha > 0 && s.alpha < 1, "render.alpha",
-                "must be in (0, 1) exclusive (got " + shortest(s.alpha) + ")");
+                "must be in (0, 1) exclusive (got " + shortest_decimal(s.alpha) + ")");
     }
     if (auto* v = r.optional(j, "max_depth"))
         s.max_depth = int(r.integer(*v, "render.max_depth", 1, kIntMax));
@@ -433,16 +252,19 @@ RenderSettings parse_render(const Reader& r, const json& j) {
     if (auto* v = r.optional(j, "threads"))
         s.threads = int(r.integer(*v, "render.threads", 0, kIntMax));
     if (auto* v = r.optional(j, "estimator"))
-        s.estimator = r.choice<Estimator>(*v, "render.estimator", "estimator",
-                                          {{"split", Estimator::Split}, {"photons", Estimator::Photons}});
+        s.estimator =
+            r.choice<Estimator>(*v, "render.estimator", "estimator",
+                                {{"split", Estimator::Split}, {"photons", Estimator::Photons}});
     if (auto* v = r.optional(j, "adaptive_threshold")) {
         s.adaptive_threshold = r.real(*v, "render.adaptive_threshold");
         r.check(s.adaptive_threshold >= 0 && s.adaptive_threshold < 1, "render.adaptive_threshold",
-                "must be in [0, 1) (got " + shortest(s.adaptive_threshold) + "; 0 turns adaptive sampling off)");
+                "must be in [0, 1) (got " + shortest_decimal(s.adaptive_threshold) +
+                    "; 0 turns adaptive sampling off)");
     }
     if (auto* v = r.optional(j, "adaptive_min_passes"))
         s.adaptive_min_passes = int(r.integer(*v, "render.adaptive_min_passes", 2, kIntMax));
-    if (auto* v = r.optional(j, "low_discrepancy")) s.low_discrepancy = r.boolean(*v, "render.low_discrepancy");
+    if (auto* v = r.optional(j, "low_discrepancy"))
+        s.low_discrepancy = r.boolean(*v, "render.low_discrepancy");
     return s;
 }
 
@@ -475,10 +297,13 @@ template <class J>
 J write_shape(const Shape& s) {
     switch (s.kind) {
         case Shape::Kind::Plane:  // size [x, z]: a plane has no extent along its normal
-            return J{{"type", "plane"}, {"size", J::array({num(s.size.x), num(s.size.z)})}};
-        case Shape::Kind::Box: return J{{"type", "box"}, {"size", vec<J>(s.size)}};
-        case Shape::Kind::Sphere: return J{{"type", "sphere"}, {"radius", num(s.radius)}};
-        case Shape::Kind::Mesh: return J{{"type", "mesh"}, {"path", s.mesh_path}};
+            return J{{"type", shape_kind_name(s.kind)}, {"size", J::array({num(s.size.x), num(s.size.z)})}};
+        case Shape::Kind::Box:
+            return J{{"type", shape_kind_name(s.kind)}, {"size", vec<J>(s.size)}};
+        case Shape::Kind::Sphere:
+            return J{{"type", shape_kind_name(s.kind)}, {"radius", num(s.radius)}};
+        case Shape::Kind::Mesh:
+            return J{{"type", shape_kind_name(s.kind)}, {"path", s.mesh_path}};
     }
     return J();
 }
@@ -486,9 +311,12 @@ J write_shape(const Shape& s) {
 template <class J>
 J write_albedo(const Albedo& a) {
     switch (a.kind) {
-        case Albedo::Kind::Constant: return vec<J>(a.rgb);
-        case Albedo::Kind::Texture: return J{{"texture", a.texture_path}};
-        case Albedo::Kind::Estimate: return J("estimate");
+        case Albedo::Kind::Constant:
+            return vec<J>(a.rgb);
+        case Albedo::Kind::Texture:
+            return J{{"texture", a.texture_path}};
+        case Albedo::Kind::Estimate:
+            return J("estimate");
     }
     return J();
 }
@@ -509,8 +337,11 @@ J write_material(const Material& m) {
 template <class J>
 J write_camera(const CameraSpec& c) {
     if (c.model == CameraSpec::Model::LookAt) {
-        return J{{"model", "lookat"}, {"eye", vec<J>(c.eye)}, {"target", vec<J>(c.target)},
-                 {"up", vec<J>(c.up)}, {"vfov_deg", num(c.vfov_deg)}};
+        return J{{"model", "lookat"},
+                 {"eye", vec<J>(c.eye)},
+                 {"target", vec<J>(c.target)},
+                 {"up", vec<J>(c.up)},
+                 {"vfov_deg", num(c.vfov_deg)}};
     }
     const Distortion& d = c.distortion;
     J rows = J::array();
@@ -518,10 +349,14 @@ J write_camera(const CameraSpec& c) {
         const glm::mat3& R = c.rotation;
         rows.push_back(J::array({num(R[0][row]), num(R[1][row]), num(R[2][row])}));
     }
-    return J{{"model", "opencv"}, {"fx", num(c.fx)}, {"fy", num(c.fy)}, {"cx", num(c.cx)},
+    return J{{"model", "opencv"},
+             {"fx", num(c.fx)},
+             {"fy", num(c.fy)},
+             {"cx", num(c.cx)},
              {"cy", num(c.cy)},
              {"distortion", J::array({num(d.k1), num(d.k2), num(d.p1), num(d.p2), num(d.k3)})},
-             {"rotation", rows}, {"translation", vec<J>(c.translation)}};
+             {"rotation", rows},
+             {"translation", vec<J>(c.translation)}};
 }
 
 template <class J>
@@ -529,22 +364,24 @@ J write_project(const Project& p) {
     J doc;
     doc["schema_version"] = p.schema_version;
     doc["photo"] = J{{"path", p.photo.path}, {"exposure", num(p.photo.exposure)}};
-    doc["probe"] = J{{"path", p.probe.path},
-                     {"format", p.probe.format == ProbeSpec::Format::LatLong ? "latlong"
-                                                                              : "mirrorball"},
-                     {"rotation_deg", vec<J>(p.probe.rotation_deg)},
-                     {"intensity", num(p.probe.intensity)},
-                     {"mirror_ball_fov_deg", num(p.probe.mirror_ball_fov_deg)}};
+    doc["probe"] =
+        J{{"path", p.probe.path},
+          {"format", p.probe.format == ProbeSpec::Format::LatLong ? "latlong" : "mirrorball"},
+          {"rotation_deg", vec<J>(p.probe.rotation_deg)},
+          {"intensity", num(p.probe.intensity)},
+          {"mirror_ball_fov_deg", num(p.probe.mirror_ball_fov_deg)}};
     doc["camera"] = write_camera<J>(p.camera);
     doc["real"] = J::array();
     for (const RealProxy& r : p.real) {
-        doc["real"].push_back(J{{"name", r.name}, {"shape", write_shape<J>(r.shape)},
+        doc["real"].push_back(J{{"name", r.name},
+                                {"shape", write_shape<J>(r.shape)},
                                 {"transform", write_transform<J>(r.transform)},
                                 {"albedo", write_albedo<J>(r.albedo)}});
     }
     doc["objects"] = J::array();
     for (const VirtualObject& o : p.objects) {
-        doc["objects"].push_back(J{{"name", o.name}, {"shape", write_shape<J>(o.shape)},
+        doc["objects"].push_back(J{{"name", o.name},
+                                   {"shape", write_shape<J>(o.shape)},
                                    {"transform", write_transform<J>(o.transform)},
                                    {"material", write_material<J>(o.material)},
                                    {"visible", o.visible}});
@@ -567,61 +404,11 @@ J write_project(const Project& p) {
     return doc;
 }
 
-/// Rejects repeated keys in one object, which nlohmann would otherwise resolve silently.
-class DuplicateKeyCheck {
-public:
-    explicit DuplicateKeyCheck(const Reader& r) : reader_(r) {}
-    bool operator()(int, json::parse_event_t event, json& parsed) {
-        switch (event) {
-            case json::parse_event_t::object_start: stack_.push_back(Frame(false)); break;
-            case json::parse_event_t::array_start: stack_.push_back(Frame(true)); break;
-            case json::parse_event_t::key: {
-                Frame& f = stack_.back();
-                f.key = parsed.get<std::string>();
-                if (!f.keys.insert(f.key).second) reader_.fail(path(), "duplicate key");
-                break;
-            }
-            case json::parse_event_t::value:
-                if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
-                break;
-            case json::parse_event_t::object_end:
-            case json::parse_event_t::array_end:
-                stack_.pop_back();
-                if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
-                break;
-        }
-        return true;
-    }
-
-private:
-    struct Frame {
-        explicit Frame(bool is_array) : array(is_array) {}
-        bool array;
-        size_t index = 0;
-        std::string key;
-        std::set<std::string> keys;
-    };
-    std::string path() const {
-        std::string p;
-        for (const Frame& f : stack_) p = f.array ? at(p, f.index) : join(p, f.key);
-        return p;
-    }
-    const Reader& reader_;
-    std::vector<Frame> stack_;
-};
-
-/// nlohmann's message without its "[json.exception.parse_error.101] " prefix.
-std::string strip_prefix(const std::exception& e) {
-    std::string what = e.what();
-    if (auto pos = what.find("] "); pos != std::string::npos) what = what.substr(pos + 2);
-    return what;
-}
-
 }  // namespace
 
 Project parse_project(const json& doc, const std::string& file_for_errors,
                       std::filesystem::path base_dir) {
-    Reader r(file_for_errors);
+    JsonReader r(file_for_errors);
     if (!doc.is_object()) r.wrong_type(doc, "", "a JSON object at the top level");
     // The version is checked before anything else: a newer file may use keys this build lacks.
     const json& version = r.required(doc, "", "schema_version");
@@ -640,7 +427,8 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     if (auto* e = r.optional(photo, "exposure")) p.photo.exposure = r.real(*e, "photo.exposure");
 
     const json& probe = r.required(doc, "", "probe");
-    r.object(probe, "probe", {"path", "format", "rotation_deg", "intensity", "mirror_ball_fov_deg"});
+    r.object(probe, "probe",
+             {"path", "format", "rotation_deg", "intensity", "mirror_ball_fov_deg"});
     p.probe.path = r.string(r.required(probe, "probe", "path"), "probe.path");
     if (auto* f = r.optional(probe, "format")) {
         p.probe.format =
@@ -653,14 +441,14 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     if (auto* e = r.optional(probe, "intensity")) {
         p.probe.intensity = r.real(*e, "probe.intensity");
         r.check(p.probe.intensity >= 0, "probe.intensity",
-                "must be >= 0 (got " + shortest(p.probe.intensity) + ")");
+                "must be >= 0 (got " + shortest_decimal(p.probe.intensity) + ")");
     }
     if (auto* e = r.optional(probe, "mirror_ball_fov_deg")) {
         p.probe.mirror_ball_fov_deg = r.real(*e, "probe.mirror_ball_fov_deg");
         r.check(p.probe.mirror_ball_fov_deg >= 0 && p.probe.mirror_ball_fov_deg < 180,
                 "probe.mirror_ball_fov_deg",
                 "must be in [0, 180) degrees, 0 for an orthographic view (got " +
-                    shortest(p.probe.mirror_ball_fov_deg) + ")");
+                    shortest_decimal(p.probe.mirror_ball_fov_deg) + ")");
     }
 
     p.camera = parse_camera(r, r.required(doc, "", "camera"));
@@ -669,11 +457,10 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
         const json* arr = r.optional(doc, key);
         if (!arr) return;
         if (!arr->is_array()) r.wrong_type(*arr, key, "an array");
-        for (size_t i = 0; i < arr->size(); ++i) parse((*arr)[i], at(key, i));
+        for (size_t i = 0; i < arr->size(); ++i) parse((*arr)[i], json_at(key, i));
     };
-    each("real", [&](const json& j, const std::string& path) {
-        p.real.push_back(parse_real(r, j, path));
-    });
+    each("real",
+         [&](const json& j, const std::string& path) { p.real.push_back(parse_real(r, j, path)); });
     each("objects", [&](const json& j, const std::string& path) {
         p.objects.push_back(parse_object(r, j, path));
     });
@@ -681,34 +468,14 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     return p;
 }
 
-json to_json(const Project& project) { return write_project<json>(project); }
+json to_json(const Project& project) {
+    return write_project<json>(project);
+}
 
 Project load_project(const std::string& path) {
-    Reader r(path);
+    JsonReader r(path);
+    const json doc = r.parse(r.read_file("project file"));
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) r.fail("", "project file does not exist");
-    if (std::filesystem::is_directory(path, ec)) r.fail("", "is a folder, not a project file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) r.fail("", "cannot open the project file");
-    std::string text(std::istreambuf_iterator<char>(in), {});
-    if (in.bad()) r.fail("", "cannot read the project file");
-
-    json doc;
-    try {
-        doc = json::parse(text, DuplicateKeyCheck(r));
-    } catch (const json::parse_error& e) {
-        r.fail("", "invalid JSON at byte " + std::to_string(e.byte) + ": " + strip_prefix(e));
-    } catch (const json::out_of_range& e) {
-        // A literal beyond the double range ("number overflow parsing '1e999'"): no position
-        // is reported, so locate the quoted literal in the text.
-        std::string what = strip_prefix(e), where;
-        size_t q0 = what.find('\''), q1 = what.rfind('\'');
-        if (q0 != std::string::npos && q1 > q0) {
-            size_t byte = text.find(what.substr(q0 + 1, q1 - q0 - 1));
-            if (byte != std::string::npos) where = " at byte " + std::to_string(byte + 1);
-        }
-        r.fail("", "invalid JSON" + where + ": " + what + " (numbers must be finite)");
-    }
     std::filesystem::path base = std::filesystem::absolute(path, ec).parent_path();
     if (ec) base = std::filesystem::path(path).parent_path();
     return parse_project(doc, path, base.lexically_normal());

@@ -1,0 +1,27 @@
+#pragma once
+// Shared pieces of `diffphoton calibrate proxy|albedo|probe`: each reads a project, updates its
+// scene from the photograph and writes it back.
+#include <optional>
+#include <string>
+
+#include "base/error.h"
+#include "camera/camera.h"
+#include "scene/project.h"
+
+namespace dp::cli {
+
+/// Rethrows an error of the reconstruction calls, which name no file, labelled with the project
+/// whose camera, photo and probe the given points and figures refer to.
+[[noreturn]] void rethrow_for(const InputError& e, const std::string& project);
+
+/// The photo's size and the camera that took it (the photo file is read for its size).
+Camera project_camera(const Project& p);
+
+/// Where a photo value clips, in the photo's units after the project's exposure: `given` (file
+/// units) when set, 0.99 for an 8-bit photo (sRGB 254 and 255), none for EXR/HDR.
+float clip_level(const Project& p, const std::optional<float>& given);
+
+/// Saves `p` to `output`, or back to `input` when no output was given, and says where.
+void write_back(const Project& p, const std::string& input, const std::string& output);
+
+}  // namespace dp::cli

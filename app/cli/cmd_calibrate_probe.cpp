@@ -1,0 +1,156 @@
+// `diffphoton calibrate probe`: the light probe's mirror-ball field of view, its rotation from a
+// shadow cue and its exposure from a grey card. Reads a project, updates the probe, writes the
+// project back (or to --output) and prints each change with an error figure where one exists.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "assets/render_scene.h"
+#include "base/error.h"
+#include "calibrate_scene_common.h"
+#include "commands.h"
+#include "common.h"
+#include "reconstruction/probe_align.h"
+#include "scene/project_io.h"
+
+namespace dp::cli {
+
+namespace {
+
+struct ProbeOptions {
+    std::string project, output;
+    std::optional<float> fov, intensity, clip;
+    std::vector<float> shadow, card;
+    float object_height = 0, reflectance = 0.18f;
+    bool object_base = false;
+    int samples = 256;
+};
+
+void set_mirror_ball_fov(Project& p, const ProbeOptions& o) {
+    if (!(*o.fov >= 0 && *o.fov < 180))
+        throw InputError(o.project, "--fov",
+                         "the ball camera's field of view must be in [0, 180) degrees");
+    if (p.probe.format != ProbeSpec::Format::MirrorBall)
+        throw InputError(o.project, "--fov",
+                         "the probe is not a mirror ball (probe.format is \"latlong\")");
+    std::printf("probe mirror_ball_fov_deg %g -> %g\n", p.probe.mirror_ball_fov_deg, *o.fov);
+    p.probe.mirror_ball_fov_deg = *o.fov;
+}
+
+/// Turns the probe about +Y so that its brightest region lies where the shadow puts the sun.
+void align_to_shadow(Project& p, const ProbeOptions& o) {
+    if (!(o.object_height > 0))
+        throw InputError(o.project, "--object-height",
+                         "the shadow cue needs the object point's height (> 0)");
+    SceneAssets assets = load_assets(p);
+    for (const std::string& w : assets.warnings) warn(w);
+    const Camera camera = p.camera.build(assets.photo.width(), assets.photo.height());
+    ShadowCue cue;
+    cue.object_px = vec2(o.shadow[0], o.shadow[1]);
+    cue.shadow_px = vec2(o.shadow[2], o.shadow[3]);
+    cue.height = o.object_height;
+    cue.object_is_base = o.object_base;
+    vec3 sun, bright;
+    try {
+        sun = sun_direction_from_shadow(camera, cue);
+        bright = brightest_direction(assets.probe_latlong);
+    } catch (const InputError& e) {
+        rethrow_for(e, o.project);
+    }
+    const ProbeYaw yaw = align_probe_yaw(bright, p.probe.rotation_deg, sun);
+    const Bearing b = bearing_of(sun);
+    std::printf("sun from the shadow: azimuth %.2f deg, elevation %.2f deg\n", b.azimuth_deg,
+                b.elevation_deg);
+    std::printf("probe rotation_deg %s -> %s (turned %.2f deg about +Y)\n",
+                vec(p.probe.rotation_deg).c_str(), vec(yaw.rotation_deg).c_str(), yaw.yaw_deg);
+    std::printf("elevation_mismatch_deg %.3g\n", yaw.elevation_mismatch_deg);
+    p.probe.rotation_deg = yaw.rotation_deg;
+}
+
+/// Scales the probe's intensity so that the grey card's photographed radiance matches.
+void match_grey_card(Project& p, const ProbeOptions& o) {
+    if (!(o.reflectance > 0 && o.reflectance <= 1))
+        throw InputError(o.project, "--reflectance", "the card's reflectance must be in (0, 1]");
+    SceneAssets assets = load_assets(p);
+    for (const std::string& w : assets.warnings) warn(w);
+    RenderScene scene(p, std::move(assets));
+    GreyCard card;
+    card.x0 = int(std::lround(o.card[0]));
+    card.y0 = int(std::lround(o.card[1]));
+    card.x1 = int(std::lround(o.card[2]));
+    card.y1 = int(std::lround(o.card[3]));
+    card.reflectance = o.reflectance;
+    ExposureMatch m;
+    try {
+        m = match_exposure_grey_card(scene, card, clip_level(p, o.clip), o.samples);
+    } catch (const InputError& e) {
+        rethrow_for(e, o.project);
+    }
+    std::printf("probe intensity %g -> %g (x%.4g from %d card pixels)\n", p.probe.intensity,
+                m.intensity, m.scale, m.pixels);
+    std::printf("card_spread %.3g\n", m.spread);
+    p.probe.intensity = m.intensity;
+}
+
+void run_probe(const ProbeOptions& o) {
+    if (!o.fov && !o.intensity && o.shadow.empty() && o.card.empty())
+        throw InputError(o.project, "",
+                         "nothing to do: give --fov, --shadow (with --object-height), --grey-card "
+                         "(with --reflectance) or --intensity");
+    Project p = load_project(o.project);
+    if (o.fov) set_mirror_ball_fov(p, o);
+    if (!o.shadow.empty()) align_to_shadow(p, o);
+    if (o.intensity) {
+        std::printf("probe intensity %g -> %g (set by hand)\n", p.probe.intensity, *o.intensity);
+        p.probe.intensity = *o.intensity;
+    } else if (!o.card.empty()) {
+        match_grey_card(p, o);
+    }
+    write_back(p, o.project, o.output);
+}
+
+}  // namespace
+
+void add_calibrate_probe_command(CLI::App& calibrate) {
+    auto o = std::make_shared<ProbeOptions>();
+    CLI::App* sub = calibrate.add_subcommand(
+        "probe",
+        "Set the mirror ball's field of view, align the probe's rotation to a shadow, match its "
+        "exposure");
+    sub->add_option("project", o->project, "Project file (JSON)")->required();
+    sub->add_option("--fov", o->fov,
+                    "Vertical field of view (deg) of the camera that shot the mirror ball")
+        ->check(kFinite);
+    sub->add_option("--shadow", o->shadow,
+                    "Shadow cue: object point x y and its shadow's tip x y (pixels); turns the "
+                    "probe about +Y to put its brightest region on the sun")
+        ->expected(4)
+        ->check(kFinite);
+    sub->add_option("--object-height", o->object_height,
+                    "Height of the clicked object point above the ground")
+        ->check(kFinite);
+    sub->add_flag("--object-base", o->object_base,
+                  "The clicked object point is its base on the ground; the point casting the "
+                  "shadow is --object-height above it");
+    sub->add_option("--grey-card", o->card,
+                    "Grey card rectangle x0 y0 x1 y1 (pixels, inclusive) on a real proxy")
+        ->expected(4)
+        ->check(kFinite);
+    sub->add_option("--reflectance", o->reflectance, "The card's reflectance (default 0.18)")
+        ->check(kFinite);
+    auto* intensity =
+        sub->add_option("--intensity", o->intensity, "Set the probe intensity by hand")
+            ->check(CLI::NonNegativeNumber);
+    intensity->excludes(sub->get_option("--grey-card"));
+    sub->add_option("--clip", o->clip, "Photo value (file units) at which a card pixel is clipped")
+        ->check(kFinite);
+    sub->add_option("--samples", o->samples, "Probe samples per card pixel (default 256)")
+        ->check(CLI::PositiveNumber);
+    sub->add_option("-o,--output", o->output, "Write the project here instead of updating it");
+    sub->callback([o] { run_probe(*o); });
+}
+
+}  // namespace dp::cli
