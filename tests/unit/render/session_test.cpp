@@ -1,6 +1,7 @@
 // The render session: progressive images reach the sink; cancel and reset take effect.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <condition_variable>
 #include <mutex>
 #include <vector>
@@ -99,4 +100,34 @@ TEST(RenderSession, ResetRestartsRefinementFromTheFirstPass) {
     EXPECT_EQ(sink.passes_[sink.passes_.size() - 2], 1);
     EXPECT_EQ(sink.passes_.back(), 2);
     EXPECT_TRUE(sink.finished_.back());
+}
+
+namespace {
+
+/// Records whether any update came with images it did not ask for.
+class CountingSink : public RenderSink {
+public:
+    void on_update(const RenderUpdate& u) override {
+        ++updates;
+        if (u.has_images()) ++with_images;
+        if (u.finished) {
+            RenderUpdate last = u;
+            last.pull_images();
+            final_pixels = last.image.size();
+        }
+    }
+    std::atomic<int> updates{0}, with_images{0};
+    std::atomic<size_t> final_pixels{0};
+};
+
+}  // namespace
+
+TEST(RenderSession, BuildsNoImageForASinkThatPullsOnlyTheLastPass) {
+    CountingSink sink;
+    RenderSession session(&sink);
+    session.start(small_scene(), budget(4));
+    session.wait();
+    EXPECT_EQ(sink.updates.load(), 4);
+    EXPECT_EQ(sink.with_images.load(), 0);  // a pass's images exist only when pulled
+    EXPECT_EQ(sink.final_pixels.load(), 48u * 32u);
 }
