@@ -19,7 +19,8 @@ git diff --quiet HEAD 2>/dev/null || commit="$commit with uncommitted changes"
 bash scripts/install-deps.sh --bench
 cmake -S . -B "$BUILD" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo > /dev/null
 cmake --build "$BUILD" --target diffphoton
-/usr/bin/python3 bench/scenes/make_scenes.py --diffphoton "$BUILD/app/diffphoton" --out "$SCENES"
+only=(); for s in "${ORDER[@]}"; do only+=(--only "$s"); done  # the scenes this run measures
+/usr/bin/python3 bench/scenes/make_scenes.py --diffphoton "$BUILD/app/diffphoton" --out "$SCENES" "${only[@]}"
 mkdir -p "$OUT"
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 "$BUILD/app/diffphoton" bench "${ORDER[@]/#/$SCENES/}" -o "$OUT/rows.json" --images "$OUT/images" \
