@@ -20,6 +20,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 THRESHOLDS = (0.05, 0.02, 0.01)
 CYCLES_THRESHOLDS = (0.05, 0.02, 0.01, 0.005)  # levels of the speed-up against Cycles
 STYLE = {"differential": ("tab:blue", "differential photon mapping"),
+         "differential-photons": ("tab:cyan", "differential, all-photon estimator"),
+         "differential-random": ("tab:purple", "differential, no low-discrepancy points"),
+         "differential-uniform": ("tab:gray", "differential, no adaptive sampling"),
          "standard": ("tab:red", "standard (two independent simulations)"),
          "standard-correlated": ("tab:orange", "standard, correlated sampling"),
          "cycles": ("tab:green", "Blender Cycles, shadow catcher")}

@@ -12,7 +12,7 @@ SCENES=${SCENES:-out/bench/scenes}
 DIFF_S=${DIFF_S:-30}
 STD_S=${STD_S:-120}
 ORDER=(shadow_hard shadow_soft caustic mirrors bleeding five_objects big_proxy noop)
-METHODS=differential,standard,standard-correlated,cycles
+METHODS=${METHODS:-differential,differential-photons,differential-random,standard-correlated,cycles}
 
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 git diff --quiet HEAD 2>/dev/null || commit="$commit with uncommitted changes"
