@@ -8,6 +8,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "bench_cycles.h"
 #include "commands.h"
@@ -190,7 +191,7 @@ int run_bench(BenchOptions o) {
             }
             if (interrupted()) break;
         }
-        std::ofstream(o.output) << doc.dump(1) << "\n";
+        write_file_atomically(o.output, doc.dump(1) + "\n");
         std::printf("wrote %s\n", o.output.c_str());
         return interrupted() ? kInterruptedExit : 0;
     });
@@ -213,14 +214,14 @@ Command add_bench_command(CLI::App& app) {
         ->delimiter(',');
     sub->add_option("--max-seconds-differential", o->max_seconds_differential,
                     "Render-time budget of differential photon mapping per scene")
-        ->check(CLI::PositiveNumber & kFinite);
+        ->check(kPositive);
     sub->add_option("--max-seconds-standard", o->max_seconds_standard,
                     "Render-time budget of standard differential rendering (and of Cycles) per scene")
-        ->check(CLI::PositiveNumber & kFinite);
+        ->check(kPositive);
     sub->add_option("--blender", o->blender,
                     "Blender for the cycles method (default: $DP_BLENDER, else blender on PATH)");
     sub->add_option("--images", o->images, "Folder for each run's last image (PNG)");
-    sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+    sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(kNonNegative);
     return {sub, [o] { return run_bench(*o); }};
 }
 

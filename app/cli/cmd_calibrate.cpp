@@ -5,6 +5,7 @@
 #include <fstream>
 #include <memory>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "calibrate_common.h"
 #include "calibration/chessboard.h"
@@ -102,9 +103,11 @@ int run_chessboard(const ChessboardOptions& o) {
     print_result(r, method);
     write_camera(o.project, r, photo);
     if (!poses.empty()) {  // after the project: a refused camera writes nothing
-        std::ofstream out(o.poses);
-        out << poses << "\n";
-        if (!out) throw InputError(o.poses, "--poses", "cannot write the file");
+        try {
+            write_file_atomically(o.poses, poses + "\n");
+        } catch (const std::runtime_error& e) {
+            throw InputError(o.poses, "--poses", e.what());
+        }
         std::printf("wrote every photo's pose to %s\n", o.poses.c_str());
     }
     return 0;
@@ -142,10 +145,11 @@ int run_fspy(const FspyOptions& o) {
     FspyImport f = read_fspy(o.file);
     std::string photo;
     if (!o.extract.empty()) {
-        std::ofstream out(o.extract, std::ios::binary);
-        if (!out) throw InputError(o.extract, "--extract-photo", "cannot write the file");
-        out.write(reinterpret_cast<const char*>(f.image.data()), std::streamsize(f.image.size()));
-        if (!out) throw InputError(o.extract, "--extract-photo", "cannot write the file");
+        try {
+            write_file_atomically(o.extract, std::string(f.image.begin(), f.image.end()));
+        } catch (const std::runtime_error& e) {
+            throw InputError(o.extract, "--extract-photo", e.what());
+        }
         std::printf("wrote the embedded photo (%s) to %s\n",
                     f.image_extension.empty() ? "unknown format" : f.image_extension.c_str(),
                     o.extract.c_str());

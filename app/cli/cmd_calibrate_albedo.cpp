@@ -102,17 +102,17 @@ void add_calibrate_albedo_command(CLI::App& calibrate) {
     sub->add_option("--subsamples", o->subsamples, "Points per texel side (default 3)")
         ->check(CLI::Range(1, 16));
     sub->add_option("--samples", o->samples, "Probe samples per texel (default 512)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     sub->add_option("--bounce-samples", o->bounce,
                     "Rays per texel for light from other real surfaces (0: off)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     sub->add_option("--clip", o->clip,
                     "Photo value (file units) at which a pixel is clipped (default: 0.99 for "
                     "8-bit photos, none for EXR/HDR)")
         ->check(kFinite);
-    sub->add_option("--seed", o->seed, "Random seed");
+    sub->add_option("--seed", o->seed, "Random seed")->check(kSeed);
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     sub->add_option("-o,--output", o->output,
                     "Write the project here instead of updating it (the textures go beside it)");
     sub->callback([o] { run_albedo(*o); });

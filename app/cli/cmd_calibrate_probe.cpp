@@ -143,12 +143,12 @@ void add_calibrate_probe_command(CLI::App& calibrate) {
         ->check(kFinite);
     auto* intensity =
         sub->add_option("--intensity", o->intensity, "Set the probe intensity by hand")
-            ->check(CLI::NonNegativeNumber);
+            ->check(kNonNegative);
     intensity->excludes(sub->get_option("--grey-card"));
     sub->add_option("--clip", o->clip, "Photo value (file units) at which a card pixel is clipped")
         ->check(kFinite);
     sub->add_option("--samples", o->samples, "Probe samples per card pixel (default 256)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     sub->add_option("-o,--output", o->output, "Write the project here instead of updating it");
     sub->callback([o] { run_probe(*o); });
 }

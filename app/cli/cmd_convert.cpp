@@ -1,4 +1,5 @@
 // `diffphoton convert` (HDR to 8-bit) and `diffphoton compare` (difference figures).
+#include <filesystem>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +30,9 @@ struct ConvertOptions {
 int run_convert(const ConvertOptions& o) {
     if (check_output_path(o.output, "output") != ImageKind::Ldr)
         throw InputError(o.output, "output", "convert writes PNG or JPEG (.png, .jpg, .jpeg)");
+    std::error_code ec;
+    if (std::filesystem::equivalent(o.input, o.output, ec))
+        throw InputError(o.output, "output", "is the input image itself: choose another output");
     write_image(o.output, load_input(o.input, "input"), o.exposure);
     return 0;
 }

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <string>
 
+#include "render/render_limits.h"
 #include "commands.h"
 #include "common.h"
 
@@ -91,6 +92,7 @@ void print_render_settings(const RenderSettings& r) {
 
 int run_info(const std::string& project_path) {
     LoadedScene loaded = load_scene(project_path);
+    check_render_limits(*loaded.scene, loaded.settings);  // what render would refuse, info refuses too
     auto scene = loaded.scene;
     const Project& p = loaded.project;
     const SceneAssets& a = scene->assets();

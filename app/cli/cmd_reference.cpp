@@ -55,12 +55,12 @@ Command add_reference_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("reference", "Path-trace a reference image of the scene");
     sub->add_option("project", o->project, "Project file (JSON)")->required();
     sub->add_option("-o,--output", o->output, "Output image (.exr, or .png/.jpg)")->required();
-    sub->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::PositiveNumber);
+    sub->add_option("--spp", o->spp, "Samples per pixel")->check(kPositive);
     sub->add_flag("--real-only", o->real_only,
                   "Leave the virtual objects out (makes a synthetic photograph)");
-    o->seed_opt = sub->add_option("--seed", o->seed, "Random seed (default: the project's)");
+    o->seed_opt = sub->add_option("--seed", o->seed, "Random seed (default: the project's)")->check(kSeed);
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     sub->add_option("--exposure", o->exposure, "PNG/JPEG only: exposure in stops")
         ->check(kFinite);
     return {sub, [o] { return run_reference(*o); }};

@@ -13,6 +13,7 @@
 #include "image/image_io.h"
 #include "reference/standard_differential.h"
 #include "render/progressive.h"
+#include "render/render_limits.h"
 #include "render/render_output.h"
 #include "render/session.h"
 #include "render_pixel.h"
@@ -76,6 +77,8 @@ int run_render(const RenderOptions& o) {
     return with_threads(o.threads, [&]() -> int {
         LoadedScene loaded = load_scene(o.project, [&](Project& p) { apply_overrides(o, p); });
         auto scene = loaded.scene;
+        if (!o.output.empty()) refuse_overwriting_inputs(o.output, "--output", loaded.project, o.project);
+        if (!standard) check_render_limits(*scene, loaded.settings);  // bad input, exit 2, before any pass
         if (debug) return debug_pixel(scene, loaded.settings, o.project, px, py, o.pass);
 
         install_interrupt_handler();
@@ -129,15 +132,15 @@ Command add_render_command(CLI::App& app) {
     sub->add_option("-o,--output", o->output, "Output image: .exr (linear) or .png/.jpg (sRGB)");
     o->passes_opt =
         sub->add_option("--passes", o->passes, "Number of passes (overrides the project)")
-            ->check(CLI::PositiveNumber);
+            ->check(kPositive);
     o->time_opt = sub->add_option("--time", o->time_s, "Render for this many seconds instead")
-                      ->check(CLI::PositiveNumber & kFinite)
+                      ->check(kPositive)
                       ->excludes(o->passes_opt);
     o->photons_opt = sub->add_option("--photons", o->photons, "Photons per pass")
-                         ->check(CLI::PositiveNumber);
-    o->seed_opt = sub->add_option("--seed", o->seed, "Random seed");
+                         ->check(kPositive);
+    o->seed_opt = sub->add_option("--seed", o->seed, "Random seed")->check(kSeed);
     o->threads_opt = sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")
-                         ->check(CLI::NonNegativeNumber);
+                         ->check(kNonNegative);
     sub->add_flag("--layers", o->layers, "EXR only: also write layers dL, alpha and shadow");
     sub->add_option("--exposure", o->exposure, "PNG/JPEG only: exposure in stops")
         ->check(kFinite);
@@ -152,11 +155,11 @@ Command add_render_command(CLI::App& app) {
     sub->add_option("--focus-after", o->focus_after,
                     "standard methods: after this many passes, sample only the pixels the objects "
                     "change (and two pixels around them); for truths with many samples")
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
     o->pixel_opt = sub->add_option("--pixel", o->pixel,
                                    "Debug: print one pixel of one pass (X,Y) instead of rendering");
     sub->add_option("--pass", o->pass, "Debug: the pass for --pixel (1-based)")
-        ->check(CLI::PositiveNumber)
+        ->check(kPositive)
         ->needs(o->pixel_opt);
     return {sub, [o] { return run_render(*o); }};
 }

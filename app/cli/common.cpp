@@ -29,6 +29,38 @@ const CLI::Validator kFinite(
     },
     "FINITE");
 
+namespace {
+
+/// A number check whose message a person can read (CLI11's own prints the double's range in
+/// full, 309 digits).
+CLI::Validator number_check(const char* name, bool (*ok)(double), const char* must) {
+    return CLI::Validator(
+        [ok, must](std::string& text) -> std::string {
+            double v = 0;
+            if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v))
+                return "value " + text.substr(0, 40) + " is not a finite number";
+            if (!ok(v)) return "value " + text.substr(0, 40) + " must be " + must;
+            return {};
+        },
+        name);
+}
+
+}  // namespace
+
+const CLI::Validator kSeed(
+    [](std::string& text) -> std::string {
+        // CLI11 would wrap "-1" into 2^64 - 1 without a word.
+        if (text.empty() || text.size() > 20 || text.find_first_not_of("0123456789") != std::string::npos)
+            return "seed " + text.substr(0, 40) + " must be a whole number from 0 to 18446744073709551615";
+        if (text.size() == 20 && text > "18446744073709551615")
+            return "seed " + text + " is more than 18446744073709551615";
+        return {};
+    },
+    "SEED");
+
+const CLI::Validator kPositive = number_check("POSITIVE", [](double v) { return v > 0; }, "greater than 0");
+const CLI::Validator kNonNegative = number_check("NONNEGATIVE", [](double v) { return v >= 0; }, "0 or more");
+
 void warn(const std::string& text) { std::cerr << "warning: " << text << "\n"; }
 
 LoadedScene load_scene(const std::string& project_path, const std::function<void(Project&)>& edit) {

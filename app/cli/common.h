@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <tbb/task_arena.h>
 
+#include "base/threads.h"
 #include "image/image.h"
 #include "assets/render_scene.h"
 #include "scene/project.h"
@@ -16,6 +17,11 @@ namespace dp::cli {
 
 /// Validator for floating-point flags: rejects nan and inf, which CLI11 parses happily.
 extern const CLI::Validator kFinite;
+/// Finite and > 0, or finite and >= 0, with readable messages.
+extern const CLI::Validator kPositive;
+/// A random seed: a whole number in [0, 2^64).
+extern const CLI::Validator kSeed;
+extern const CLI::Validator kNonNegative;
 
 /// Prints "warning: <text>" to stderr.
 void warn(const std::string& text);
@@ -24,7 +30,10 @@ void warn(const std::string& text);
 template <class F>
 auto with_threads(int threads, F&& work) {
     if (threads <= 0) return work();
-    tbb::task_arena arena(threads);
+    if (threads > hardware_threads())
+        warn("--threads " + std::to_string(threads) + " is more than the " + std::to_string(hardware_threads()) +
+             " cores of this machine; using " + std::to_string(hardware_threads()));
+    tbb::task_arena arena(worker_threads(threads));
     return arena.execute(std::forward<F>(work));
 }
 

@@ -1,8 +1,11 @@
 // Entry point: parses the command line and maps failures to exit codes
 // (0 success, 1 internal error, 2 bad input).
+#include <algorithm>
+#include <cstdint>
 #include <exception>
 #include <iostream>
 #include <new>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -15,6 +18,38 @@ namespace {
 constexpr int kExitInternal = 1;
 constexpr int kExitBadInput = 2;
 
+size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+/// "unknown command 'rendr' (did you mean 'render'?)" for a first word that names no command;
+/// CLI11 alone would say only that a subcommand is required.
+bool unknown_command(const CLI::App& app, const std::string& word) {
+    if (word.empty() || word[0] == '-') return false;
+    std::string best;
+    size_t best_distance = SIZE_MAX;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+        if (sub->get_name() == word) return false;
+        const size_t d = edit_distance(word, sub->get_name());
+        if (d < best_distance) best_distance = d, best = sub->get_name();
+    }
+    std::cerr << "error: unknown command '" << word.substr(0, 80) << "'";
+    if (best_distance <= std::max<size_t>(2, word.size() / 3)) std::cerr << " (did you mean '" << best << "'?)";
+    std::cerr << "\n(run 'diffphoton --help' for the commands)\n";
+    return true;
+}
+
 int run(int argc, char** argv) {
     using namespace dp::cli;
     CLI::App app{"diffphoton: insert virtual objects into photographs with matching light"};
@@ -26,6 +61,7 @@ int run(int argc, char** argv) {
         add_bench_command(app),
         add_calibrate_command(app),
     };
+    if (argc > 1 && unknown_command(app, argv[1])) return kExitBadInput;
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

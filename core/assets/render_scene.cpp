@@ -1,4 +1,5 @@
 #include "assets/render_scene.h"
+#include "base/error.h"
 #include "base/euler.h"
 
 #include <algorithm>
@@ -69,6 +70,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets)
     probe_ = Probe(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg), project_.probe.intensity);
     lights_ = ProbeLights(probe_);
     place_surfaces();
+    check_extent();
     std::vector<PlacedShape> real, virt;
     for (const Surface& s : real_surfaces_) real.push_back(placed(s, true));
     for (size_t i = 0; i < virtual_surfaces_.size(); ++i)
@@ -109,6 +111,36 @@ void RenderScene::place_surfaces() {
         place_shape(r.shape, r.transform, loaded, s, real_world_meshes_[i]);
         real_surfaces_.push_back(s);
     }
+}
+
+void RenderScene::check_extent() const {
+    // 1e9 m leaves ray arithmetic (squares of coordinates, t * dir) nine orders of magnitude
+    // below float's overflow; no photographed scene comes near it.
+    constexpr float kMaxCoordinate = 1e9f;
+    auto ok = [&](vec3 v) { return is_finite(v) && glm::all(glm::lessThanEqual(glm::abs(v), vec3(kMaxCoordinate))); };
+    auto check = [&](const Surface& s) {
+        bool good = true;
+        if (s.analytic_sphere) {
+            good = ok(s.sphere_center) && std::isfinite(s.sphere_radius) && s.sphere_radius <= kMaxCoordinate &&
+                   ok(s.sphere_center + vec3(s.sphere_radius)) && ok(s.sphere_center - vec3(s.sphere_radius));
+        } else if (s.mesh) {
+            for (const vec3& p : s.mesh->positions)
+                if (!ok(p)) {
+                    good = false;
+                    break;
+                }
+        }
+        if (good) return;
+        const std::string list = s.is_virtual ? "objects" : "real";
+        const std::string& name = s.is_virtual ? project_.objects[size_t(s.index)].name : project_.real[size_t(s.index)].name;
+        throw InputError("", list + "[" + std::to_string(s.index) + "]",
+                         "'" + name + "' reaches beyond 1e9 m from the origin (or is not finite) once placed: "
+                         "check its size, scale and translation");
+    };
+    for (const Surface& s : real_surfaces_) check(s);
+    for (const Surface& s : virtual_surfaces_) check(s);
+    if (!ok(camera_.position()))
+        throw InputError("", "camera", "the camera position is not finite or beyond 1e9 m from the origin");
 }
 
 void RenderScene::compute_scale() {

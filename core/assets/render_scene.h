@@ -121,6 +121,9 @@ private:
     /// The world-space surfaces of project.real and project.objects, and their shapes.
     void place_surfaces();
     void compute_scale();
+    /// Throws InputError naming the surface whose placed extent is not finite or so large that
+    /// ray arithmetic would overflow (before any BVH sees it: Embree aborts on such rays).
+    void check_extent() const;
     void compute_clusters();
     void estimate_albedos();
     Hit to_hit(const ShapeHit& h) const;

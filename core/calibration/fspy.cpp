@@ -1,4 +1,5 @@
 #include "calibration/fspy.h"
+#include "base/input_file.h"
 
 #include <cmath>
 #include <cstring>
@@ -42,6 +43,8 @@ std::string image_extension(const std::vector<uint8_t>& b) {
 }
 
 std::vector<uint8_t> read_bytes(const std::string& path) {
+    // A photo and a few kB of JSON: 512 MB is far above any real one and refuses a device.
+    check_input_file(path, "", "an fSpy project file", 512u << 20);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path, "", "cannot open the file");
     return std::vector<uint8_t>((std::istreambuf_iterator<char>(in)),

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "image/image_io.h"
+#include "base/atomic_file.h"
 #include "image/image_io_internal.h"
 
 namespace dp {
@@ -189,13 +190,16 @@ void save_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
                                           sizeof(vec3) * size_t(width)));
         }
     }
-    try {
-        Imf::OutputFile file(path.c_str(), header);
-        file.setFrameBuffer(frame);
-        file.writePixels(height);
-    } catch (const std::exception& e) {
-        throw std::runtime_error("cannot write EXR '" + path + "': " + e.what());
-    }
+    // Into a temporary file renamed over `path`: a killed render never leaves a broken EXR.
+    write_atomically(path, [&](const std::string& temp) {
+        try {
+            Imf::OutputFile file(temp.c_str(), header);
+            file.setFrameBuffer(frame);
+            file.writePixels(height);
+        } catch (const std::exception& e) {
+            throw std::runtime_error("cannot write EXR '" + path + "': " + e.what());
+        }
+    });
 }
 
 }  // namespace dp

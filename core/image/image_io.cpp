@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "image/image_io.h"
+#include "base/input_file.h"
+#include "base/atomic_file.h"
 #include "image/image_io_internal.h"
 
 namespace dp {
@@ -24,12 +26,8 @@ namespace image_io_detail {
 
 bool check_image_file(const std::string& path, const std::string& field) {
     if (path.empty()) throw InputError(path, field, "no image file given");
-    std::error_code ec;
-    const fs::file_status status = fs::status(path, ec);
-    if (!fs::exists(status)) throw InputError(path, field, "file not found");
-    if (fs::is_directory(status)) throw InputError(path, field, "is a directory, not an image");
-    const auto bytes = fs::file_size(path, ec);
-    if (!ec && bytes == 0) throw InputError(path, field, "image has zero size (the file is empty)");
+    const uint64_t bytes = check_input_file(path, field, "an image");
+    if (bytes == 0) throw InputError(path, field, "image has zero size (the file is empty)");
 
     std::ifstream in(path, std::ios::binary);
     if (!in)
@@ -183,14 +181,16 @@ void save_ldr(const std::string& path, const Image& image, float exposure) {
     }
     std::vector<int> params;
     if (ext != ".png") params = {cv::IMWRITE_JPEG_QUALITY, 95};
-    bool ok = false;
-    std::string detail = "the encoder failed";
-    try {
-        ok = cv::imwrite(path, bgr, params);
-    } catch (const std::exception& e) {
-        detail = e.what();
-    }
-    if (!ok) throw std::runtime_error("cannot write image '" + path + "': " + detail);
+    write_atomically(path, [&](const std::string& temp) {
+        bool ok = false;
+        std::string detail = "the encoder failed";
+        try {
+            ok = cv::imwrite(temp, bgr, params);
+        } catch (const std::exception& e) {
+            detail = e.what();
+        }
+        if (!ok) throw std::runtime_error("cannot write image '" + path + "': " + detail);
+    });
 }
 
 float srgb_to_linear(float v) {

@@ -111,6 +111,9 @@ Image render_reference(const RenderScene& scene, const ReferenceOptions& options
                 uint64_t pixel = uint64_t(y) * W + x;
                 dvec3 sum(0);
                 for (int s = 0; s < options.samples_per_pixel; ++s) {
+                    // A row at thousands of samples per pixel takes seconds: Ctrl-C answers
+                    // within a batch of 64 paths.
+                    if ((s & 63) == 0 && cancel && cancel->load(std::memory_order_relaxed)) return;
                     Rng rng = rng_stream::reference_path(options.seed, pixel, uint64_t(s));
                     const Ray ray = reference_camera_ray(scene, options.seed, x, y, uint64_t(s));
                     vec3 L = pt.radiance(ray, rng);

@@ -11,6 +11,7 @@
 #include "base/rng.h"
 #include "base/sobol.h"
 #include "image/image_metrics.h"
+#include "render/render_limits.h"
 
 namespace dp {
 
@@ -45,6 +46,7 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
     : scene_(std::move(scene)), settings_(settings),
       photons_per_pass_(std::max<int64_t>(1, settings.photons_per_pass)), seed_(settings.seed) {
     const RenderSettings& rs = settings_;
+    check_render_limits(*scene_, rs);  // before any allocation the settings size
     alpha_ = rs.alpha;
     split_ = rs.estimator == Estimator::Split;
     low_discrepancy_ = rs.low_discrepancy;

@@ -4,6 +4,8 @@
 
 #include <chrono>
 
+#include "base/threads.h"
+
 namespace dp {
 
 namespace {
@@ -56,7 +58,7 @@ void RenderSession::run(std::shared_ptr<const RenderScene> scene, const RenderSe
     bool cancelled = false;
     std::string error;
     try {
-        int threads = rs.threads > 0 ? rs.threads : tbb::task_arena::automatic;
+        const int threads = worker_threads(rs.threads);
         tbb::task_arena arena(threads);
         arena.execute([&] {
             std::unique_ptr<PassRenderer> owned = factory(scene, rs);

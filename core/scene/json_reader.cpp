@@ -1,4 +1,5 @@
 #include "scene/json_reader.h"
+#include "base/input_file.h"
 
 #include <algorithm>
 #include <charconv>
@@ -107,9 +108,8 @@ std::string shortest_decimal(double v) {
 }
 
 std::string JsonReader::read_file(const std::string& what) const {
-    std::error_code ec;
-    if (!std::filesystem::exists(file_, ec)) fail("", what + " does not exist");
-    if (std::filesystem::is_directory(file_, ec)) fail("", "is a folder, not a " + what);
+    // A project is a few kB; 16 MB refuses /dev/zero-like inputs long before memory runs out.
+    check_input_file(file_, "", "a " + what, 16u << 20);
     std::ifstream in(file_, std::ios::binary);
     if (!in) fail("", "cannot open the " + what);
     std::string text(std::istreambuf_iterator<char>(in), {});

@@ -1,5 +1,7 @@
 #include "scene/project.h"
 
+#include "base/error.h"
+
 #include "base/euler.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -49,6 +51,43 @@ bool Project::operator==(const Project& o) const {
     // base_dir records where the file was read from, not what it says.
     return schema_version == o.schema_version && photo == o.photo && probe == o.probe &&
            camera == o.camera && real == o.real && objects == o.objects && render == o.render;
+}
+
+std::vector<std::pair<std::string, std::filesystem::path>> project_inputs(const Project& project) {
+    std::vector<std::pair<std::string, std::filesystem::path>> in;
+    auto add = [&](const std::string& field, const std::string& path) {
+        if (!path.empty()) in.emplace_back(field, project.resolve(path));
+    };
+    add("photo.path", project.photo.path);
+    add("probe.path", project.probe.path);
+    for (size_t i = 0; i < project.real.size(); ++i) {
+        const std::string at = "real[" + std::to_string(i) + "]";
+        if (project.real[i].shape.kind == Shape::Kind::Mesh) add(at + ".shape.path", project.real[i].shape.mesh_path);
+        add(at + ".albedo.texture", project.real[i].albedo.texture_path);
+    }
+    for (size_t i = 0; i < project.objects.size(); ++i) {
+        const std::string at = "objects[" + std::to_string(i) + "]";
+        if (project.objects[i].shape.kind == Shape::Kind::Mesh) add(at + ".shape.path", project.objects[i].shape.mesh_path);
+        add(at + ".material.albedo.texture", project.objects[i].material.albedo.texture_path);
+    }
+    return in;
+}
+
+void refuse_overwriting_inputs(const std::string& output, const std::string& option, const Project& project,
+                               const std::string& project_file) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path out = fs::weakly_canonical(fs::absolute(output, ec), ec);
+    auto same = [&](const fs::path& p) {
+        std::error_code e;
+        return fs::exists(p, e) && fs::equivalent(out, p, e);
+    };
+    if (!project_file.empty() && same(project_file))
+        throw InputError(output, option, "is the project file itself: choose another output");
+    for (const auto& [field, path] : project_inputs(project))
+        if (same(path))
+            throw InputError(output, option,
+                             "is the project's " + field + " ('" + path.string() + "'): a render must not overwrite its input");
 }
 
 }  // namespace dp

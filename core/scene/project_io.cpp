@@ -1,5 +1,7 @@
 #include "scene/project_io.h"
+#include "base/atomic_file.h"
 
+#include <functional>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -483,12 +485,25 @@ Project load_project(const std::string& path) {
 
 void save_project(const Project& project, const std::string& path) {
     // ordered_json keeps the natural reading order (schema_version, photo, probe, ...).
-    std::string text = write_project<nlohmann::ordered_json>(project).dump(2) + "\n";
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path, "", "cannot open the project file for writing");
-    out << text;
-    out.flush();
-    if (!out) throw InputError(path, "", "failed writing the project file");
+    const nlohmann::ordered_json doc = write_project<nlohmann::ordered_json>(project);
+    // JSON has no NaN or infinity (they would be written as null and the file would no longer
+    // load): refuse, naming the field, and keep the old file.
+    std::function<void(const nlohmann::ordered_json&, const std::string&)> check_finite =
+        [&](const nlohmann::ordered_json& j, const std::string& at) {
+            if (j.is_number_float() && !std::isfinite(j.get<double>()))
+                throw InputError(path, at, "is not a finite number; the project was not saved");
+            if (j.is_object())
+                for (const auto& [key, value] : j.items()) check_finite(value, json_join(at, key));
+            if (j.is_array())
+                for (size_t i = 0; i < j.size(); ++i) check_finite(j[i], at + "[" + std::to_string(i) + "]");
+        };
+    check_finite(doc, "");
+    std::string text = doc.dump(2) + "\n";
+    try {
+        write_file_atomically(path, text);  // the old file stays whole if this fails
+    } catch (const std::runtime_error& e) {
+        throw InputError(path, "", e.what());
+    }
 }
 
 }  // namespace dp

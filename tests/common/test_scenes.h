@@ -32,6 +32,24 @@ inline RealProxy ground_plane(vec3 albedo, float size = 40.0f) {
     return g;
 }
 
+/// A real wall: a 4 x 2 x 0.1 m box standing on the ground, centred at z = `z`.
+inline RealProxy wall_proxy(float z, vec3 albedo) {
+    RealProxy wall;
+    wall.name = "wall";
+    wall.shape.kind = Shape::Kind::Box;
+    wall.shape.size = vec3(4, 2, 0.1f);
+    wall.transform.translation = vec3(0, 1, z);
+    wall.albedo.rgb = albedo;
+    return wall;
+}
+
+/// Distance from `center` to the line through `x` along unit direction `dir` (how far a ground
+/// point is from the shadow axis of a sphere).
+inline float distance_to_line(vec3 center, vec3 x, vec3 dir) {
+    const vec3 oc = center - x;
+    return glm::length(oc - glm::dot(oc, dir) * dir);
+}
+
 inline VirtualObject sphere(vec3 center, float radius, Material m) {
     VirtualObject o;
     o.name = "sphere";

@@ -131,13 +131,7 @@ Image sun_sky() {
 Project wall_scene(vec3 eye, vec3 target) {
     Project p = look_at_project(eye, target, 45);
     p.real.push_back(ground_plane(vec3(0.45f)));
-    RealProxy wall;
-    wall.name = "wall";
-    wall.shape.kind = Shape::Kind::Box;
-    wall.shape.size = vec3(4, 2, 0.1f);
-    wall.transform.translation = vec3(0, 1, -0.75f);
-    wall.albedo.rgb = vec3(0.75f);
-    p.real.push_back(wall);
+    p.real.push_back(wall_proxy(-0.75f, vec3(0.75f)));
     p.render.adaptive_threshold = 0;
     return p;
 }

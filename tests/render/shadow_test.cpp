@@ -32,9 +32,7 @@ struct ShadowScene {
     }
     /// Distance from the sphere's centre to the line from ground point x towards the sun.
     float line_distance(vec3 x) const {
-        vec3 l = sun.direction();
-        vec3 oc = center - x;
-        return glm::length(oc - glm::dot(oc, l) * l);
+        return distance_to_line(center, x, sun.direction());
     }
 };
 

@@ -130,13 +130,7 @@ TEST(SplitAgreement, LightBlockedFromARealWallAgreesWithTheAllPhotonEstimate) {
     // A box near a wall: the wall's light that the box hides from the floor, and the floor's
     // light it hides from the wall, are the surroundings' part of the direct change.
     Project p = bench_like(vec3(0.3f, 1.2f, 3.4f), vec3(0, 0.5f, -0.5f));
-    RealProxy wall;
-    wall.name = "wall";
-    wall.shape.kind = Shape::Kind::Box;
-    wall.shape.size = vec3(4, 2, 0.1f);
-    wall.transform.translation = vec3(0, 1, -0.9f);
-    wall.albedo.rgb = vec3(0.8f);
-    p.real.push_back(wall);
+    p.real.push_back(wall_proxy(-0.9f, vec3(0.8f)));
     VirtualObject box = sphere(vec3(0, 0.35f, -0.5f), 0.3f, diffuse(vec3(0.6f)));
     box.shape.kind = Shape::Kind::Box;
     box.shape.size = vec3(0.8f, 0.7f, 0.5f);

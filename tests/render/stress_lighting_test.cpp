@@ -83,9 +83,7 @@ struct GrazingScene {
         scene = build(project, analytic_ground_photo(project, w, h, sun, vec3(0.5f)), sun.image());
     }
     float line_distance(vec3 x) const {
-        vec3 l = sun.direction();
-        vec3 oc = center - x;
-        return glm::length(oc - glm::dot(oc, l) * l);
+        return distance_to_line(center, x, sun.direction());
     }
 };
 

@@ -103,5 +103,5 @@ TEST(ImageLoadErrors, EmptyFileThrowsInputErrorSayingZeroSize) {
 TEST(ImageLoadErrors, DirectoryInsteadOfFileThrowsInputError) {
     TempDir dir;
     std::filesystem::create_directory(dir.file("folder.png"));
-    expect_input_error(dir.file("folder.png"), "photo", "directory");
+    expect_input_error(dir.file("folder.png"), "photo", "is a folder");
 }

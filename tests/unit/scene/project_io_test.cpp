@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "base/error.h"
 #include "scene/project_io.h"
 #include "scene_test_util.h"
@@ -174,4 +176,22 @@ TEST_F(ProjectIo, SaveToAnUnwritablePathThrowsInputError) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
     }
+}
+
+TEST_F(ProjectIo, ANonFiniteValueIsNotSavedAndTheOldFileStaysWhole) {
+    Project a = load_project(write("rich.json", kRichProject));
+    const std::string saved = (dir_ / "saved.json").string();
+    save_project(a, saved);
+    const std::string before = read(saved);
+    Project bad = a;
+    bad.camera.model = CameraSpec::Model::Intrinsics;
+    bad.camera.fx = std::numeric_limits<float>::infinity();  // e.g. a calibration with --focal 1e300
+    try {
+        save_project(bad, saved);
+        FAIL() << "a project with fx = inf was saved";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "camera.fx") << e.what();
+    }
+    EXPECT_EQ(read(saved), before);
+    EXPECT_EQ(load_project(saved), a);
 }

@@ -1,0 +1,80 @@
+#include "base/atomic_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+namespace dp {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::runtime_error file_error(const std::string& path, const std::string& what) {
+    return std::runtime_error("cannot write '" + path + "': " + what + " (" + std::strerror(errno) + ")");
+}
+
+/// A name no other writer uses: hidden, beside the target, the target's extension kept.
+std::string temporary_name(const fs::path& target) {
+    static std::atomic<unsigned> counter{0};
+    const std::string tag = "." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                            std::to_string(counter++);
+    return (target.parent_path() / (tag + target.extension().string())).string();
+}
+
+void sync_file(const std::string& path, const std::string& target) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw file_error(target, "cannot reopen the temporary file");
+    const bool ok = ::fsync(fd) == 0;
+    ::close(fd);
+    if (!ok) throw file_error(target, "cannot flush it to disk");
+}
+
+void sync_folder(const fs::path& folder) {
+    // The rename is durable only once the folder's entry is; failure here loses nothing.
+    const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
+}  // namespace
+
+void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+    const fs::path target(path);
+    const std::string temp = temporary_name(target);
+    try {
+        write(temp);
+        sync_file(temp, path);
+        if (::rename(temp.c_str(), path.c_str()) != 0) throw file_error(path, "cannot replace it");
+    } catch (...) {
+        std::error_code ec;
+        fs::remove(temp, ec);
+        throw;
+    }
+    sync_folder(target.parent_path());
+}
+
+void write_file_atomically(const std::string& path, const std::string& bytes) {
+    write_atomically(path, [&](const std::string& temp) {
+        const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0) throw file_error(path, "cannot create a temporary file beside it");
+        size_t done = 0;
+        while (done < bytes.size()) {
+            const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) {
+                ::close(fd);
+                throw file_error(path, "writing failed");
+            }
+            done += size_t(n);
+        }
+        if (::close(fd) != 0) throw file_error(path, "writing failed");
+    });
+}
+
+}  // namespace dp

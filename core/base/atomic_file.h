@@ -1,0 +1,18 @@
+#pragma once
+#include <functional>
+#include <string>
+
+namespace dp {
+
+/// Writes `path` so that it always holds either its old content or the complete new one, also
+/// when the process is killed mid-write or another process writes the same path: `write` fills
+/// a temporary file in the same folder (same extension, so encoders that choose the format by
+/// extension see the right one), which is flushed to disk and renamed over `path`. If `write`
+/// throws, or flushing or renaming fails, the temporary file is removed, `path` is left as it
+/// was and the error is rethrown (std::runtime_error naming `path` for the file system's).
+void write_atomically(const std::string& path, const std::function<void(const std::string& temp_path)>& write);
+
+/// write_atomically for text or bytes already in memory.
+void write_file_atomically(const std::string& path, const std::string& bytes);
+
+}  // namespace dp

@@ -1,0 +1,46 @@
+#include "base/input_file.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "base/error.h"
+
+namespace dp {
+namespace {
+
+std::string megabytes(uint64_t bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.1f MB", double(bytes) / 1e6);
+    return buf;
+}
+
+}  // namespace
+
+uint64_t check_input_file(const std::string& path, const std::string& field, const std::string& what,
+                          uint64_t max_bytes) {
+    if (path.empty()) throw InputError(path, field, "no file given (expected " + what + ")");
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) {
+        if (errno == ENOENT || errno == ENOTDIR) throw InputError(path, field, "file not found");
+        throw InputError(path, field, std::string("cannot read it: ") + std::strerror(errno));
+    }
+    // A FIFO or a device would block a reader forever or feed it without end.
+    const char* kind = S_ISDIR(st.st_mode)    ? "a folder"
+                       : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
+                       : S_ISSOCK(st.st_mode) ? "a socket"
+                       : S_ISCHR(st.st_mode)  ? "a character device"
+                       : S_ISBLK(st.st_mode)  ? "a block device"
+                       : S_ISREG(st.st_mode)  ? nullptr
+                                              : "not a regular file";
+    if (kind) throw InputError(path, field, std::string("is ") + kind + ", not " + what);
+    const uint64_t size = uint64_t(st.st_size);
+    if (max_bytes > 0 && size > max_bytes)
+        throw InputError(path, field,
+                         "is " + megabytes(size) + ", more than the " + megabytes(max_bytes) + " " + what +
+                             " may have");
+    return size;
+}
+
+}  // namespace dp

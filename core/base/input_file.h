@@ -1,0 +1,15 @@
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace dp {
+
+/// Checks that `path` names a regular file (after symlinks) that can be read without blocking:
+/// not missing ("file not found"), not a folder, FIFO, socket or device (each named as such,
+/// `what` saying what was expected: "an image", "a project file"), and at most `max_bytes`
+/// long (0: no limit; the message gives both sizes). Throws InputError(path, field, ...).
+/// Returns the file's size in bytes.
+uint64_t check_input_file(const std::string& path, const std::string& field, const std::string& what,
+                          uint64_t max_bytes = 0);
+
+}  // namespace dp

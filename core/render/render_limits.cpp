@@ -1,0 +1,58 @@
+#include "render/render_limits.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "base/error.h"
+#include "render/photon_map.h"
+
+namespace dp {
+namespace {
+
+std::string gigabytes(uint64_t bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.1f GB", double(bytes) / 1e9);
+    return buf;
+}
+
+}  // namespace
+
+uint64_t pass_memory_bytes(const RenderScene& scene, const RenderSettings& settings) {
+    const double photons = double(std::max<int64_t>(1, settings.photons_per_pass)) * 1.25;
+    // A stored photon, its 16-byte grid entry and sort scratch; two stored per emitted at most.
+    const double per_photon = 2.0 * (double(sizeof(Photon)) + 32.0);
+    const double pixels = double(scene.camera().width()) * double(scene.camera().height());
+    const double per_pixel = 128.0;  // sums, odd-pass sums, plan and the pass's samples
+    const double bytes = photons * per_photon + pixels * per_pixel;
+    return bytes >= 1.8e19 ? UINT64_MAX : uint64_t(bytes);
+}
+
+uint64_t physical_memory_bytes() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : 0;
+}
+
+void check_render_limits(const RenderScene& scene, const RenderSettings& settings) {
+    const uint64_t need = pass_memory_bytes(scene, settings), have = physical_memory_bytes();
+    if (have > 0 && double(need) > 0.8 * double(have))
+        throw InputError("", "render.photons_per_pass",
+                         std::to_string(settings.photons_per_pass) + " photons per pass need about " + gigabytes(need) +
+                             " of memory; this machine has " + gigabytes(have) +
+                             " (at most 80% is used): fewer photons per pass and more passes give the same image");
+    if (settings.initial_radius) {
+        const float r = *settings.initial_radius, scale = scene.scale();
+        // The grid's cells are one gather diameter wide: 1e-6 of the scene keeps cell indices
+        // within 64 bits; beyond the scene itself every gather holds every photon.
+        if (!(r >= 1e-6f * scale) || !(r <= 10.0f * scale)) {
+            char buf[160];
+            std::snprintf(buf, sizeof(buf), "%g is outside %g to %g for this scene (1e-6 to 10 times its size, %g)",
+                          double(r), double(1e-6f * scale), double(10.0f * scale), double(scale));
+            throw InputError("", "render.initial_radius", buf);
+        }
+    }
+}
+
+}  // namespace dp
