@@ -100,6 +100,28 @@ std::shared_ptr<const Image> AssetLibrary::photo_at(const Project& p, int width,
                          [&](Entry&) { return resample(*full, width, height); });
 }
 
+namespace {
+
+/// Negative radiance has no meaning (an editing artefact): read as 0, and said. A black probe
+/// lights nothing, so the objects would render black and cast no shadow.
+void check_probe_values(Image& probe, std::vector<std::string>& warnings) {
+    size_t negative = 0;
+    double total = 0;
+    for (size_t i = 0; i < probe.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            if (probe[i][c] < 0) {
+                probe[i][c] = 0;
+                ++negative;
+            }
+            total += probe[i][c];
+        }
+    if (negative > 0)
+        warnings.push_back("probe.path: " + std::to_string(negative) + " negative values read as 0");
+    if (!(total > 0)) warnings.push_back("probe.path: the probe is black: nothing lights the virtual objects");
+}
+
+}  // namespace
+
 std::shared_ptr<const Image> AssetLibrary::probe(const Project& p) {
     const fs::path path = p.resolve(p.probe.path);
     return cached<Image>(probe_key(p), path, [&](Entry& e) {
@@ -108,6 +130,15 @@ std::shared_ptr<const Image> AssetLibrary::probe(const Project& p) {
         if (!report.linear_source)
             e.warnings.push_back("probe.path: the light probe is not an HDR image (EXR/HDR); "
                                "bright lights are clipped and shadows will be too weak");
+        check_probe_values(probe, e.warnings);
+        if (p.probe.format == ProbeSpec::Format::MirrorBall && probe.width() != probe.height())
+            e.warnings.push_back("probe.path: a mirror ball is " + std::to_string(probe.width()) + "x" +
+                                 std::to_string(probe.height()) +
+                                 ", not square: crop the photo to the ball, or the unwrap is distorted");
+        if (p.probe.format == ProbeSpec::Format::LatLong && probe.width() != 2 * probe.height())
+            e.warnings.push_back("probe.path: a lat-long probe is " + std::to_string(probe.width()) + "x" +
+                                 std::to_string(probe.height()) +
+                                 ", not 2:1: it is read as 2:1 and looks stretched (is it a mirror ball?)");
         if (p.probe.format == ProbeSpec::Format::MirrorBall) {
             const int h = std::max(16, probe.height() / 2);
             probe = unwrap_mirror_ball(probe, 2 * h, h, p.probe.mirror_ball_fov_deg);
