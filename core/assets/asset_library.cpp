@@ -106,16 +106,19 @@ namespace {
 /// lights nothing, so the objects would render black and cast no shadow.
 void check_probe_values(Image& probe, std::vector<std::string>& warnings) {
     size_t negative = 0;
-    double total = 0;
+    double total = 0, removed = 0;
     for (size_t i = 0; i < probe.size(); ++i)
         for (int c = 0; c < 3; ++c) {
             if (probe[i][c] < 0) {
+                removed -= probe[i][c];
                 probe[i][c] = 0;
                 ++negative;
             }
             total += probe[i][c];
         }
-    if (negative > 0)
+    // Real probes carry a few slightly negative texels from their processing (Blender's city
+    // has 506); they are said only where they hold a visible share of the light.
+    if (negative > 0 && removed > 1e-3 * total)
         warnings.push_back("probe.path: " + std::to_string(negative) + " negative values read as 0");
     if (!(total > 0)) warnings.push_back("probe.path: the probe is black: nothing lights the virtual objects");
 }
