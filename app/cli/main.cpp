@@ -11,27 +11,13 @@
 #include <CLI/CLI.hpp>
 
 #include "base/error.h"
+#include "base/text.h"
 #include "commands.h"
 
 namespace {
 
 constexpr int kExitInternal = 1;
 constexpr int kExitBadInput = 2;
-
-size_t edit_distance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diagonal = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            diagonal = up;
-        }
-    }
-    return row[b.size()];
-}
 
 /// "unknown command 'rendr' (did you mean 'render'?)" for a first word that names no command;
 /// CLI11 alone would say only that a subcommand is required.
@@ -41,7 +27,7 @@ bool unknown_command(const CLI::App& app, const std::string& word) {
     size_t best_distance = SIZE_MAX;
     for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
         if (sub->get_name() == word) return false;
-        const size_t d = edit_distance(word, sub->get_name());
+        const size_t d = dp::edit_distance(word, sub->get_name());
         if (d < best_distance) best_distance = d, best = sub->get_name();
     }
     std::cerr << "error: unknown command '" << word.substr(0, 80) << "'";

@@ -1,4 +1,5 @@
 #include "base/input_file.h"
+#include "base/text.h"
 
 #include <sys/stat.h>
 
@@ -8,16 +9,6 @@
 #include "base/error.h"
 
 namespace dp {
-namespace {
-
-std::string megabytes(uint64_t bytes) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.1f MB", double(bytes) / 1e6);
-    return buf;
-}
-
-}  // namespace
-
 uint64_t check_input_file(const std::string& path, const std::string& field, const std::string& what,
                           uint64_t max_bytes) {
     if (path.empty()) throw InputError(path, field, "no file given (expected " + what + ")");
@@ -38,7 +29,7 @@ uint64_t check_input_file(const std::string& path, const std::string& field, con
     const uint64_t size = uint64_t(st.st_size);
     if (max_bytes > 0 && size > max_bytes)
         throw InputError(path, field,
-                         "is " + megabytes(size) + ", more than the " + megabytes(max_bytes) + " " + what +
+                         "is " + format_bytes(double(size)) + ", more than the " + format_bytes(double(max_bytes)) + " " + what +
                              " may have");
     return size;
 }

@@ -1,4 +1,5 @@
 #include "render/render_limits.h"
+#include "base/text.h"
 
 #include <unistd.h>
 
@@ -10,16 +11,6 @@
 #include "render/photon_map.h"
 
 namespace dp {
-namespace {
-
-std::string gigabytes(uint64_t bytes) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.1f GB", double(bytes) / 1e9);
-    return buf;
-}
-
-}  // namespace
-
 uint64_t pass_memory_bytes(const RenderScene& scene, const RenderSettings& settings) {
     const double photons = double(std::max<int64_t>(1, settings.photons_per_pass)) * 1.25;
     // A stored photon, its 16-byte grid entry and sort scratch; two stored per emitted at most.
@@ -39,8 +30,8 @@ void check_render_limits(const RenderScene& scene, const RenderSettings& setting
     const uint64_t need = pass_memory_bytes(scene, settings), have = physical_memory_bytes();
     if (have > 0 && double(need) > 0.8 * double(have))
         throw InputError("", "render.photons_per_pass",
-                         std::to_string(settings.photons_per_pass) + " photons per pass need about " + gigabytes(need) +
-                             " of memory; this machine has " + gigabytes(have) +
+                         std::to_string(settings.photons_per_pass) + " photons per pass need about " + format_bytes(double(need)) +
+                             " of memory; this machine has " + format_bytes(double(have)) +
                              " (at most 80% is used): fewer photons per pass and more passes give the same image");
     if (settings.initial_radius) {
         const float r = *settings.initial_radius, scale = scene.scale();

@@ -1,4 +1,5 @@
 #include "scene/json_reader.h"
+#include "base/text.h"
 #include "base/input_file.h"
 
 #include <algorithm>
@@ -19,21 +20,6 @@ std::string list(JsonReader::Keys names) {
     std::string s;
     for (std::string_view n : names) s += (s.empty() ? "" : ", ") + std::string(n);
     return s;
-}
-
-size_t edit_distance(std::string_view a, std::string_view b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
-            diag = up;
-        }
-    }
-    return row[b.size()];
 }
 
 /// Rejects repeated keys in one object, which nlohmann would otherwise resolve silently.

@@ -1,0 +1,33 @@
+#include "base/text.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+namespace dp {
+
+size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+std::string format_bytes(double bytes) {
+    char buf[48];
+    if (bytes >= 1e9)
+        std::snprintf(buf, sizeof(buf), "%.1f GB", bytes / 1e9);
+    else
+        std::snprintf(buf, sizeof(buf), "%.1f MB", bytes / 1e6);
+    return buf;
+}
+
+}  // namespace dp
