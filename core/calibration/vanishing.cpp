@@ -211,6 +211,12 @@ bool at_infinity(const glm::dvec3& v, double image_size) {
     return std::abs(v.z) * 1000.0 * image_size <= glm::length(glm::dvec2(v));
 }
 
+/// f^2 that makes the directions through two finite vanishing points orthogonal, for the
+/// principal point `c` (negative when no focal length can).
+double focal_squared(const glm::dvec3& va, const glm::dvec3& vb, const glm::dvec2& c) {
+    return -glm::dot(glm::dvec2(va) / va.z - c, glm::dvec2(vb) / vb.z - c);
+}
+
 /// Starting cameras: the given focal length, or the one two orthogonal vanishing points give
 /// with the principal point at the centre, and a spread of fields of view in case noise makes
 /// that one meaningless.
@@ -228,7 +234,7 @@ std::vector<LineCamera> starts(const Axes& ax, const VanishingInput& in, const I
                 if (!ax.used[size_t(a)] || !ax.used[size_t(b)] || at_infinity(va, size) ||
                     at_infinity(vb, size))
                     continue;
-                const double f2 = -glm::dot(glm::dvec2(va) / va.z - c, glm::dvec2(vb) / vb.z - c);
+                const double f2 = focal_squared(va, vb, c);
                 if (f2 > 0) focals.push_back(std::sqrt(f2));
             }
         for (double s : {0.3, 0.5, 0.8, 1.2, 2.0, 3.5, 6.0}) focals.push_back(s * size);
@@ -271,7 +277,7 @@ void check_orthogonal(const std::array<glm::dvec3, 3>& vp, const Axes& ax, const
             if (!ax.used[size_t(a)] || !ax.used[size_t(b)] || at_infinity(va, size) ||
                 at_infinity(vb, size))
                 continue;
-            const double f2 = -glm::dot(glm::dvec2(va) / va.z - c, glm::dvec2(vb) / vb.z - c);
+            const double f2 = focal_squared(va, vb, c);
             if (!(f2 > 0))
                 throw InputError(source, "",
                                  "these directions cannot be orthogonal in a pinhole photo (the "
