@@ -10,6 +10,7 @@ packages=(
   blender-data  # the CC0 light probes the sample project and benchmarks use
   qt6-base-dev  # the studio (Widgets, Test; pulls libqt6gui6 with the offscreen and xcb platforms)
   xvfb xauth    # xvfb-run for the studio's screenshot test and documentation screenshots
+  clang libclang-rt-14-dev  # the sanitizer build and the libFuzzer targets (tests/fuzz)
 )
 # `--bench`: also what the benchmark plots need, and Blender for the Cycles method.
 [ "${1:-}" = "--bench" ] && packages+=(python3-matplotlib blender)
