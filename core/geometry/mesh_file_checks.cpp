@@ -1,0 +1,141 @@
+#include "geometry/mesh_file_checks.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "base/error.h"
+
+namespace dp {
+
+namespace {
+
+std::vector<char> read_prefix(const std::string& path, size_t max_bytes) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> bytes(max_bytes);
+    in.read(bytes.data(), std::streamsize(max_bytes));
+    bytes.resize(size_t(in.gcount()));
+    return bytes;
+}
+
+bool is_count(const std::string& s) {
+    return !s.empty() && s.size() <= 19 && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+uint32_t le32(const unsigned char* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
+
+}  // namespace
+
+void check_ply_header(const std::string& path, const std::string& field) {
+    constexpr size_t kMaxHeader = 64 * 1024;
+    const std::vector<char> bytes = read_prefix(path, kMaxHeader);
+    std::istringstream header(std::string(bytes.begin(), bytes.end()));
+    static const std::set<std::string> kTypes = {"char",  "uchar",  "short", "ushort", "int",    "uint",
+                                                 "float", "double", "int8",  "uint8",  "int16",  "uint16",
+                                                 "int32", "uint32", "float32", "float64"};
+    auto fail = [&](int line, const std::string& why) {
+        throw InputError(path, field, "malformed PLY header, line " + std::to_string(line) + ": " + why);
+    };
+    std::string line;
+    int n = 0;
+    bool have_format = false, have_element = false;
+    while (std::getline(header, line)) {
+        ++n;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream words(line);
+        std::vector<std::string> w;
+        for (std::string word; words >> word;) w.push_back(word);
+        if (n == 1) {
+            if (line != "ply") fail(1, "the file does not start with \"ply\"");
+            continue;
+        }
+        if (w.empty()) fail(n, "an empty line");
+        const std::string& key = w[0];
+        if (key == "end_header") {
+            if (!have_format) fail(n, "no format line before end_header");
+            if (!have_element) fail(n, "no element before end_header");
+            return;
+        }
+        if (key == "comment" || key == "obj_info") continue;
+        if (key == "format") {
+            if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+                fail(n, "expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+            have_format = true;
+        } else if (key == "element") {
+            if (w.size() != 3 || !is_count(w[2])) fail(n, "expected \"element NAME COUNT\"");
+            have_element = true;
+        } else if (key == "property") {
+            if (!have_element) fail(n, "a property before any element");
+            const bool list = w.size() == 5 && w[1] == "list" && kTypes.count(w[2]) && kTypes.count(w[3]);
+            const bool scalar = w.size() == 3 && kTypes.count(w[1]);
+            if (!list && !scalar) fail(n, "expected \"property TYPE NAME\" or \"property list TYPE TYPE NAME\"");
+        } else {
+            fail(n, "unknown keyword \"" + key.substr(0, 40) + "\"");
+        }
+    }
+    fail(n, bytes.size() == kMaxHeader ? "no end_header in the first 64 KiB" : "no end_header line");
+}
+
+void check_gltf_buffers(const std::string& path, const std::string& field) {
+    using json = nlohmann::json;
+    std::error_code ec;
+    const uint64_t file_size = std::filesystem::file_size(path, ec);
+    if (ec) throw InputError(path, field, "cannot read mesh: " + ec.message());
+    std::ifstream in(path, std::ios::binary);
+    std::vector<unsigned char> bytes(file_size);
+    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(file_size));
+    auto fail = [&](const std::string& why) { throw InputError(path, field, "malformed glTF: " + why); };
+
+    std::string text;
+    uint64_t bin_chunk = 0;
+    if (file_size >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
+        if (file_size < 20) fail("a GLB file shorter than its header");
+        if (le32(&bytes[8]) > file_size) fail("the GLB header declares more bytes than the file holds");
+        const uint64_t json_len = le32(&bytes[12]);
+        if (20 + json_len > file_size) fail("the JSON chunk runs past the end of the file");
+        text.assign(reinterpret_cast<const char*>(&bytes[20]), json_len);
+        const uint64_t next = 20 + json_len;
+        if (next + 8 <= file_size) {
+            bin_chunk = le32(&bytes[next]);
+            if (next + 8 + bin_chunk > file_size) fail("the binary chunk runs past the end of the file");
+        }
+    } else {
+        text.assign(bytes.begin(), bytes.end());
+    }
+    const json doc = json::parse(text, nullptr, false);
+    if (doc.is_discarded() || !doc.is_object()) return;  // Assimp names the syntax error
+    const auto buffers = doc.find("buffers");
+    if (buffers == doc.end() || !buffers->is_array()) return;
+    for (size_t i = 0; i < buffers->size(); ++i) {
+        const json& b = (*buffers)[i];
+        if (!b.is_object()) fail("buffers[" + std::to_string(i) + "] is not an object");
+        const auto len = b.find("byteLength");
+        if (len == b.end() || !len->is_number_unsigned()) fail("buffers[" + std::to_string(i) + "] has no byteLength");
+        const uint64_t declared = len->get<uint64_t>();
+        uint64_t available = bin_chunk;
+        const auto uri = b.find("uri");
+        if (uri != b.end() && uri->is_string()) {
+            const std::string u = uri->get<std::string>();
+            if (u.rfind("data:", 0) == 0) {
+                available = u.size() / 4 * 3 + 3;  // base64 holds 3 bytes per 4 characters
+            } else {
+                const auto file = std::filesystem::path(path).parent_path() / u;
+                available = std::filesystem::file_size(file, ec);
+                if (ec) continue;  // a missing buffer file is Assimp's to report
+            }
+        }
+        if (declared > available) {
+            fail("buffers[" + std::to_string(i) + "] declares " + std::to_string(declared) + " bytes but holds " +
+                 std::to_string(available));
+        }
+    }
+}
+
+}  // namespace dp
