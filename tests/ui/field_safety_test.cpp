@@ -2,6 +2,7 @@
 // message, the document and its undo history stay as they were, and the studio keeps running.
 #include <QApplication>
 #include <QDockWidget>
+#include <QElapsedTimer>
 #include <QDropEvent>
 #include <QFile>
 #include <QListWidget>
@@ -11,12 +12,14 @@
 #include <QTest>
 #include <QUndoStack>
 #include <QUrl>
+#include <algorithm>
 
 #include "autosave.h"
 #include "camera_panel.h"
 #include "document.h"
 #include "number_field.h"
 #include "scene/project_io.h"
+#include "scene_check.h"
 #include "scene_panel.h"
 #include "settings_panel.h"
 #include "ui_test_support.h"
@@ -38,6 +41,7 @@ private Q_SLOTS:
     void aRenderFailureLeavesTheDocumentAndUndoAsTheyWere();
     void importingAMeshAutosavesTheUnsavedWorkFirst();
     void applyingACalibrationAutosavesFirstAndRefusesAnInvalidCamera();
+    void checkingATypedValueTakesMilliseconds();
 
 private:
     /// Clicks into `field`, replaces its text by `text` and presses Enter, as a user would.
@@ -256,6 +260,23 @@ void FieldSafetyTest::applyingACalibrationAutosavesFirstAndRefusesAnInvalidCamer
     good.vfov_deg = 35;
     QVERIFY(w_->cameraPanel()->applyCalibration("test", good, 0.5));
     QCOMPARE(w_->document()->project().camera.vfov_deg, 35.0f);
+}
+
+void FieldSafetyTest::checkingATypedValueTakesMilliseconds() {
+    // The check runs on the UI thread for every confirmed value: with the files decoded (as
+    // they are once the project is open) it must stay far below a frame or two.
+    AssetLibrary& assets = w_->document()->assets();
+    const Project& p = w_->document()->project();
+    std::vector<double> ms;
+    for (int i = 0; i < 7; ++i) {
+        QElapsedTimer t;
+        t.start();
+        QVERIFY(scene_problem(assets, p).isEmpty());
+        ms.push_back(double(t.nsecsElapsed()) / 1e6);
+    }
+    std::sort(ms.begin(), ms.end());
+    qInfo("scene_problem on the sample: median %.1f ms", ms[ms.size() / 2]);
+    QVERIFY2(ms[ms.size() / 2] < 100.0, qPrintable(QString::number(ms[ms.size() / 2])));
 }
 
 QTEST_MAIN(FieldSafetyTest)
