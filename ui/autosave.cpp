@@ -13,10 +13,10 @@ namespace dp::ui {
 Autosave::Autosave(Document* doc, const QString& dir, int intervalMs, QObject* parent)
     : QObject(parent), doc_(doc), dir_(dir) {
     connect(doc_, &Document::changed, this, [this] { dirty_ = doc_->isModified(); });
-    connect(doc_, &Document::modifiedChanged, this, [this](bool modified) {
-        dirty_ = modified;
-        if (!modified) clear();
-    });
+    // Back to the saved state (undo) is not a reason to delete the recovery file: only a save
+    // or an explicit discard is (MainWindow).
+    connect(doc_, &Document::modifiedChanged, this, [this](bool modified) { dirty_ = modified; });
+    connect(doc_, &Document::checkpointRequested, this, [this] { writeNow(); });
     connect(&timer_, &QTimer::timeout, this, [this] { writeNow(); });
     timer_.start(intervalMs);
 }

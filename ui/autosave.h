@@ -12,7 +12,9 @@ class Document;
 
 /// Writes unsaved work to a recovery file every few seconds, so a crash loses little. The file
 /// holds the project with absolute paths, next to a note of where it was saved last; a clean
-/// close removes both.
+/// close removes both. The window removes them (clear) only once nothing unsaved is lost: after
+/// a save, an explicit Discard, or a close or replacement of a document without unsaved
+/// changes. checkpoint requests (Document::checkpoint) write at once.
 class Autosave : public QObject {
     Q_OBJECT
 public:

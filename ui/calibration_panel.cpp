@@ -4,7 +4,6 @@
 
 #include <QCheckBox>
 #include <QComboBox>
-#include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -20,6 +19,7 @@
 #include "calibration/vanishing.h"
 #include "camera_panel.h"
 #include "document.h"
+#include "number_field.h"
 #include "error_reporter.h"
 #include "image/image_io.h"
 #include "project_edit.h"
@@ -30,9 +30,9 @@ namespace dp::ui {
 
 namespace {
 
-QDoubleSpinBox* spin(double lo, double hi, double value, int decimals, const QString& suffix,
+NumberField* spin(double lo, double hi, double value, int decimals, const QString& suffix,
                      const QString& tip) {
-    auto* s = new QDoubleSpinBox;
+    auto* s = new NumberField;
     s->setRange(lo, hi);
     s->setDecimals(decimals);
     s->setValue(value);

@@ -1,7 +1,6 @@
 #include "camera_panel.h"
 
 #include <QCheckBox>
-#include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
@@ -9,6 +8,7 @@
 #include <QVBoxLayout>
 
 #include "document.h"
+#include "number_field.h"
 
 namespace dp::ui {
 
@@ -21,7 +21,7 @@ CameraPanel::CameraPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_
     for (int r = 0; r < 2; ++r) {
         auto* row = new QHBoxLayout;
         for (int c = 0; c < 3; ++c) {
-            auto* f = new QDoubleSpinBox;
+            auto* f = new NumberField;
             f->setRange(-1e4, 1e4);
             f->setDecimals(3);
             f->setSingleStep(0.05);
@@ -35,14 +35,14 @@ CameraPanel::CameraPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_
         }
         form->addRow(tr(rows[r]), row);
     }
-    fields_[6] = new QDoubleSpinBox;
+    fields_[6] = new NumberField;
     fields_[6]->setRange(1, 170);
     fields_[6]->setDecimals(2);
     fields_[6]->setKeyboardTracking(false);
     fields_[6]->setToolTip(tr("Vertical field of view in degrees"));
     form->addRow(tr("Field of view"), fields_[6]);
-    for (QDoubleSpinBox* f : fields_)
-        connect(f, &QDoubleSpinBox::valueChanged, this, [this] { apply(); });
+    for (NumberField* f : fields_)
+        connect(f, &NumberField::valueChanged, this, [this] { apply(); });
     layout->addLayout(form);
 
     auto* show = new QGroupBox(tr("Show over the photo"));
@@ -97,7 +97,7 @@ void CameraPanel::apply() {
         p.camera.target[i] = float(fields_[3 + i]->value());
     }
     p.camera.vfov_deg = float(fields_[6]->value());
-    doc_->edit(tr("Adjust camera"), p);
+    doc_->tryEdit(tr("Adjust camera"), p);
 }
 
 void CameraPanel::setCalibrationTools(QWidget* tools) {
@@ -105,12 +105,14 @@ void CameraPanel::setCalibrationTools(QWidget* tools) {
     box->insertWidget(0, tools);
 }
 
-void CameraPanel::applyCalibration(const QString& method, const CameraSpec& camera,
+bool CameraPanel::applyCalibration(const QString& method, const CameraSpec& camera,
                                    double reprojectionErrorPx) {
+    doc_->checkpoint();
     Project p = doc_->project();
     p.camera = camera;
-    doc_->edit(tr("Calibrate camera (%1)").arg(method), p);
+    if (!doc_->tryEdit(tr("Calibrate camera (%1)").arg(method), p)) return false;
     error_->setText(tr("Reprojection error: %1 px").arg(reprojectionErrorPx, 0, 'f', 2));
+    return true;
 }
 
 }  // namespace dp::ui

@@ -4,13 +4,13 @@
 #include "scene/project.h"
 
 class QCheckBox;
-class QDoubleSpinBox;
 class QGroupBox;
 class QLabel;
 
 namespace dp::ui {
 
 class Document;
+class NumberField;
 
 /// Camera matching. Shows and edits the project camera (look-at: eye, target, field of view;
 /// intrinsics: read only) and the overlays that show the match against the photo: the ground
@@ -29,9 +29,13 @@ public:
     /// Puts the calibration tools into the "Calibrate" group, above the error figure.
     void setCalibrationTools(QWidget* tools);
     QLabel* errorLabel() const { return error_; }
+    /// Eye x y z, target x y z, vertical field of view.
+    NumberField* field(int i) const { return fields_[i]; }
 
     /// Applies a camera found by a calibration tool and shows its reprojection error (pixels).
-    void applyCalibration(const QString& method, const CameraSpec& camera,
+    /// The unsaved work is checkpointed first; a camera the core would refuse is not applied
+    /// (Document::tryEdit) and false is returned.
+    bool applyCalibration(const QString& method, const CameraSpec& camera,
                           double reprojectionErrorPx);
 
 Q_SIGNALS:
@@ -42,7 +46,7 @@ private:
     void apply();
 
     Document* doc_;
-    QDoubleSpinBox* fields_[7];  ///< eye xyz, target xyz, vertical field of view
+    NumberField* fields_[7];  ///< eye xyz, target xyz, vertical field of view
     QLabel *model_, *error_;
     QCheckBox *grid_, *proxies_, *outlines_;
     QGroupBox* calibrate_;

@@ -2,6 +2,8 @@
 
 #include <QUndoCommand>
 
+#include "scene_check.h"
+
 namespace dp::ui {
 
 namespace {
@@ -65,6 +67,25 @@ void Document::setPath(const QString& path) {
 void Document::edit(const QString& text, const Project& after, int mergeKey) {
     if (after == project_ && after.base_dir == project_.base_dir) return;
     stack_.push(new EditCommand(this, text, project_, after, mergeKey));
+}
+
+QString Document::editProblem(const Project& after) const {
+    if (!open_) return tr("no project is open");
+    const QString why = scene_problem(*assets_, after);
+    // Refused already (a file that cannot be read): the edit does not make it worse.
+    if (why.isEmpty() || !scene_problem(*assets_, project_).isEmpty()) return {};
+    return why;
+}
+
+bool Document::tryEdit(const QString& text, const Project& after, int mergeKey) {
+    if (!open_) return false;
+    if (const QString why = editProblem(after); !why.isEmpty()) {
+        Q_EMIT editRefused(why);
+        Q_EMIT changed(Change::None);  // the fields show the project's values again
+        return false;
+    }
+    edit(text, after, mergeKey);
+    return true;
 }
 
 void Document::apply(const Project& project) {

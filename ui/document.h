@@ -33,6 +33,17 @@ public:
     /// Records an edit as one undo step. Consecutive edits with the same non-negative
     /// `mergeKey` (a drag, a slider stroke) fold into one step.
     void edit(const QString& text, const Project& after, int mergeKey = -1);
+    /// edit() for a value the user typed: `after` is first put through the core's checks
+    /// (scene_problem). A project the core would refuse is not applied: editRefused() says why
+    /// and the views show the project as it stays. A project that was refused already (a file
+    /// that cannot be read) does not hold up edits that do not make it worse. Returns whether
+    /// the edit was applied.
+    bool tryEdit(const QString& text, const Project& after, int mergeKey = -1);
+    /// Why tryEdit would refuse `after` (empty: it would apply it).
+    QString editProblem(const Project& after) const;
+    /// Before an operation that might not come back (a mesh import, a calibration): asks for
+    /// the unsaved work to be written to the recovery file now (the autosave listens).
+    void checkpoint() { Q_EMIT checkpointRequested(); }
     /// A merge key no earlier edit used: one per drag or slider stroke.
     int newMergeKey() { return nextKey_++; }
 
@@ -50,6 +61,9 @@ Q_SIGNALS:
     void pathChanged(const QString& path);
     void selectionChanged(int index);
     void modifiedChanged(bool modified);
+    /// A typed edit was refused; `reason` is the core's message.
+    void editRefused(const QString& reason);
+    void checkpointRequested();
 
 private:
     std::shared_ptr<AssetLibrary> assets_ = std::make_shared<AssetLibrary>();

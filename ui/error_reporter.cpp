@@ -16,6 +16,19 @@ bool MessageBoxReporter::ask(QWidget* parent, const QString& title, const QStrin
                                  QMessageBox::Yes) == QMessageBox::Yes;
 }
 
+ErrorReporter::SaveChoice MessageBoxReporter::askSave(QWidget* parent, const QString& title,
+                                                      const QString& text) {
+    QMessageBox box(QMessageBox::Warning, title, text,
+                    QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, parent);
+    box.setObjectName("unsavedChanges");
+    box.setDefaultButton(QMessageBox::Save);
+    box.setEscapeButton(QMessageBox::Cancel);
+    box.exec();
+    if (box.clickedButton() == box.button(QMessageBox::Save)) return SaveChoice::Save;
+    if (box.clickedButton() == box.button(QMessageBox::Discard)) return SaveChoice::Discard;
+    return SaveChoice::Cancel;
+}
+
 bool run_reporting_errors(ErrorReporter* reporter, QWidget* parent, const QString& title,
                           const std::function<void()>& work) {
     try {

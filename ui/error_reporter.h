@@ -16,6 +16,10 @@ public:
     virtual void error(QWidget* parent, const QString& title, const QString& text) = 0;
     /// Returns true for "yes".
     virtual bool ask(QWidget* parent, const QString& title, const QString& text) = 0;
+    enum class SaveChoice { Save, Discard, Cancel };
+    /// Save / Discard / Cancel for unsaved changes. Closing the question (Esc) is Cancel:
+    /// nothing is ever discarded without the user saying so.
+    virtual SaveChoice askSave(QWidget* parent, const QString& title, const QString& text) = 0;
 };
 
 /// QMessageBox::critical / QMessageBox::question.
@@ -23,12 +27,18 @@ class MessageBoxReporter : public ErrorReporter {
 public:
     void error(QWidget* parent, const QString& title, const QString& text) override;
     bool ask(QWidget* parent, const QString& title, const QString& text) override;
+    SaveChoice askSave(QWidget* parent, const QString& title, const QString& text) override;
 };
 
-/// Records messages and answers questions with a fixed reply (tests, headless runs).
+/// Records messages and answers questions with a fixed reply (tests, headless runs): "yes" is
+/// Save and "no" is Discard when asked about unsaved changes.
 class RecordingReporter : public ErrorReporter {
 public:
     explicit RecordingReporter(bool answer = true) : answer_(answer) {}
+    SaveChoice askSave(QWidget*, const QString& title, const QString& text) override {
+        questions << title + ": " + text;
+        return answer_ ? SaveChoice::Save : SaveChoice::Discard;
+    }
     void error(QWidget*, const QString& title, const QString& text) override {
         errors << title + ": " + text;
     }

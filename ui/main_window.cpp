@@ -2,6 +2,7 @@
 
 #include <QAction>
 #include <QActionGroup>
+#include <QAbstractSpinBox>
 #include <QApplication>
 #include <QCheckBox>
 #include <QDockWidget>
@@ -9,6 +10,7 @@
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QProgressBar>
 #include <QScrollArea>
 #include <QSlider>
 #include <QStandardPaths>
@@ -33,9 +35,24 @@
 #include "render_controller.h"
 #include "scene_panel.h"
 #include "settings_panel.h"
+#include "shortcut_policy.h"
+#include "number_field.h"
 #include "viewport.h"
 
 namespace dp::ui {
+
+namespace {
+
+/// The platform's key for `standard` and `fallback`, once each: without a desktop environment
+/// some standard keys (Save As, Quit) are unbound, and a key listed twice would be ambiguous.
+QList<QKeySequence> keys(QKeySequence::StandardKey standard, const QString& fallback) {
+    QList<QKeySequence> list = QKeySequence::keyBindings(standard);
+    const QKeySequence extra(fallback);
+    if (!list.contains(extra)) list << extra;
+    return list;
+}
+
+}  // namespace
 
 MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     : QMainWindow(parent), options_(options) {
@@ -62,6 +79,13 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     warnings_->setAutoRaise(true);
     warnings_->setVisible(false);
     statusBar()->addPermanentWidget(warnings_);
+    exportProgress_ = new QProgressBar;
+    exportProgress_->setObjectName("exportProgress");
+    exportProgress_->setRange(0, 0);  // busy: the pass takes as long as it takes
+    exportProgress_->setMaximumWidth(120);
+    exportProgress_->setToolTip(tr("The export waits for the render of the current state"));
+    exportProgress_->setVisible(false);
+    statusBar()->addPermanentWidget(exportProgress_);
     connect(warnings_, &QToolButton::clicked, this, [this] {
         auto* box = new QMessageBox(QMessageBox::Warning, tr("Asset warnings"), warnings_->toolTip(),
                                     QMessageBox::Close, this);
@@ -79,6 +103,16 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     if (dir.isEmpty())
         dir = QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/recovery";
     autosave_ = new Autosave(doc_, dir, options_.autosaveMs, this);
+
+    // Typed values the checks refuse: the field keeps its value, the status bar says why.
+    auto refused = [this](const QString& why) { statusBar()->showMessage(why, 15000); };
+    connect(doc_, &Document::editRefused, this,
+            [refused](const QString& why) { refused(QObject::tr("Not applied: %1").arg(why)); });
+    for (NumberField* f : findChildren<NumberField*>())
+        connect(f, &NumberField::refused, this,
+                [refused](const QString& why) { refused(QObject::tr("Not applied: %1").arg(why)); });
+    shortcutPolicy_ = new ShortcutPolicy(this);
+    shortcutPolicy_->install(this);
 
     connect(doc_, &Document::pathChanged, this, [this] { updateTitle(); });
     connect(doc_, &Document::modifiedChanged, this, [this] { updateTitle(); });
@@ -113,11 +147,13 @@ void MainWindow::createActions() {
          [this] { openDialog(); });
     make("save", tr("&Save"), QKeySequence::Save, tr("Save the project"),
          [this] { saveProject(); });
-    make("saveAs", tr("Save &As..."), QKeySequence::SaveAs, tr("Save the project under a new name"),
-         [this] { saveAsDialog(); });
+    make("saveAs", tr("Save &As..."), {}, tr("Save the project under a new name"),
+         [this] { saveAsDialog(); })
+        ->setShortcuts(keys(QKeySequence::SaveAs, tr("Ctrl+Shift+S")));
     make("export", tr("&Export Image..."), QKeySequence(tr("Ctrl+E")),
          tr("Write the render as PNG, or EXR with layers"), [this] { exportDialog(); });
-    make("quit", tr("&Quit"), QKeySequence::Quit, tr("Close the studio"), [this] { close(); });
+    make("quit", tr("&Quit"), {}, tr("Close the studio"), [this] { close(); })
+        ->setShortcuts(keys(QKeySequence::Quit, tr("Ctrl+Q")));
     QAction* undo = doc_->undoStack()->createUndoAction(this, tr("&Undo"));
     undo->setObjectName("undo");
     undo->setShortcut(QKeySequence(tr("Ctrl+Z")));
@@ -138,8 +174,20 @@ void MainWindow::createActions() {
          tr("Import an OBJ, PLY or glTF mesh"), [this] { importDialog(); });
     make("duplicate", tr("Duplicate"), QKeySequence(tr("Shift+D")),
          tr("Duplicate the selected object"), [this] { duplicateSelected(); });
-    make("delete", tr("Delete"), {}, tr("Delete the selected object (X)"),
-         [this] { deleteSelected(); });
+    make("delete", tr("Delete"), QKeySequence(tr("X")), tr("Delete the selected object"),
+         [this] {
+             if (!viewport_->transforming()) deleteSelected();
+         })
+        ->setShortcuts({QKeySequence(tr("X")), QKeySequence(QKeySequence::Delete)});
+    const char* ops[] = {"grab", "rotate", "scale"};
+    const char* opNames[] = {"&Grab (Move)", "&Rotate", "&Scale"};
+    const char* opKeys[] = {"G", "R", "S"};
+    for (int i = 0; i < 3; ++i)
+        make(ops[i], tr(opNames[i]), QKeySequence(tr(opKeys[i])),
+             tr("The selected object follows the mouse until a click (Esc cancels)"),
+             [this, i] { startModal(GizmoMode(i)); });
+    make("keyMap", tr("&Keyboard Shortcuts"), QKeySequence(tr("F1")),
+         tr("Every key the studio answers to"), [this] { showKeyMap(); });
     make("hide", tr("Hide/Show"), QKeySequence(tr("H")), tr("Hide or show the selected object"),
          [this] { toggleSelectedVisible(); });
     make("fit", tr("Fit View"), QKeySequence(tr("Home")), tr("Fit the render in the window"),
@@ -172,7 +220,6 @@ void MainWindow::createActions() {
     }
     connect(viewport_, &Viewport::gizmoModeChanged, this,
             [this](GizmoMode m) { gizmoGroup_->actions()[int(m)]->setChecked(true); });
-    connect(viewport_, &Viewport::deleteRequested, this, [this] { deleteSelected(); });
     connect(viewport_, &Viewport::dragStarted, this, [this] { beginInteraction(); });
     connect(viewport_, &Viewport::dragFinished, this, [this] { endInteraction(); });
 }
@@ -194,12 +241,17 @@ void MainWindow::createMenus() {
     QMenu* add = edit->addMenu(tr("&Add"));
     add->addActions({action("addSphere"), action("addBox"), action("addPlane")});
     edit->addActions({action("import"), action("duplicate"), action("delete"), action("hide")});
+    QMenu* transform = edit->addMenu(tr("&Transform"));
+    transform->addActions({action("grab"), action("rotate"), action("scale")});
     QMenu* view = menuBar()->addMenu(tr("&View"));
     view->addActions(viewGroup_->actions());
     view->addSeparator();
     view->addAction(action("fit"));
     view->addSeparator();
     for (QDockWidget* d : findChildren<QDockWidget*>()) view->addAction(d->toggleViewAction());
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->setObjectName("helpMenu");
+    help->addAction(action("keyMap"));
     rebuildRecentMenu();
 }
 
@@ -286,6 +338,8 @@ void MainWindow::connectRenderer() {
         renderer_->request(doc_->project(), interactive_);
     });
     connect(doc_, &Document::reloaded, this, [this] {
+        failPendingExport(tr("another project was opened before its render was ready"));
+        failedGeneration_ = 0;
         viewport_->setFrame(nullptr);
         viewport_->setRenderSize(options_.renderSize);
         viewport_->fitView();
@@ -293,6 +347,8 @@ void MainWindow::connectRenderer() {
     connect(renderer_, &RenderController::frameReady, this,
             [this](std::shared_ptr<const RenderFrame> f) { onFrame(f); });
     connect(renderer_, &RenderController::failed, this, [this](const QString& message) {
+        failedGeneration_ = renderer_->generation();
+        failPendingExport(message);
         status_->setText(tr("Render failed"));
         error(tr("Render failed"), message);
     });
@@ -307,6 +363,13 @@ void MainWindow::connectRenderer() {
 
 void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     viewport_->setFrame(f);
+    // The renderer only delivers frames of the latest request: a full one is the current state.
+    if (!pendingExport_.isEmpty() && !f->preview) {
+        const QString path = pendingExport_;
+        pendingExport_.clear();
+        exportProgress_->setVisible(false);
+        writeExport(path, *f);
+    }
     const RenderStats& s = f->update.stats;
     lastError_ = s.estimated_rel_error;
     QString text = f->preview ? tr("Preview pass %1").arg(s.passes)
@@ -371,6 +434,59 @@ void MainWindow::toggleSelectedVisible() {
     Project p = doc_->project();
     p.objects[size_t(sel)].visible = !p.objects[size_t(sel)].visible;
     doc_->edit(p.objects[size_t(sel)].visible ? tr("Show object") : tr("Hide object"), p);
+}
+
+void MainWindow::startModal(GizmoMode mode) {
+    if (viewport_->transforming()) return;
+    if (doc_->selected() < 0) {
+        statusBar()->showMessage(tr("Select an object first (click it in the viewport or the list)"),
+                                 5000);
+        return;
+    }
+    commitTypedValue();  // a value typed into a field counts before the object moves
+    if (viewport_->startModalTransform(mode))
+        statusBar()->showMessage(tr("Move the mouse; click or Enter to confirm, Esc or right "
+                                    "click to cancel"),
+                                 5000);
+}
+
+void MainWindow::commitTypedValue() {
+    if (auto* field = qobject_cast<QAbstractSpinBox*>(QApplication::focusWidget()))
+        field->interpretText();
+}
+
+void MainWindow::showKeyMap() {
+    QString rows;
+    auto row = [&rows](const QString& keys, const QString& what) {
+        rows += QStringLiteral("<tr><td><b>%1</b></td><td>%2</td></tr>")
+                    .arg(keys.toHtmlEscaped(), what.toHtmlEscaped());
+    };
+    const char* names[] = {"new",    "open",      "save",     "saveAs",  "export", "quit",
+                           "undo",   "redo",      "grab",     "rotate",  "scale",  "delete",
+                           "hide",   "duplicate", "import",   "viewPhoto", "viewAugmented",
+                           "viewdL", "fit",       "keyMap"};
+    for (const char* name : names) {
+        QAction* a = action(name);
+        if (!a || a->shortcuts().isEmpty()) continue;
+        QStringList keys;
+        for (const QKeySequence& k : a->shortcuts()) keys << k.toString(QKeySequence::NativeText);
+        row(keys.join(QStringLiteral(", ")), a->text().remove(QLatin1Char('&')));
+    }
+    row(tr("Enter / left click"), tr("Confirm a G / R / S transform"));
+    row(tr("Esc / right click"), tr("Cancel a transform or a pick"));
+    row(tr("Left drag"), tr("Transform the object in the toolbar's mode"));
+    row(tr("Wheel / middle drag"), tr("Zoom / pan the view"));
+    const QString text =
+        tr("<table cellspacing='6'>%1</table><p>In number fields the letter keys stay shortcuts "
+           "(digits, '.', '-' and e are typed); in the name field every letter is typed. Undo "
+           "and redo always act on the project.</p>")
+            .arg(rows);
+    auto* box = new QMessageBox(QMessageBox::NoIcon, tr("Keyboard shortcuts"), text,
+                                QMessageBox::Close, this);
+    box->setObjectName("keyMapDialog");
+    box->setTextFormat(Qt::RichText);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->open();
 }
 
 void MainWindow::setDisplayExposure(float stops) {

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "display.h"
+#include "gizmo.h"
 #include "scene/project.h"
 #include "studio_options.h"
 
@@ -10,6 +11,7 @@ class QAction;
 class QActionGroup;
 class QLabel;
 class QMenu;
+class QProgressBar;
 class QSlider;
 class QToolButton;
 
@@ -27,6 +29,7 @@ class ProxyPanel;
 class RenderController;
 class ScenePanel;
 class SettingsPanel;
+class ShortcutPolicy;
 class Viewport;
 struct RenderFrame;
 
@@ -46,6 +49,8 @@ public:
     CameraPanel* cameraPanel() const { return cameraPanel_; }
     CalibrationPanel* calibrationPanel() const { return calibrationPanel_; }
     ProxyPanel* proxyPanel() const { return proxyPanel_; }
+    ScenePanel* scenePanel() const { return scenePanel_; }
+    SettingsPanel* settingsPanel() const { return settingsPanel_; }
     Autosave* autosave() const { return autosave_; }
     QAction* action(const QString& objectName) const;
 
@@ -55,21 +60,39 @@ public:
     /// Offers to recover autosaved work, if any (called once the window is shown).
     void checkRecovery();
 
-    // File operations; each reports its errors through the reporter and returns false.
+    // File operations; each reports its errors through the reporter and returns false. They
+    // replace the document without asking: the menus, Open Recent, drops and closing the window
+    // ask Save / Discard / Cancel first (maybeSave).
+
+    /// Opens a project once the core would render it (its files readable, its scene valid:
+    /// scene_problem); otherwise the document and its undo history stay as they were.
     bool openProject(const QString& path);
     bool saveProject();
     bool saveProjectAs(const QString& path);
     bool newProject(const QString& photo, const QString& probe, bool mirrorBall = false);
-    /// Writes the latest full-size render: .png/.jpg (display exposure) or .exr with layers
-    /// dL, alpha and shadow.
+    /// Writes a full-size render of the document as it is now: .png/.jpg (display exposure) or
+    /// .exr with layers dL, alpha and shadow. If the latest full pass shows an earlier state (an
+    /// edit is still rendering), the export waits for the first full pass of the current state
+    /// without blocking (the status bar shows it) and writes that. Returns false for what fails
+    /// at once; exportFinished() reports every export, now or later.
     bool exportImage(const QString& path);
+    /// An export is waiting for the current state's pass.
+    bool exportPending() const { return !pendingExport_.isEmpty(); }
+    /// Adds a mesh object (the unsaved work is checkpointed to the recovery file first).
     bool importMesh(const QString& path);
+    /// Asks Save / Discard / Cancel if the document has unsaved changes; true when the caller
+    /// may go on (saved, discarded, or nothing to save). Cancel and Esc keep everything.
+    bool maybeSave();
 
     // Edits.
     void addObject(Shape::Kind kind);
     void duplicateSelected();
     void deleteSelected();
     void toggleSelectedVisible();
+
+Q_SIGNALS:
+    /// An export was written (ok) or failed; `path` as passed to exportImage.
+    void exportFinished(const QString& path, bool ok);
 
 protected:
     void closeEvent(QCloseEvent*) override;
@@ -90,6 +113,13 @@ private:
     void rebuildRecentMenu();
     void restoreSettings();
     void error(const QString& title, const QString& text);
+    /// Applies what a number field holds but has not applied yet (before saving or exporting).
+    void commitTypedValue();
+    bool writeExport(const QString& path, const RenderFrame& f);
+    void failPendingExport(const QString& why);
+    void startModal(GizmoMode mode);
+    void showKeyMap();
+    void openRecent(const QString& path);
     // Dialog front-ends of the file operations.
     void openDialog();
     void saveAsDialog();
@@ -118,6 +148,10 @@ private:
     QMenu* recentMenu_ = nullptr;
     QActionGroup *viewGroup_ = nullptr, *gizmoGroup_ = nullptr;
     QStringList recent_;
+    ShortcutPolicy* shortcutPolicy_ = nullptr;
+    QString pendingExport_;
+    QProgressBar* exportProgress_ = nullptr;
+    uint64_t failedGeneration_ = 0;  ///< renderer generation whose render failed (0: none)
     double lastError_ = -1;
     bool interactive_ = false, editedWhileInteractive_ = false;
 };

@@ -1,10 +1,12 @@
 // MainWindow: files (new, open, save, export, import), recent files, settings, drops, close.
+#include <QApplication>
 #include <QCloseEvent>
 #include <QDragEnterEvent>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMenu>
 #include <QMimeData>
+#include <QProgressBar>
 #include <QSettings>
 #include <QSlider>
 #include <QStatusBar>
@@ -24,6 +26,7 @@
 #include "render/render_output.h"
 #include "render_controller.h"
 #include "scene/project_io.h"
+#include "scene_check.h"
 #include "scene_builder.h"
 #include "viewport.h"
 
@@ -44,7 +47,18 @@ bool MainWindow::openProject(const QString& path) {
         error(tr("Cannot open project"), QString::fromUtf8(e.what()));
         return false;
     }
+    // What the renderer would refuse (a file that cannot be read, a scene too large for ray
+    // arithmetic) is refused here, before the open document is replaced. The files decoded
+    // here are the ones the renderer then uses.
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    const QString problem = scene_problem(doc_->assets(), p);
+    QApplication::restoreOverrideCursor();
+    if (!problem.isEmpty()) {
+        error(tr("Cannot open project"), QFileInfo(path).fileName() + ": " + problem);
+        return false;
+    }
     doc_->reset(p, QFileInfo(path).absoluteFilePath());
+    autosave_->clear();  // the previous document was saved, discarded or unmodified
     addRecent(QFileInfo(path).absoluteFilePath());
     return true;
 }
@@ -59,6 +73,7 @@ bool MainWindow::saveProject() {
 
 bool MainWindow::saveProjectAs(const QString& path) {
     if (!doc_->isOpen()) return false;
+    commitTypedValue();
     const QString abs = QFileInfo(path).absoluteFilePath();
     Project p = doc_->project();
     const auto newBase = std::filesystem::path(abs.toStdString()).parent_path();
@@ -107,42 +122,75 @@ bool MainWindow::newProject(const QString& photo, const QString& probe, bool mir
     ground.albedo.kind = Albedo::Kind::Estimate;  // from the photo, until the user says otherwise
     p.real.push_back(ground);
     doc_->reset(p, QString(), true);
+    autosave_->clear();  // the next autosave is the new project's
     return true;
 }
 
 bool MainWindow::exportImage(const QString& path) {
-    std::shared_ptr<const RenderFrame> f = renderer_->lastFullFrame();
-    if (!f) {
-        error(tr("Nothing to export"), tr("The render has not finished a full-size pass yet."));
+    commitTypedValue();
+    if (!doc_->isOpen()) {
+        error(tr("Nothing to export"), tr("No project is open."));
+        Q_EMIT exportFinished(path, false);
         return false;
     }
+    std::shared_ptr<const RenderFrame> f = renderer_->lastFullFrame();
+    if (f && f->generation == renderer_->generation()) return writeExport(path, *f);
+    if (failedGeneration_ != 0 && failedGeneration_ == renderer_->generation()) {
+        error(tr("Cannot export"), tr("The render of the project as it is now failed."));
+        Q_EMIT exportFinished(path, false);
+        return false;
+    }
+    // The picture on hand shows an earlier state: wait for the current one (onFrame writes it).
+    failPendingExport(tr("a newer export replaced it"));
+    pendingExport_ = path;
+    exportProgress_->setVisible(true);
+    statusBar()->showMessage(
+        tr("Exporting %1 once the current state has rendered...").arg(QFileInfo(path).fileName()));
+    if (renderer_->idle()) renderer_->request(doc_->project(), false);
+    return true;
+}
+
+void MainWindow::failPendingExport(const QString& why) {
+    if (pendingExport_.isEmpty()) return;
+    const QString path = pendingExport_;
+    pendingExport_.clear();
+    exportProgress_->setVisible(false);
+    statusBar()->clearMessage();
+    error(tr("Cannot export"), tr("%1 was not written: %2").arg(QFileInfo(path).fileName(), why));
+    Q_EMIT exportFinished(path, false);
+}
+
+bool MainWindow::writeExport(const QString& path, const RenderFrame& f) {
     const QString suffix = QFileInfo(path).suffix().toLower();
     std::vector<std::string> warnings;
     try {
         if (suffix == "png" || suffix == "jpg" || suffix == "jpeg") {
-            Image image = f->update.image;
+            Image image = f.update.image;
             if (const size_t n = replace_non_finite(image))
                 warnings.push_back(std::to_string(n) + " NaN/Inf values replaced by 0");
             save_ldr(path.toStdString(), image, viewport_->exposure());
         } else if (suffix == "exr") {
-            RenderUpdate u = f->update;
-            warnings = save_render_exr(path.toStdString(), u, *f->photo, true);
+            RenderUpdate u = f.update;
+            warnings = save_render_exr(path.toStdString(), u, *f.photo, true);
         } else {
             throw InputError(path.toStdString(), "export",
                              "unknown format (use .png, .jpg or .exr)");
         }
     } catch (const std::exception& e) {
         error(tr("Cannot export"), QString::fromUtf8(e.what()));
+        Q_EMIT exportFinished(path, false);
         return false;
     }
     QString note = tr("Exported %1").arg(QFileInfo(path).fileName());
     for (const std::string& w : warnings) note += "  ·  " + QString::fromStdString(w);
     statusBar()->showMessage(note, 10000);
+    Q_EMIT exportFinished(path, true);
     return true;
 }
 
 bool MainWindow::importMesh(const QString& path) {
     if (!doc_->isOpen()) return false;
+    doc_->checkpoint();  // a mesh can be anything: the work so far is on disk before it is read
     LoadedMesh mesh;
     try {
         mesh = load_mesh(path.toStdString(), "import");
@@ -165,12 +213,38 @@ bool MainWindow::importMesh(const QString& path) {
     const vec3 centre = 0.5f * (lo + hi);
     o.transform.translation = vec3(at.x - centre.x * scale, -lo.y * scale, at.z - centre.z * scale);
     p.objects.push_back(o);
+    if (const QString why = doc_->editProblem(p); !why.isEmpty()) {
+        error(tr("Cannot import mesh"), why);
+        return false;
+    }
     doc_->edit(tr("Import %1").arg(QFileInfo(path).fileName()), p);
     doc_->select(int(p.objects.size()) - 1);
     return true;
 }
 
+bool MainWindow::maybeSave() {
+    commitTypedValue();
+    if (!doc_->isOpen() || !doc_->isModified()) return true;
+    const QString name =
+        doc_->path().isEmpty() ? tr("The new project") : QFileInfo(doc_->path()).fileName();
+    switch (reporter_->askSave(this, tr("Unsaved changes"),
+                               tr("%1 has unsaved changes. Save them?").arg(name))) {
+        case ErrorReporter::SaveChoice::Save:
+            return saveProject();  // false if the save failed or its dialog was cancelled
+        case ErrorReporter::SaveChoice::Discard:
+            return true;  // the caller replaces the document, and only then the recovery file
+        case ErrorReporter::SaveChoice::Cancel:
+            break;
+    }
+    return false;
+}
+
+void MainWindow::openRecent(const QString& path) {
+    if (maybeSave()) openProject(path);
+}
+
 void MainWindow::openDialog() {
+    if (!maybeSave()) return;
     const QString f = QFileDialog::getOpenFileName(this, tr("Open project"), QString(),
                                                    tr("diffphoton projects (*.json)"));
     if (!f.isEmpty()) openProject(f);
@@ -183,6 +257,7 @@ void MainWindow::saveAsDialog() {
 }
 
 void MainWindow::newDialog(const QString& photo, const QString& probe) {
+    if (!maybeSave()) return;
     NewProjectDialog dialog(this);
     dialog.setPhotoPath(photo);
     dialog.setProbePath(probe);
@@ -212,15 +287,17 @@ void MainWindow::dropEvent(QDropEvent* e) {
     for (const QUrl& url : e->mimeData()->urls()) {
         const QString f = url.toLocalFile();
         const QString suffix = QFileInfo(f).suffix().toLower();
-        if (suffix == "json")
-            openProject(f);
+        if (suffix == "json") {
+            if (maybeSave()) openProject(f);
+        }
         else if (kMeshSuffixes.contains(suffix))
             importMesh(f);
         else if (kImageSuffixes.contains(suffix))
             images << f;
     }
-    if (images.size() >= 2)
-        newProject(images[0], images[1]);
+    if (images.size() >= 2) {
+        if (maybeSave()) newProject(images[0], images[1]);
+    }
     else if (images.size() == 1)
         newDialog(images[0]);
 }
@@ -238,7 +315,7 @@ void MainWindow::rebuildRecentMenu() {
     recentMenu_->clear();
     for (const QString& f : recent_) {
         QAction* a =
-            recentMenu_->addAction(QFileInfo(f).fileName(), this, [this, f] { openProject(f); });
+            recentMenu_->addAction(QFileInfo(f).fileName(), this, [this, f] { openRecent(f); });
         a->setToolTip(f);
     }
     recentMenu_->setEnabled(!recent_.isEmpty());
@@ -276,9 +353,7 @@ void MainWindow::updateTitle() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* e) {
-    if (doc_->isModified() &&
-        reporter_->ask(this, tr("Unsaved changes"), tr("Save the project before closing?")) &&
-        !saveProject()) {
+    if (!maybeSave()) {
         e->ignore();
         return;
     }
@@ -289,7 +364,7 @@ void MainWindow::closeEvent(QCloseEvent* e) {
         s.setValue("exposure", exposure_->value());
     }
     renderer_->stop();
-    autosave_->clear();  // a clean close leaves nothing to recover
+    autosave_->clear();  // saved, discarded or unmodified: nothing left to recover
     e->accept();
 }
 

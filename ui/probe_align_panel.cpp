@@ -2,7 +2,6 @@
 
 #include <QApplication>
 #include <QCheckBox>
-#include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QLabel>
@@ -13,6 +12,7 @@
 
 #include "base/error.h"
 #include "document.h"
+#include "number_field.h"
 #include "error_reporter.h"
 #include "photo_geometry.h"
 #include "reconstruction/probe_align.h"
@@ -27,7 +27,7 @@ ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporte
     layout->setContentsMargins(0, 0, 0, 0);
     auto* sun = new QGroupBox(tr("Sun from a shadow"));
     auto* sunForm = new QFormLayout(sun);
-    height_ = new QDoubleSpinBox;
+    height_ = new NumberField;
     height_->setRange(0.001, 1000);
     height_->setDecimals(3);
     height_->setValue(0.5);
@@ -49,7 +49,7 @@ ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporte
 
     auto* card = new QGroupBox(tr("Exposure from a grey card"));
     auto* cardForm = new QFormLayout(card);
-    reflectance_ = new QDoubleSpinBox;
+    reflectance_ = new NumberField;
     reflectance_->setRange(0.01, 1);
     reflectance_->setDecimals(3);
     reflectance_->setValue(0.18);
@@ -125,7 +125,7 @@ bool ProbeAlignPanel::alignSun(QPointF object, QPointF shadowTip) {
         const vec3 bright = brightest_direction(*doc_->assets().probe(p));
         const ProbeYaw yaw = align_probe_yaw(bright, p.probe.rotation_deg, sun);
         p.probe.rotation_deg = yaw.rotation_deg;
-        doc_->edit(tr("Align probe to the shadow"), p);
+        doc_->tryEdit(tr("Align probe to the shadow"), p);
         status_->setText(tr("Probe turned %1° about the vertical; sun elevation differs by %2°")
                              .arg(yaw.yaw_deg, 0, 'f', 1)
                              .arg(yaw.elevation_mismatch_deg, 0, 'f', 1));
@@ -149,7 +149,7 @@ bool ProbeAlignPanel::matchGreyCard(QPointF a, QPointF b) {
         const ExposureMatch m = match_exposure_grey_card(*build_scene(doc_->assets(), p), card, clip);
         QApplication::restoreOverrideCursor();
         p.probe.intensity = m.intensity;
-        doc_->edit(tr("Probe exposure from the grey card"), p);
+        doc_->tryEdit(tr("Probe exposure from the grey card"), p);
         status_->setText(tr("Probe intensity x%1 (from %2 card pixels, spread %3)")
                              .arg(m.scale, 0, 'f', 3)
                              .arg(m.pixels)

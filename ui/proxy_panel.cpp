@@ -2,7 +2,6 @@
 
 #include <QApplication>
 #include <QPointer>
-#include <QDoubleSpinBox>
 #include <QFileInfo>
 #include <QFormLayout>
 #include <QGroupBox>
@@ -20,6 +19,7 @@
 
 #include "base/error.h"
 #include "document.h"
+#include "number_field.h"
 #include "error_reporter.h"
 #include "image/image_io.h"
 #include "photo_geometry.h"
@@ -34,8 +34,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-QDoubleSpinBox* metres(double value, const char* name, const QString& tip) {
-    auto* s = new QDoubleSpinBox;
+NumberField* metres(double value, const char* name, const QString& tip) {
+    auto* s = new NumberField;
     s->setRange(0.01, 1000);
     s->setDecimals(3);
     s->setValue(value);
@@ -176,7 +176,7 @@ bool ProxyPanel::addBox(const QVector<QPointF>& corners) {
         ProxyFit fit = box_proxy(photo_camera(doc_->assets(), p), px, float(boxHeight_->value()),
                                  unique_real_name(p, "box"));
         p.real.push_back(fit.proxy);
-        doc_->edit(tr("Add box proxy"), p);
+        doc_->tryEdit(tr("Add box proxy"), p);
         status_->setText(tr("Box added; footprint fit %1 px").arg(fit.rms_error_px, 0, 'f', 2));
     });
 }
@@ -193,7 +193,7 @@ bool ProxyPanel::addWall(const QVector<QPointF>& base) {
         ProxyFit fit = wall_proxy(photo_camera(doc_->assets(), p), a, b, float(wallHeight_->value()),
                                   float(wallThickness_->value()), unique_real_name(p, "wall"));
         p.real.push_back(fit.proxy);
-        doc_->edit(tr("Add wall proxy"), p);
+        doc_->tryEdit(tr("Add wall proxy"), p);
         status_->setText(tr("Wall added"));
     });
 }

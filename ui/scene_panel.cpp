@@ -1,7 +1,6 @@
 #include "scene_panel.h"
 
 #include <QAction>
-#include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QGridLayout>
 #include <QHBoxLayout>
@@ -12,6 +11,7 @@
 #include <QVBoxLayout>
 
 #include "document.h"
+#include "number_field.h"
 
 namespace dp::ui {
 
@@ -43,7 +43,7 @@ ScenePanel::ScenePanel(Document* doc, const QList<QAction*>& actions, QWidget* p
     for (int r = 0; r < 3; ++r) {
         auto* row = new QHBoxLayout;
         for (int c = 0; c < 3; ++c) {
-            auto* f = new QDoubleSpinBox;
+            auto* f = new NumberField;
             f->setDecimals(r == 1 ? 1 : 3);
             f->setRange(r == 2 ? 0.001 : -1e4, 1e4);
             f->setSingleStep(r == 1 ? 5.0 : 0.05);
@@ -51,7 +51,7 @@ ScenePanel::ScenePanel(Document* doc, const QList<QAction*>& actions, QWidget* p
             f->setToolTip(tr(tips[r]) + QStringLiteral(" (%1)").arg(QChar('x' + c)));
             fields_[r * 3 + c] = f;
             row->addWidget(f);
-            connect(f, &QDoubleSpinBox::valueChanged, this, [this] { applyTransform(); });
+            connect(f, &NumberField::valueChanged, this, [this, i = r * 3 + c] { applyTransform(i); });
         }
         form->addRow(tr(rows[r]), row);
     }
@@ -93,7 +93,7 @@ void ScenePanel::refresh() {
     list_->setCurrentRow(sel);
     const bool has = sel >= 0;
     name_->setEnabled(has);
-    for (QDoubleSpinBox* f : fields_) f->setEnabled(has);
+    for (NumberField* f : fields_) f->setEnabled(has);
     if (has) {
         const VirtualObject& o = p.objects[size_t(sel)];
         name_->setText(QString::fromStdString(o.name));
@@ -113,14 +113,14 @@ void ScenePanel::refresh() {
     refreshing_ = false;
 }
 
-void ScenePanel::applyTransform() {
+void ScenePanel::applyTransform(int index) {
     const int sel = doc_->selected();
     if (sel < 0 || refreshing_) return;
     Project p = doc_->project();
     Transform& t = p.objects[size_t(sel)].transform;
     vec3* v[3] = {&t.translation, &t.rotation_deg, &t.scale};
-    for (int i = 0; i < 9; ++i) (*v[i / 3])[i % 3] = float(fields_[i]->value());
-    doc_->edit(tr("Transform %1").arg(QString::fromStdString(p.objects[size_t(sel)].name)), p);
+    (*v[index / 3])[index % 3] = float(fields_[index]->value());
+    doc_->tryEdit(tr("Transform %1").arg(QString::fromStdString(p.objects[size_t(sel)].name)), p);
 }
 
 void ScenePanel::applyVisibility(int row, bool visible) {

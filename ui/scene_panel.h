@@ -2,13 +2,13 @@
 #include <QWidget>
 
 class QAction;
-class QDoubleSpinBox;
 class QLineEdit;
 class QListWidget;
 
 namespace dp::ui {
 
 class Document;
+class NumberField;
 
 /// The virtual objects: a list (tick to show, untick to hide), buttons for the add / import /
 /// duplicate / delete actions, the selected object's name and transform.
@@ -19,17 +19,19 @@ public:
 
     QListWidget* list() const { return list_; }
     /// Translation x y z, rotation x y z (degrees), scale x y z.
-    QDoubleSpinBox* transformField(int i) const { return fields_[i]; }
+    NumberField* transformField(int i) const { return fields_[i]; }
 
 private:
     void refresh();
-    void applyTransform();
+    /// Applies field `index` alone: the other components keep their exact values (the fields
+    /// show them rounded, and clamped to their ranges).
+    void applyTransform(int index);
     void applyVisibility(int row, bool visible);
 
     Document* doc_;
     QListWidget* list_;
     QLineEdit* name_;
-    QDoubleSpinBox* fields_[9];
+    NumberField* fields_[9];
     bool refreshing_ = false;
 };
 

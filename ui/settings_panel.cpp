@@ -1,10 +1,10 @@
 #include "settings_panel.h"
 
-#include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QSpinBox>
 
 #include "document.h"
+#include "number_field.h"
 
 namespace dp::ui {
 
@@ -21,13 +21,13 @@ SettingsPanel::SettingsPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     passes_->setRange(1, 100000);
     passes_->setToolTip(tr("Passes to refine before stopping (ignored with a time budget)"));
     form->addRow(tr("Passes"), passes_);
-    budget_ = new QDoubleSpinBox;
+    budget_ = new NumberField;
     budget_->setRange(0, 86400);
     budget_->setSuffix(tr(" s"));
     budget_->setSpecialValueText(tr("none (use passes)"));
     budget_->setToolTip(tr("Render for this many seconds instead of a number of passes"));
     form->addRow(tr("Time budget"), budget_);
-    radius_ = new QDoubleSpinBox;
+    radius_ = new NumberField;
     radius_->setRange(0, 100);
     radius_->setDecimals(4);
     radius_->setSingleStep(0.005);
@@ -42,9 +42,9 @@ SettingsPanel::SettingsPanel(Document* doc, QWidget* parent) : QWidget(parent), 
         s->setKeyboardTracking(false);
         connect(s, &QSpinBox::valueChanged, this, [this] { apply(); });
     }
-    for (QDoubleSpinBox* s : {budget_, radius_}) {
+    for (NumberField* s : {budget_, radius_}) {
         s->setKeyboardTracking(false);
-        connect(s, &QDoubleSpinBox::valueChanged, this, [this] { apply(); });
+        connect(s, &NumberField::valueChanged, this, [this] { apply(); });
     }
     connect(doc_, &Document::changed, this, [this] { refresh(); });
     refresh();
@@ -73,7 +73,7 @@ void SettingsPanel::apply() {
     else
         r.initial_radius.reset();
     r.seed = uint64_t(seed_->value());
-    doc_->edit(tr("Change render settings"), p);
+    doc_->tryEdit(tr("Change render settings"), p);
 }
 
 }  // namespace dp::ui

@@ -1,12 +1,12 @@
 #pragma once
 #include <QWidget>
 
-class QDoubleSpinBox;
 class QSpinBox;
 
 namespace dp::ui {
 
 class Document;
+class NumberField;
 
 /// The project's render settings: photons per pass, passes, time budget, radius, seed.
 class SettingsPanel : public QWidget {
@@ -14,13 +14,16 @@ class SettingsPanel : public QWidget {
 public:
     explicit SettingsPanel(Document* doc, QWidget* parent = nullptr);
 
+    QSpinBox* photonsField() const { return photons_; }
+    NumberField* radiusField() const { return radius_; }
+
 private:
     void refresh();
     void apply();
 
     Document* doc_;
     QSpinBox *photons_, *passes_, *seed_;
-    QDoubleSpinBox *budget_, *radius_;
+    NumberField *budget_, *radius_;
     bool refreshing_ = false;
 };
 

@@ -156,11 +156,36 @@ void Viewport::beginDrag(QPointF pos) {
     Q_EMIT dragStarted();
 }
 
+bool Viewport::startModalTransform(GizmoMode mode) {
+    const int sel = doc_->selected();
+    if (dragging_ || pick_->active() || sel < 0 || !renderSize_.isValid()) return false;
+    QPointF at = mapFromGlobal(QCursor::pos());
+    if (!rect().contains(at.toPoint())) {
+        // The key was pressed with the mouse over a panel: start from the object itself.
+        if (!widgetPosition(doc_->project().objects[size_t(sel)].transform.translation, at))
+            at = QPointF(rect().center());
+        QCursor::setPos(mapToGlobal(at.toPoint()));
+    }
+    modeBeforeModal_ = gizmo_;
+    modal_ = true;
+    setGizmoMode(mode);
+    setFocus();  // Enter and Esc end it, whichever field had the focus
+    setMouseTracking(true);
+    grabMouse();  // the object follows the mouse over the panels too
+    beginDrag(at);
+    return true;
+}
+
 void Viewport::finishDrag(bool cancel) {
     if (!dragging_) return;
     dragging_ = false;
     setMouseTracking(false);
     if (cancel) doc_->edit(tr("Cancel transform"), projectAtDrag_, dragKey_);
+    if (modal_) {
+        modal_ = false;
+        releaseMouse();
+        setGizmoMode(modeBeforeModal_);
+    }
     Q_EMIT dragFinished();
 }
 
@@ -218,7 +243,7 @@ void Viewport::mouseReleaseEvent(QMouseEvent* e) {
         pick_->release(QPointF(px.x, px.y));
         return;
     }
-    if (e->button() == Qt::LeftButton && dragging_ && !hasMouseTracking()) finishDrag(false);
+    if (e->button() == Qt::LeftButton && dragging_ && !modal_) finishDrag(false);
 }
 
 void Viewport::wheelEvent(QWheelEvent* e) {
@@ -231,23 +256,12 @@ void Viewport::wheelEvent(QWheelEvent* e) {
 }
 
 void Viewport::keyPressEvent(QKeyEvent* e) {
+    // G, R, S and X are the window's actions (they work from any panel); here only what ends a
+    // drag or a pick.
     switch (e->key()) {
-        case Qt::Key_G:
-        case Qt::Key_R:
-        case Qt::Key_S: {
-            setGizmoMode(e->key() == Qt::Key_G   ? GizmoMode::Translate
-                         : e->key() == Qt::Key_R ? GizmoMode::Rotate
-                                                 : GizmoMode::Scale);
-            if (!dragging_ && !pick_->active() && doc_->selected() >= 0 &&
-                rect().contains(mapFromGlobal(QCursor::pos()))) {
-                setMouseTracking(true);  // Blender-style: the object follows until a click
-                beginDrag(mapFromGlobal(QCursor::pos()));
-            }
-            return;
-        }
-        case Qt::Key_X:
-        case Qt::Key_Delete:
-            if (!dragging_ && doc_->selected() >= 0) Q_EMIT deleteRequested();
+        case Qt::Key_Return:
+        case Qt::Key_Enter:
+            if (modal_) finishDrag(false);
             return;
         case Qt::Key_Escape:
             if (pick_->active()) pick_->cancel();

@@ -15,8 +15,9 @@ class Document;
 
 /// Shows the progressive render (photo / augmented / dL), zooms (wheel) and pans (middle
 /// mouse), draws the overlays, and moves the selected object with the gizmo: click selects,
-/// left-drag applies the current mode (G translate, R rotate, S scale), X deletes, Esc or the
-/// right button cancels a drag. While the pick tool is active, left clicks and drags go to it
+/// left-drag applies the toolbar's mode, and startModalTransform (the window's G, R and S keys)
+/// makes the object follow the mouse until a click or Enter confirms it; Esc or the right button
+/// cancels a drag. While the pick tool is active, left clicks and drags go to it
 /// (calibration and proxy tools) and Esc cancels it.
 class Viewport : public QWidget {
     Q_OBJECT
@@ -34,6 +35,14 @@ public:
     void setOverlays(const OverlayOptions& o);
     OverlayOptions overlays() const { return overlays_; }
     void setGizmoMode(GizmoMode mode);
+    GizmoMode gizmoMode() const { return gizmo_; }
+    /// Blender-style G / R / S: the selected object follows the mouse in `mode` until a left
+    /// click or Enter confirms or Esc or a right click cancels; then the toolbar's mode is what
+    /// it was before. Starts from the cursor when it is over the viewport, else from the object
+    /// (the cursor is moved there). False (nothing starts) without a selection or during a drag.
+    bool startModalTransform(GizmoMode mode);
+    /// A drag or a modal transform is under way.
+    bool transforming() const { return dragging_; }
     /// Fits the render into the widget (zoom 1, no pan).
     void fitView();
 
@@ -51,7 +60,6 @@ public:
 Q_SIGNALS:
     void dragStarted();
     void dragFinished();
-    void deleteRequested();
     void gizmoModeChanged(dp::ui::GizmoMode mode);
 
 protected:
@@ -87,6 +95,8 @@ private:
     Transform dragStart_;
     Project projectAtDrag_;
     int dragKey_ = -1;
+    bool modal_ = false;  ///< the drag is a keyed G / R / S, not a mouse drag
+    GizmoMode modeBeforeModal_ = GizmoMode::Translate;
 };
 
 }  // namespace dp::ui

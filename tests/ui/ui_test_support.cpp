@@ -2,6 +2,7 @@
 
 #include <QDir>
 #include <QElapsedTimer>
+#include <QSignalSpy>
 #include <QTest>
 #include <cmath>
 
@@ -35,6 +36,13 @@ StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, 
 
 bool wait_refined(MainWindow& w, int timeoutMs) {
     return QTest::qWaitFor([&] { return w.renderer()->finished(); }, timeoutMs);
+}
+
+bool export_and_wait(MainWindow& w, const QString& path, int timeoutMs) {
+    QSignalSpy done(&w, &MainWindow::exportFinished);
+    if (!w.exportImage(path)) return false;
+    if (done.isEmpty() && !done.wait(timeoutMs)) return false;
+    return done.last().at(1).toBool();
 }
 
 double mean_abs_diff(const Image& a, const Image& b, const std::vector<uint8_t>& mask,

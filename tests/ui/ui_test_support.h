@@ -21,6 +21,10 @@ StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, 
 /// Processes events until the latest request has finished refining; false on timeout.
 bool wait_refined(MainWindow& w, int timeoutMs = 30000);
 
+/// Exports through MainWindow::exportImage and waits for the file (an export right after an
+/// edit waits for the edited state's pass); false if it failed or timed out.
+bool export_and_wait(MainWindow& w, const QString& path, int timeoutMs = 30000);
+
 /// Mean absolute luminance difference between two images over the pixels where `mask` is
 /// `inside` (mask: non-zero bytes, one per pixel; empty means all pixels).
 double mean_abs_diff(const Image& a, const Image& b, const std::vector<uint8_t>& mask = {},
