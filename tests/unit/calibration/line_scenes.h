@@ -32,7 +32,13 @@ struct LineScene {
     /// The clicks, each coordinate moved by `noise()`.
     VanishingInput clicks(const std::function<double()>& noise) const {
         VanishingInput in;
-        auto click = [&](const glm::dvec3& w) { return pixel(w) + glm::dvec2(noise(), noise()); };
+        auto click = [&](const glm::dvec3& w) {
+            // Drawn in two statements: the order of a call's arguments is unspecified, and the
+            // draws must not depend on the compiler (v first, as the gcc builds always drew).
+            const double dv = noise();
+            const double du = noise();
+            return pixel(w) + glm::dvec2(du, dv);
+        };
         auto add = [&](const auto& list, std::vector<LineSegment>& out) {
             for (const auto& [a, b] : list) out.push_back({click(a), click(b)});
         };
