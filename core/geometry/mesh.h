@@ -34,7 +34,7 @@ struct LoadedMesh {
     size_t dropped_degenerate = 0;
 };
 
-/// Loads every mesh in an OBJ, PLY or glTF 2.0 file through Assimp (node transforms applied),
+/// Loads every mesh in an OBJ, PLY, glTF 2.0, STL or FBX file through Assimp (node transforms applied),
 /// merged into one mesh. Throws InputError naming the file (and `field`) when the file is missing,
 /// unreadable, or has no non-degenerate triangle.
 LoadedMesh load_mesh(const std::string& path, const std::string& field = "");
