@@ -156,7 +156,8 @@ ChessboardView detect_chessboard(const Image& image, const ChessboardSpec& spec,
                              " pixels: too small to show a board of " + std::to_string(spec.cols) + "x" +
                              std::to_string(spec.rows) + " inner corners (at least " + std::to_string(min_w) +
                              "x" + std::to_string(min_h) + ")");
-    return calib::translating_cv_errors(source, "finding the chessboard", [&] { return find_corners(image, spec, source); });
+    return calib::translating_cv_errors(source, "finding the chessboard",
+                                        [&] { return find_corners(image, spec, source); });
 }
 
 ChessboardView detect_chessboard(const std::string& path, const ChessboardSpec& spec) {

@@ -17,8 +17,8 @@ struct ImageLoadReport {
 
 /// Loads EXR or Radiance HDR as linear float, PNG/JPEG/TIFF/BMP as sRGB decoded to linear.
 /// Throws InputError naming `path` and `field` when the file is missing, unreadable, corrupt,
-/// has zero size or declares more pixels than check_image_size allows (EXR, PNG, JPEG, HDR and
-/// BMP are measured from their header, so a tiny file declaring a huge size allocates nothing). NaN/Inf channels become 0 and are counted in `report`.
+/// empty or over check_image_size (measured from the header for EXR, PNG, JPEG, HDR and BMP: a
+/// tiny file declaring a huge size allocates nothing). NaN/Inf become 0, counted in `report`.
 Image load_image(const std::string& path, const std::string& field = "",
                  ImageLoadReport* report = nullptr);
 

@@ -25,7 +25,9 @@ namespace {
 
 uint32_t be32(const unsigned char* b) { return uint32_t(b[0]) << 24 | uint32_t(b[1]) << 16 | uint32_t(b[2]) << 8 | b[3]; }
 uint16_t be16(const unsigned char* b) { return uint16_t(b[0] << 8 | b[1]); }
-uint32_t le32(const unsigned char* b) { return uint32_t(b[3]) << 24 | uint32_t(b[2]) << 16 | uint32_t(b[1]) << 8 | b[0]; }
+uint32_t le32(const unsigned char* b) {
+    return uint32_t(b[3]) << 24 | uint32_t(b[2]) << 16 | uint32_t(b[1]) << 8 | b[0];
+}
 
 bool png_size(std::ifstream& f, int64_t& w, int64_t& h) {
     unsigned char b[24];
@@ -119,7 +121,8 @@ bool header_size(const std::string& path, int64_t& width, int64_t& height) {
     f.read(reinterpret_cast<char*>(magic), 4);
     f.clear();
     f.seekg(0);
-    if (magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01) return exr_size(path, width, height);
+    if (magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01)
+        return exr_size(path, width, height);
     if (magic[0] == 0x89) return png_size(f, width, height);
     if (magic[0] == 0xFF && magic[1] == 0xD8) return jpeg_size(f, width, height);
     if (magic[0] == '#' && magic[1] == '?') return hdr_size(f, width, height);
