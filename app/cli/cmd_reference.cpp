@@ -21,10 +21,12 @@ struct ReferenceCliOptions {
 };
 
 int run_reference(const ReferenceCliOptions& o) {
-    check_output_path(o.output, "--output");
+    const ImageKind kind = check_output_path(o.output, "--output");
     return with_threads(o.threads, [&]() -> int {
         LoadedScene loaded = load_scene(o.project);
         auto scene = loaded.scene;
+        check_output_space(o.output, "--output",
+                           output_bytes(kind, scene->camera().width(), scene->camera().height()));
         ReferenceOptions ro;
         ro.samples_per_pixel = o.spp;
         ro.max_depth = loaded.settings.max_depth;

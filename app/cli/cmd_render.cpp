@@ -77,7 +77,12 @@ int run_render(const RenderOptions& o) {
     return with_threads(o.threads, [&]() -> int {
         LoadedScene loaded = load_scene(o.project, [&](Project& p) { apply_overrides(o, p); });
         auto scene = loaded.scene;
-        if (!o.output.empty()) refuse_overwriting_inputs(o.output, "--output", loaded.project, o.project);
+        if (!o.output.empty()) {
+            refuse_overwriting_inputs(o.output, "--output", loaded.project, o.project);
+            const Camera& camera = scene->camera();
+            check_output_space(o.output, "--output",
+                               output_bytes(kind, camera.width(), camera.height(), o.layers ? 4 : 1));
+        }
         if (!standard) check_render_limits(*scene, loaded.settings);  // bad input, exit 2, before any pass
         if (debug) return debug_pixel(scene, loaded.settings, o.project, px, py, o.pass);
 
@@ -101,6 +106,7 @@ int run_render(const RenderOptions& o) {
             if (interrupted()) session.cancel();
         session.wait();
         progress.finish();
+        if (std::exception_ptr failure = session.failure()) std::rethrow_exception(failure);  // by kind
         if (!sink.error().empty()) throw std::runtime_error("render failed: " + sink.error());
 
         std::optional<RenderUpdate> last = sink.take_last();
@@ -134,7 +140,7 @@ Command add_render_command(CLI::App& app) {
         sub->add_option("--passes", o->passes, "Number of passes (overrides the project)")
             ->check(kPositive);
     o->time_opt = sub->add_option("--time", o->time_s, "Render for this many seconds instead")
-                      ->check(kPositive)
+                      ->check(kTimeBudget)
                       ->excludes(o->passes_opt);
     o->photons_opt = sub->add_option("--photons", o->photons, "Photons per pass")
                          ->check(kPositive);

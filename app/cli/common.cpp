@@ -1,4 +1,5 @@
 #include "common.h"
+#include "base/text.h"
 
 #include <unistd.h>
 
@@ -12,7 +13,9 @@
 
 #include "assets/asset_library.h"
 #include "assets/scene_checks.h"
+#include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/text.h"
 #include "image/image_io.h"
 #include "scene/project_io.h"
 
@@ -60,6 +63,8 @@ const CLI::Validator kSeed(
 
 const CLI::Validator kPositive = number_check("POSITIVE", [](double v) { return v > 0; }, "greater than 0");
 const CLI::Validator kNonNegative = number_check("NONNEGATIVE", [](double v) { return v >= 0; }, "0 or more");
+const CLI::Validator kTimeBudget = number_check(
+    "SECONDS", [](double v) { return v > 0 && v <= kMaxTimeBudget; }, "greater than 0 and at most 31536000 (a year)");
 
 void warn(const std::string& text) { std::cerr << "warning: " << text << "\n"; }
 
@@ -98,21 +103,42 @@ void check_output_folder(const std::string& path, const std::string& option) {
     fs::path folder = fs::path(path).parent_path();
     if (folder.empty()) folder = ".";
     if (!fs::is_directory(folder, ec))
-        throw InputError(path, option, "folder '" + folder.string() + "' does not exist");
+        throw InputError(path, option, "folder '" + shorten_path(folder.string()) + "' does not exist");
     if (::access(folder.c_str(), W_OK) != 0)
-        throw InputError(path, option, "folder '" + folder.string() + "' is not writable");
+        throw InputError(path, option, "folder '" + shorten_path(folder.string()) + "' is not writable");
+}
+
+double output_bytes(ImageKind kind, int width, int height, int layers) {
+    const double channels = 3.0 * double(width) * double(height) * double(layers);
+    return kind == ImageKind::Exr ? 4.0 * channels : channels;
+}
+
+void check_output_space(const std::string& path, const std::string& option, double bytes) {
+    fs::path folder = fs::path(path).parent_path();
+    if (folder.empty()) folder = ".";
+    std::error_code ec;
+    const fs::space_info space = fs::space(folder, ec);
+    if (ec) return;  // no figure to compare with: the write itself will say what fails
+    // The new file is written beside the old one before it replaces it: the old one's space
+    // is not free until then.
+    if (double(space.available) >= bytes) return;
+    throw InputError(path, option,
+                     "the output needs up to " + format_bytes(bytes) + " but its folder '" +
+                         shorten_path(folder.string()) + "' has only " + format_bytes(double(space.available)) +
+                         " free: free some space or write elsewhere");
 }
 
 size_t sanitize(Image& image, const std::string& path, const std::string& layer) {
     const size_t replaced = replace_non_finite(image);
     if (replaced > 0)
-        warn(path + ": " + std::to_string(replaced) + " NaN/Inf values in layer '" + layer +
+        warn(shorten_path(path) + ": " + std::to_string(replaced) + " NaN/Inf values in layer '" + layer +
              "' replaced by 0 before writing");
     return replaced;
 }
 
 void write_image(const std::string& path, Image image, float exposure) {
     ImageKind kind = check_output_path(path, "output");
+    check_output_space(path, "output", output_bytes(kind, image.width(), image.height()));
     sanitize(image, path, "main");
     if (kind == ImageKind::Exr) {
         save_exr(path, {{"", &image}});
@@ -128,8 +154,12 @@ std::atomic<bool> g_interrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "used from a signal handler");
 
 extern "C" void on_interrupt(int) {
-    g_interrupted.store(true);
-    std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the process at once
+    if (!g_interrupted.exchange(true)) return;  // the first asks the command to stop
+    // A second Ctrl-C ends the process at once, as usual; an output being written keeps its
+    // old content (writes are atomic) and the half-written temporary file goes with us.
+    remove_temporaries_in_flight();
+    std::signal(SIGINT, SIG_DFL);
+    std::raise(SIGINT);
 }
 
 }  // namespace
@@ -158,6 +188,8 @@ std::string sci(double v) {
 std::string duration(double seconds) {
     char buf[32];
     if (!std::isfinite(seconds) || seconds < 0) return "?";
+    // Beyond this, hours no longer fit the counters below; no render lasts that long.
+    if (seconds >= 1e9) return ">30 years";
     if (seconds < 60) {
         std::snprintf(buf, sizeof(buf), "%.1fs", seconds);
     } else if (seconds < 3600) {

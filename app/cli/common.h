@@ -22,6 +22,10 @@ extern const CLI::Validator kPositive;
 /// A random seed: a whole number in [0, 2^64).
 extern const CLI::Validator kSeed;
 extern const CLI::Validator kNonNegative;
+/// The longest --time a render takes: a year, in seconds.
+inline constexpr double kMaxTimeBudget = 365.0 * 24 * 3600;
+/// A time budget in seconds: > 0 and at most kMaxTimeBudget.
+extern const CLI::Validator kTimeBudget;
 
 /// Prints "warning: <text>" to stderr.
 void warn(const std::string& text);
@@ -56,6 +60,12 @@ enum class ImageKind { Exr, Ldr };
 ImageKind check_output_path(const std::string& path, const std::string& option);
 /// The folder part of check_output_path, for files of any kind.
 void check_output_folder(const std::string& path, const std::string& option);
+/// Bytes an output image of width x height with `layers` RGB layers may take at most: float
+/// channels uncompressed for EXR (its compression usually saves a part), 8-bit for PNG/JPEG.
+double output_bytes(ImageKind kind, int width, int height, int layers = 1);
+/// Refuses, before the work that would fill it, an output whose folder has less free space
+/// than `bytes` (the message gives both figures). Throws InputError naming the path and `option`.
+void check_output_space(const std::string& path, const std::string& option, double bytes);
 
 /// Replaces NaN/Inf channels by 0 and warns (naming `path` and `layer`) if there were any.
 size_t sanitize(Image& image, const std::string& path, const std::string& layer);
@@ -65,7 +75,8 @@ size_t sanitize(Image& image, const std::string& path, const std::string& layer)
 void write_image(const std::string& path, Image image, float exposure);
 
 /// Ctrl-C: the first one asks long commands to stop (they check interrupted()), a second one
-/// kills the process as usual.
+/// kills the process as usual, removing the temporary file of an output being written (the
+/// output itself keeps its old content).
 void install_interrupt_handler();
 bool interrupted();
 const std::atomic<bool>* interrupt_flag();

@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "base/error.h"
+#include "base/memory.h"
 #include "base/text.h"
 #include "commands.h"
 
@@ -18,6 +19,24 @@ namespace {
 
 constexpr int kExitInternal = 1;
 constexpr int kExitBadInput = 2;
+
+/// A message quotes paths and decoder texts that may be megabytes long; its start (the file and
+/// field) and its end (why) are what a person reads.
+constexpr size_t kMaxMessage = 1000;
+
+void print_error(const std::string& text) { std::cerr << "error: " << dp::shorten_middle(text, kMaxMessage) << "\n"; }
+
+/// Running out of memory is said as such, with the figures there are: what was being
+/// allocated (where the allocation said) and the machine's memory. Exit code 1, as for any
+/// failure that is not the input's.
+int out_of_memory(const std::string& what) {
+    std::string text = "out of memory";
+    if (!what.empty()) text += " allocating " + what;
+    if (const uint64_t ram = dp::physical_memory_bytes(); ram > 0)
+        text += "; this machine has " + dp::format_bytes(double(ram)) + " of memory";
+    print_error(text + " (smaller images or fewer photons per pass need less)");
+    return kExitInternal;
+}
 
 /// "unknown command 'rendr' (did you mean 'render'?)" for a first word that names no command;
 /// CLI11 alone would say only that a subcommand is required.
@@ -52,7 +71,7 @@ int run(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-        std::cerr << "error: " << e.what() << "\n(run 'diffphoton --help' for usage)\n";
+        print_error(std::string(e.what()) + "\n(run 'diffphoton --help' for usage)");
         return kExitBadInput;
     }
     for (const Command& c : commands)
@@ -66,19 +85,20 @@ int main(int argc, char** argv) {
     try {
         return run(argc, argv);
     } catch (const dp::InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
+        print_error(e.what());
         return kExitBadInput;
     } catch (const CLI::Error& e) {  // option combinations checked after parsing
-        std::cerr << "error: " << e.what() << "\n";
+        print_error(e.what());
         return kExitBadInput;
+    } catch (const dp::OutOfMemory& e) {
+        return out_of_memory(e.what());
     } catch (const std::bad_alloc&) {
-        std::cerr << "error: out of memory\n";
-        return kExitInternal;
+        return out_of_memory("");
     } catch (const std::exception& e) {
-        std::cerr << "error: internal error: " << e.what() << "\n";
+        print_error(std::string("internal error: ") + e.what());
         return kExitInternal;
     } catch (...) {
-        std::cerr << "error: internal error (unknown exception)\n";
+        print_error("internal error (unknown exception)");
         return kExitInternal;
     }
 }

@@ -1,9 +1,12 @@
 #include "assets/asset_library.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <system_error>
 
 #include "assets/scene_checks.h"
+#include "base/text.h"
 #include "image/image_io.h"
 #include "probe/probe.h"
 
@@ -31,12 +34,51 @@ static Image load_noted(const fs::path& path, const std::string& field, ImageLoa
     Image img = load_image(path.string(), field, &report);
     non_finite = report.non_finite_replaced;
     if (report.non_finite_replaced > 0)
-        warnings.push_back(path.string() + ": " + std::to_string(report.non_finite_replaced) +
+        warnings.push_back(shorten_path(path.string()) + ": " + std::to_string(report.non_finite_replaced) +
                            " NaN/Inf values replaced by 0 (field '" + field + "')");
     return img;
 }
 
 namespace {
+
+std::string percent(double share) {
+    char buf[32];
+    // Whole percents where they are many, two figures where few ("0.71%").
+    std::snprintf(buf, sizeof(buf), share >= 0.1 ? "%.0f%%" : "%.2g%%", 100.0 * share);
+    return buf;
+}
+
+/// An albedo is a reflectance: outside [0, 1] it is an editing or export mistake (a texture in
+/// the wrong colour space, an HDR bake). Rendering clamps it; the warning says how much.
+void check_albedo_values(const Image& texture, const std::string& label, std::vector<std::string>& warnings) {
+    // Bakes and 16-bit exports overshoot by rounding; that is not worth a word.
+    constexpr float kTolerance = 1e-3f;
+    size_t outside = 0;
+    float lo = 0, hi = 1;
+    for (size_t i = 0; i < texture.size(); ++i) {
+        const vec3& v = texture[i];
+        const float a = std::min({v.x, v.y, v.z}), b = std::max({v.x, v.y, v.z});
+        if (a < -kTolerance || b > 1 + kTolerance) ++outside;
+        lo = std::min(lo, a);
+        hi = std::max(hi, b);
+    }
+    if (outside == 0) return;
+    char range[96];
+    std::snprintf(range, sizeof(range), " (values from %g to %g)", double(lo), double(hi));
+    warnings.push_back(label + ": " + percent(double(outside) / double(texture.size())) +
+                       " of the texels are outside the albedo range [0, 1]" + range +
+                       "; they are clamped to [0, 0.98] (is it in the wrong colour space?)");
+}
+
+/// Clipped highlights hold an unknown amount of light: where an object should darken them, the
+/// render cannot know by how much. A few clipped pixels (specular glints) are normal.
+void check_clipped_photo(size_t clipped, size_t pixels, std::vector<std::string>& warnings) {
+    constexpr double kVisibleShare = 0.005;
+    if (pixels == 0 || double(clipped) <= kVisibleShare * double(pixels)) return;
+    warnings.push_back("photo.path: " + percent(double(clipped) / double(pixels)) +
+                       " of the photo's pixels are clipped (a channel at the top code value); shadows "
+                       "and reflections over them come out too weak: shoot raw or bracketed for an HDR photo");
+}
 
 }  // namespace
 
@@ -85,6 +127,7 @@ std::shared_ptr<const Image> AssetLibrary::photo(const Project& p) {
         ImageLoadReport report;
         Image img = load_noted(path, "photo.path", report, e.warnings, e.non_finite);
         e.linear = report.linear_source;
+        check_clipped_photo(report.clipped, img.size(), e.warnings);
         const float gain = std::exp2(p.photo.exposure);
         if (gain != 1.0f)
             for (size_t i = 0; i < img.size(); ++i) img[i] *= gain;
@@ -146,8 +189,18 @@ std::shared_ptr<const Image> AssetLibrary::probe(const Project& p) {
             const int h = std::max(16, probe.height() / 2);
             probe = unwrap_mirror_ball(probe, 2 * h, h, p.probe.mirror_ball_fov_deg);
         }
+        limit_probe_size(probe, kMaxProbeWidth, e.warnings);
         return probe;
     });
+}
+
+void limit_probe_size(Image& probe, int max_width, std::vector<std::string>& warnings) {
+    if (probe.width() <= max_width) return;
+    const int width = max_width, height = std::max(1, max_width / 2);
+    warnings.push_back("probe.path: the " + std::to_string(probe.width()) + "x" + std::to_string(probe.height()) +
+                       " probe is reduced to " + std::to_string(width) + "x" + std::to_string(height) +
+                       " on load (the lighting needs no more; docs/project-format.md)");
+    probe = resample(probe, width, height);
 }
 
 SceneAssets AssetLibrary::load(const Project& project) {
@@ -174,7 +227,9 @@ SceneAssets AssetLibrary::load(const Project& project) {
                 const std::string key = "texture|" + path.string();
                 textures[i] = *cached<Image>(key, path, [&](Entry& e) {
                     ImageLoadReport report;
-                    return load_noted(path, field, report, e.warnings, e.non_finite);
+                    Image texture = load_noted(path, field, report, e.warnings, e.non_finite);
+                    check_albedo_values(texture, field + " '" + shorten_path(alb.texture_path) + "'", e.warnings);
+                    return texture;
                 });
                 report(key, a);
             }

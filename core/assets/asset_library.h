@@ -60,6 +60,14 @@ private:
     std::map<std::string, Entry> entries_;
 };
 
+/// The widest lat-long probe a scene keeps: the photon emission's CDF and the sun/sky split need
+/// no more (a 32768-wide probe would take 21 GB); wider ones are reduced on load, with a warning.
+inline constexpr int kMaxProbeWidth = 8192;
+
+/// Reduces a lat-long `probe` wider than `max_width` to max_width x max_width / 2, averaging
+/// (the light it holds is kept), and says so in `warnings`. Leaves smaller probes alone.
+void limit_probe_size(Image& probe, int max_width, std::vector<std::string>& warnings);
+
 /// A scene for `project` at `width` x `height` (0: the photo's size): the photo resampled and the
 /// camera's intrinsics scaled to match. Loads through `library`; check_scene's errors name
 /// `project_file`.

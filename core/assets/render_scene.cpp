@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <stdexcept>
 
 namespace dp {
@@ -71,6 +73,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets)
     lights_ = ProbeLights(probe_);
     place_surfaces();
     check_extent();
+    check_camera();
     std::vector<PlacedShape> real, virt;
     for (const Surface& s : real_surfaces_) real.push_back(placed(s, true));
     for (size_t i = 0; i < virtual_surfaces_.size(); ++i)
@@ -141,6 +144,49 @@ void RenderScene::check_extent() const {
     for (const Surface& s : virtual_surfaces_) check(s);
     if (!ok(camera_.position()))
         throw InputError("", "camera", "the camera position is not finite or beyond 1e9 m from the origin");
+}
+
+void RenderScene::check_camera() const {
+    const CameraSpec& spec = project_.camera;
+    const bool look_at = spec.model == CameraSpec::Model::LookAt;
+    char buf[256];
+    auto check_axis = [&](const char* focal_field, float f, const char* centre_field, float c, int size) {
+        // A look-at camera's focal length and principal point follow from vfov_deg alone.
+        const std::string field = look_at ? "camera.vfov_deg" : focal_field;
+        if (!(std::isfinite(f) && f > 0)) {
+            std::snprintf(buf, sizeof(buf), "gives a focal length of %g pixels: it must be finite and > 0", double(f));
+            throw InputError("", field, buf);
+        }
+        const double fov = 2.0 * std::atan(double(size) / (2.0 * double(f))) * 180.0 / std::numbers::pi;
+        if (!(fov >= kMinFovDeg && fov <= kMaxFovDeg)) {
+            std::snprintf(buf, sizeof(buf),
+                          "a focal length of %g pixels gives a field of view of %g degrees across the %d pixels "
+                          "of the photo: it must be within %g to %g degrees",
+                          double(f), fov, size, kMinFovDeg, kMaxFovDeg);
+            throw InputError("", field, buf);
+        }
+        const double offset = std::abs(double(c) - 0.5 * double(size - 1));
+        if (!(offset <= kMaxPrincipalOffset * size)) {
+            std::snprintf(buf, sizeof(buf),
+                          "the principal point %g lies %g pixels from the centre of the %d pixels of the photo: "
+                          "at most %g image sizes (%g pixels) are accepted",
+                          double(c), offset, size, kMaxPrincipalOffset, kMaxPrincipalOffset * size);
+            throw InputError("", look_at ? "camera" : centre_field, buf);
+        }
+    };
+    check_axis("camera.fx", camera_.fx(), "camera.cx", camera_.cx(), camera_.width());
+    check_axis("camera.fy", camera_.fy(), "camera.cy", camera_.cy(), camera_.height());
+    // The distortion polynomial can overflow where the intrinsics alone are fine.
+    const int W = camera_.width(), H = camera_.height();
+    for (int j = 0; j <= 4; ++j)
+        for (int i = 0; i <= 4; ++i) {
+            const float px = -0.5f + float(W) * float(i) / 4.0f, py = -0.5f + float(H) * float(j) / 4.0f;
+            const Ray ray = camera_.generate_ray(px, py);
+            if (is_finite(ray.dir) && is_finite(ray.org)) continue;
+            std::snprintf(buf, sizeof(buf), "the camera's ray through pixel (%g, %g) is not finite%s", double(px),
+                          double(py), camera_.distortion().is_zero() ? "" : ": check the distortion coefficients");
+            throw InputError("", camera_.distortion().is_zero() ? "camera" : "camera.distortion", buf);
+        }
 }
 
 void RenderScene::compute_scale() {

@@ -124,6 +124,11 @@ private:
     /// Throws InputError naming the surface whose placed extent is not finite or so large that
     /// ray arithmetic would overflow (before any BVH sees it: Embree aborts on such rays).
     void check_extent() const;
+    /// Throws InputError naming the camera field whose intrinsics would make rays no renderer
+    /// can trace: a focal length that is not finite and positive, a field of view outside
+    /// kMinFovDeg to kMaxFovDeg, a principal point more than kMaxPrincipalOffset image sizes
+    /// from the image centre, or a distortion that turns camera rays non-finite.
+    void check_camera() const;
     void compute_clusters();
     void estimate_albedos();
     Hit to_hit(const ShapeHit& h) const;
@@ -139,6 +144,12 @@ private:
     std::vector<EmissionCluster> clusters_;
     bool has_transmissive_ = false;
 };
+
+/// The field of view (across the photo's width or height, degrees) a camera may have: beyond
+/// these, rays leave a pinhole almost parallel to the image plane or all in one direction.
+inline constexpr double kMinFovDeg = 1e-3, kMaxFovDeg = 179.9;
+/// How far (in image widths or heights) the principal point may lie from the image centre.
+inline constexpr double kMaxPrincipalOffset = 10.0;
 
 /// Groups virtual objects into bounding spheres, merging two when one sphere around both has a
 /// smaller cross-section than the two apart (never one sphere around objects far apart).

@@ -1,4 +1,5 @@
 #include "base/atomic_file.h"
+#include "base/text.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -15,7 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::runtime_error file_error(const std::string& path, const std::string& what) {
-    return std::runtime_error("cannot write '" + path + "': " + what + " (" + std::strerror(errno) + ")");
+    return std::runtime_error("cannot write '" + shorten_path(path) + "': " + what + " (" + std::strerror(errno) + ")");
 }
 
 /// A name no other writer uses: hidden, beside the target, the target's extension kept.
@@ -42,14 +43,59 @@ void sync_folder(const fs::path& folder) {
     ::close(fd);
 }
 
+/// The temporary paths being written, for remove_temporaries_in_flight: fixed slots a signal
+/// handler can read without allocating or locking. A slot's path is complete while its state is
+/// kInUse; a path longer than a slot, or a write beyond the slots, is simply not cleaned up.
+constexpr int kSlots = 8;
+constexpr size_t kSlotBytes = 4096;
+enum SlotState : int { kFree, kFilling, kInUse };
+std::atomic<int> slot_state[kSlots];
+char slot_path[kSlots][kSlotBytes];
+static_assert(std::atomic<int>::is_always_lock_free, "read from a signal handler");
+
+/// Registers `temp` while it lives; the destructor (the write done, renamed or failed) frees
+/// the slot first, so the handler never removes a file that became the target.
+class InFlight {
+public:
+    explicit InFlight(const std::string& temp) {
+        if (temp.size() >= kSlotBytes) return;
+        for (int i = 0; i < kSlots; ++i) {
+            int expected = kFree;
+            if (!slot_state[i].compare_exchange_strong(expected, kFilling)) continue;
+            std::memcpy(slot_path[i], temp.c_str(), temp.size() + 1);
+            slot_state[i].store(kInUse);
+            slot_ = i;
+            return;
+        }
+    }
+    ~InFlight() { release(); }
+    /// Before the rename: from then on the temporary name may be gone or be the target.
+    void release() {
+        if (slot_ >= 0) slot_state[slot_].store(kFree);
+        slot_ = -1;
+    }
+    InFlight(const InFlight&) = delete;
+    InFlight& operator=(const InFlight&) = delete;
+
+private:
+    int slot_ = -1;
+};
+
 }  // namespace
+
+void remove_temporaries_in_flight() noexcept {
+    for (int i = 0; i < kSlots; ++i)
+        if (slot_state[i].load() == kInUse) ::unlink(slot_path[i]);
+}
 
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
     const fs::path target(path);
     const std::string temp = temporary_name(target);
+    InFlight in_flight(temp);
     try {
         write(temp);
         sync_file(temp, path);
+        in_flight.release();
         if (::rename(temp.c_str(), path.c_str()) != 0) throw file_error(path, "cannot replace it");
     } catch (...) {
         std::error_code ec;

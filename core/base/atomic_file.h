@@ -12,6 +12,11 @@ namespace dp {
 /// was and the error is rethrown (std::runtime_error naming `path` for the file system's).
 void write_atomically(const std::string& path, const std::function<void(const std::string& temp_path)>& write);
 
+/// Removes the temporary files of the writes in progress. Async-signal-safe: for a signal
+/// handler that ends the process (a second Ctrl-C), so a killed write leaves no hidden file.
+/// The targets are untouched: they still hold their old content.
+void remove_temporaries_in_flight() noexcept;
+
 /// write_atomically for text or bytes already in memory.
 void write_file_atomically(const std::string& path, const std::string& bytes);
 

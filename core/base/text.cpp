@@ -30,4 +30,19 @@ std::string format_bytes(double bytes) {
     return buf;
 }
 
+std::string shorten_middle(std::string_view text, size_t max_bytes) {
+    static constexpr std::string_view kEllipsis = "\u2026";
+    if (text.size() <= max_bytes) return std::string(text);
+    if (max_bytes <= kEllipsis.size()) return std::string(kEllipsis);
+    auto continuation = [&](size_t i) { return i < text.size() && (uint8_t(text[i]) & 0xC0) == 0x80; };
+    const size_t keep = max_bytes - kEllipsis.size();
+    size_t head = keep / 2, tail = text.size() - (keep - head);
+    while (head > 0 && continuation(head)) --head;  // end the start before a character
+    while (continuation(tail)) ++tail;              // begin the end on one
+    std::string out(text.substr(0, head));
+    out += kEllipsis;
+    out += text.substr(tail);
+    return out;
+}
+
 }  // namespace dp

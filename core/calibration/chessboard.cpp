@@ -94,10 +94,10 @@ std::vector<glm::dvec3> chessboard_target_points(const ChessboardSpec& spec) {
     return pts;
 }
 
-ChessboardView detect_chessboard(const Image& image, const ChessboardSpec& spec,
-                                 const std::string& source) {
-    check_spec(spec, source);
-    if (image.empty()) throw InputError(source, "", "the image is empty");
+namespace {
+
+/// The detection itself: OpenCV throws for images it cannot work on.
+ChessboardView find_corners(const Image& image, const ChessboardSpec& spec, const std::string& source) {
     cv::Mat grey = detector_input(image);
     // The detectors slow down steeply with size: find the board at most 1600 px across, then
     // refine the corners at full resolution.
@@ -138,6 +138,26 @@ ChessboardView detect_chessboard(const Image& image, const ChessboardSpec& spec,
     view.height = image.height();
     for (const cv::Point2f& p : corners) view.corners.emplace_back(p.x, p.y);
     return view;
+}
+
+}  // namespace
+
+ChessboardView detect_chessboard(const Image& image, const ChessboardSpec& spec,
+                                 const std::string& source) {
+    check_spec(spec, source);
+    if (image.empty()) throw InputError(source, "", "the image is empty");
+    // A square needs a few pixels to show its corners; the board its squares plus the margin.
+    constexpr int kMinPixelsPerSquare = 4;
+    const int min_w = (spec.cols + 1) * kMinPixelsPerSquare, min_h = (spec.rows + 1) * kMinPixelsPerSquare;
+    if (std::max(image.width(), image.height()) < std::max(min_w, min_h) ||
+        std::min(image.width(), image.height()) < std::min(min_w, min_h))
+        throw InputError(source, "",
+                         "the image is " + std::to_string(image.width()) + "x" + std::to_string(image.height()) +
+                             " pixels: too small to show a board of " + std::to_string(spec.cols) + "x" +
+                             std::to_string(spec.rows) + " inner corners (at least " + std::to_string(min_w) +
+                             "x" + std::to_string(min_h) + ")");
+    return calib::translating_cv_errors(source, "finding the chessboard",
+                                        [&] { return find_corners(image, spec, source); });
 }
 
 ChessboardView detect_chessboard(const std::string& path, const ChessboardSpec& spec) {
@@ -288,7 +308,9 @@ CalibrationResult board_pose(const ChessboardView& view, const ChessboardSpec& s
 
 CalibrationResult chessboard_pose(const ChessboardView& view, const ChessboardSpec& spec,
                                   const Intrinsics& intrinsics) {
-    return board_pose(view, spec, intrinsics, calib::FreeIntrinsics::None);
+    return calib::translating_cv_errors(view.source, "solving the board's pose", [&] {
+        return board_pose(view, spec, intrinsics, calib::FreeIntrinsics::None);
+    });
 }
 
 CalibrationResult chessboard_single(const ChessboardView& view, const ChessboardSpec& spec) {

@@ -1,9 +1,12 @@
 #pragma once
 // OpenCV <-> glm conversions and helpers shared by the calibration methods (internal).
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "base/error.h"
 #include "calibration/calibration.h"
 
 namespace dp::calib {
@@ -35,5 +38,16 @@ double rms_reprojection(const std::vector<cv::Point3d>& world,
                         const Pose& pose);
 
 std::vector<cv::Point2d> to_cv(const std::vector<ImagePoint>& points);
+
+/// Runs `work`, turning an OpenCV assertion (cv::Exception: raw source text and an internal
+/// condition) into an InputError naming `source` and saying what failed in a person's words.
+template <class F>
+auto translating_cv_errors(const std::string& source, const std::string& what_failed, F&& work) {
+    try {
+        return std::forward<F>(work)();
+    } catch (const cv::Exception& e) {
+        throw InputError(source, "", what_failed + " failed (OpenCV: " + e.err.substr(0, 160) + ")");
+    }
+}
 
 }  // namespace dp::calib

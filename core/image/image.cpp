@@ -2,8 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
+#include <string>
+
+#include "base/error.h"
+#include "base/text.h"
 
 namespace dp {
+
+Image::Image(int width, int height, vec3 fill) : width_(width), height_(height) {
+    const size_t count = size_t(width) * size_t(height);
+    try {
+        pixels_.assign(count, fill);
+    } catch (const std::bad_alloc&) {
+        throw OutOfMemory("an image of " + std::to_string(width) + " x " + std::to_string(height) + " pixels (" +
+                          format_bytes(double(count) * sizeof(vec3)) + ")");
+    }
+}
 
 vec3 Image::bilinear(float x, float y) const {
     x = std::clamp(x, 0.0f, float(width_ - 1));

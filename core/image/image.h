@@ -10,7 +10,8 @@ namespace dp {
 class Image {
 public:
     Image() = default;
-    Image(int width, int height, vec3 fill = vec3(0)) : width_(width), height_(height), pixels_(size_t(width) * height, fill) {}
+    /// Throws OutOfMemory (naming the size) when the pixels cannot be allocated.
+    Image(int width, int height, vec3 fill = vec3(0));
 
     int width() const { return width_; }
     int height() const { return height_; }

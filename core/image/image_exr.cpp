@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "image/image_io.h"
+#include "base/text.h"
 #include "base/atomic_file.h"
 #include "image/image_io_internal.h"
 
@@ -26,9 +27,6 @@ using image_io_detail::throw_unreadable;
 // Slices address the x/y/z floats of vec3 pixels in place, which needs a tightly packed vec3.
 static_assert(sizeof(vec3) == 3 * sizeof(float));
 
-// A corrupt header can claim any data window; refuse ones no real image has (over 12 GiB).
-constexpr int64_t kMaxPixels = int64_t(1) << 30;
-
 struct WindowSize {
     int width, height;
 };
@@ -38,10 +36,7 @@ WindowSize window_size(const Imath::Box2i& dw, const std::string& path,
     const int64_t w = int64_t(dw.max.x) - dw.min.x + 1;
     const int64_t h = int64_t(dw.max.y) - dw.min.y + 1;
     if (w <= 0 || h <= 0) throw InputError(path, field, "image has zero size");
-    if (w * h > kMaxPixels)
-        throw_unreadable(path, field,
-                         "data window of " + std::to_string(w) + " x " + std::to_string(h) +
-                             " pixels is implausibly large");
+    check_image_size(path, field, w, h);  // a corrupt header can claim any data window
     return {int(w), int(h)};
 }
 
@@ -123,6 +118,8 @@ Image load_exr_main(const std::string& path, const std::string& field) {
                              ")");
     } catch (const InputError&) {
         throw;
+    } catch (const std::bad_alloc&) {
+        throw;  // out of memory is said as such, not as a corrupt file
     } catch (const std::exception& e) {
         // OpenEXR reports truncation and corruption by throwing from the constructor or read.
         throw_unreadable(path, field, e.what());
@@ -152,25 +149,27 @@ Image load_exr_layer(const std::string& path, const std::string& layer) {
         return read_channels(file, names, path, "");
     } catch (const InputError&) {
         throw;
+    } catch (const std::bad_alloc&) {
+        throw;  // out of memory is said as such, not as a corrupt file
     } catch (const std::exception& e) {
         throw_unreadable(path, "", e.what());
     }
 }
 
 void save_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
-    if (layers.empty()) throw std::invalid_argument("save_exr '" + path + "': no layers given");
+    if (layers.empty()) throw std::invalid_argument("save_exr '" + shorten_path(path) + "': no layers given");
     std::set<std::string> names;
     for (const ExrLayer& layer : layers) {
         if (!layer.image || layer.image->empty())
-            throw std::invalid_argument("save_exr '" + path + "': layer \"" + layer.name +
+            throw std::invalid_argument("save_exr '" + shorten_path(path) + "': layer \"" + layer.name +
                                         "\" has no image");
         if (layer.image->width() != layers[0].image->width() ||
             layer.image->height() != layers[0].image->height())
-            throw std::invalid_argument("save_exr '" + path + "': layer \"" + layer.name +
+            throw std::invalid_argument("save_exr '" + shorten_path(path) + "': layer \"" + layer.name +
                                         "\" differs in size from layer \"" + layers[0].name +
                                         "\"");
         if (!names.insert(layer.name).second)
-            throw std::invalid_argument("save_exr '" + path + "': layer \"" + layer.name +
+            throw std::invalid_argument("save_exr '" + shorten_path(path) + "': layer \"" + layer.name +
                                         "\" given twice");
     }
     image_io_detail::check_output_folder(path);
@@ -197,7 +196,7 @@ void save_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
             file.setFrameBuffer(frame);
             file.writePixels(height);
         } catch (const std::exception& e) {
-            throw std::runtime_error("cannot write EXR '" + path + "': " + e.what());
+            throw std::runtime_error("cannot write EXR '" + shorten_path(path) + "': " + e.what());
         }
     });
 }

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "image/image_io.h"
+#include "base/text.h"
 #include "base/input_file.h"
 #include "base/atomic_file.h"
 #include "image/image_io_internal.h"
@@ -42,7 +43,7 @@ void check_output_folder(const std::string& path) {
     const fs::path folder = fs::path(path).parent_path();
     std::error_code ec;
     if (!folder.empty() && !fs::is_directory(folder, ec))
-        throw std::runtime_error("cannot write '" + path + "': folder '" + folder.string() +
+        throw std::runtime_error("cannot write '" + shorten_path(path) + "': folder '" + shorten_path(folder.string()) +
                                  "' does not exist");
 }
 
@@ -94,6 +95,11 @@ Image load_with_opencv(const std::string& path, const std::string& field,
     try {
         // ANYDEPTH keeps 16-bit and float data; COLOR expands grey and drops alpha.
         bgr = cv::imread(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_COLOR);
+    } catch (const std::bad_alloc&) {
+        throw;  // out of memory is said as such, not as a corrupt file
+    } catch (const cv::Exception& e) {
+        if (e.code == cv::Error::StsNoMem) throw OutOfMemory("the pixels of '" + shorten_path(path) + "'");
+        throw_unreadable(path, field, e.err);
     } catch (const std::exception& e) {
         throw_unreadable(path, field, e.what());
     }
@@ -146,6 +152,8 @@ Image load_image(const std::string& path, const std::string& field, ImageLoadRep
 
     // The magic number catches EXRs whatever their extension; OpenCV sniffs the rest itself.
     const bool exr_magic = image_io_detail::check_image_file(path, field);
+    int64_t width = 0, height = 0;
+    if (image_io_detail::header_size(path, width, height)) check_image_size(path, field, width, height);
     Image image;
     if (exr_magic || lower_extension(path) == ".exr") {
         image = image_io_detail::load_exr_main(path, field);
@@ -161,9 +169,9 @@ Image load_image(const std::string& path, const std::string& field, ImageLoadRep
 void save_ldr(const std::string& path, const Image& image, float exposure) {
     const std::string ext = lower_extension(path);
     if (ext != ".png" && ext != ".jpg" && ext != ".jpeg")
-        throw std::invalid_argument("save_ldr '" + path + "': extension must be .png, .jpg or "
+        throw std::invalid_argument("save_ldr '" + shorten_path(path) + "': extension must be .png, .jpg or "
                                     ".jpeg");
-    if (image.empty()) throw std::invalid_argument("save_ldr '" + path + "': empty image");
+    if (image.empty()) throw std::invalid_argument("save_ldr '" + shorten_path(path) + "': empty image");
     image_io_detail::check_output_folder(path);
 
     const float scale = std::exp2(exposure);
@@ -189,7 +197,7 @@ void save_ldr(const std::string& path, const Image& image, float exposure) {
         } catch (const std::exception& e) {
             detail = e.what();
         }
-        if (!ok) throw std::runtime_error("cannot write image '" + path + "': " + detail);
+        if (!ok) throw std::runtime_error("cannot write image '" + shorten_path(path) + "': " + detail);
     });
 }
 

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,8 +16,9 @@ struct ImageLoadReport {
 };
 
 /// Loads EXR or Radiance HDR as linear float, PNG/JPEG/TIFF/BMP as sRGB decoded to linear.
-/// Throws InputError naming `path` and `field` when the file is missing, unreadable, corrupt or
-/// has zero size. NaN/Inf channels become 0 and are counted in `report`.
+/// Throws InputError naming `path` and `field` when the file is missing, unreadable, corrupt,
+/// empty or over check_image_size (measured from the header for EXR, PNG, JPEG, HDR and BMP: a
+/// tiny file declaring a huge size allocates nothing). NaN/Inf become 0, counted in `report`.
 Image load_image(const std::string& path, const std::string& field = "",
                  ImageLoadReport* report = nullptr);
 
@@ -30,6 +32,18 @@ struct ExrLayer {
 /// Reads an image's size from its header (EXR, PNG, JPEG) without decoding it; false for other
 /// formats or an unreadable header (decode the image then).
 bool read_image_size(const std::string& path, int& width, int& height);
+
+/// The most pixels load_image decodes: 2^28 (16384 x 16384, 3.2 GB as linear float), fewer
+/// where that would take more than half of this machine's memory (max_decoded_image_pixels).
+inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
+/// Peak bytes per pixel while decoding: the decoder's buffer and the linear float image.
+inline constexpr double kDecodeBytesPerPixel = 24;
+uint64_t max_decoded_image_pixels();
+
+/// Throws InputError naming `path` and `field` when an image of width x height would be more
+/// than max_decoded_image_pixels to decode; the message gives the size, the memory it would take
+/// and the limit. load_image calls it with the size from the file's header, before decoding.
+void check_image_size(const std::string& path, const std::string& field, int64_t width, int64_t height);
 
 /// Writes a 32-bit float EXR with the given layers (all the same size).
 void save_exr(const std::string& path, const std::vector<ExrLayer>& layers);

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "base/error.h"
@@ -11,6 +12,10 @@ namespace dp::image_io_detail {
 /// Throws InputError unless `path` names an existing, non-empty regular file that can be
 /// opened. Returns whether the file starts with the OpenEXR magic number.
 bool check_image_file(const std::string& path, const std::string& field);
+
+/// The size an EXR, PNG, JPEG, Radiance HDR or BMP header declares (64-bit: a corrupt header
+/// may declare anything); false for other formats or an unreadable header.
+bool header_size(const std::string& path, int64_t& width, int64_t& height);
 
 /// Throws the InputError used for every undecodable file, with `detail` saying why.
 [[noreturn]] inline void throw_unreadable(const std::string& path, const std::string& field,

@@ -1,13 +1,23 @@
 // An image's size from its header, without decoding the pixels: the studio asks for the photo's
-// size on the UI thread, where a 12 MP decode would stall the window.
+// size on the UI thread, where a 12 MP decode would stall the window, and load_image refuses an
+// image too large to decode before any pixel is allocated (a tiny file may declare any size).
 #include <ImfHeader.h>
-#include <ImfInputFile.h>
+#include <ImfStdIO.h>
+#include <ImfXdr.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
-#include <vector>
+#include <limits>
+#include <sstream>
+#include <string>
 
+#include "base/memory.h"
+#include "base/text.h"
 #include "image/image_io.h"
+#include "image/image_io_internal.h"
 
 namespace dp {
 
@@ -15,17 +25,20 @@ namespace {
 
 uint32_t be32(const unsigned char* b) { return uint32_t(b[0]) << 24 | uint32_t(b[1]) << 16 | uint32_t(b[2]) << 8 | b[3]; }
 uint16_t be16(const unsigned char* b) { return uint16_t(b[0] << 8 | b[1]); }
+uint32_t le32(const unsigned char* b) {
+    return uint32_t(b[3]) << 24 | uint32_t(b[2]) << 16 | uint32_t(b[1]) << 8 | b[0];
+}
 
-bool png_size(std::ifstream& f, int& w, int& h) {
+bool png_size(std::ifstream& f, int64_t& w, int64_t& h) {
     unsigned char b[24];
     if (!f.read(reinterpret_cast<char*>(b), 24)) return false;
     if (b[0] != 0x89 || b[1] != 'P' || b[2] != 'N' || b[3] != 'G') return false;
-    w = int(be32(b + 16));
-    h = int(be32(b + 20));
+    w = be32(b + 16);
+    h = be32(b + 20);
     return w > 0 && h > 0;
 }
 
-bool jpeg_size(std::ifstream& f, int& w, int& h) {
+bool jpeg_size(std::ifstream& f, int64_t& w, int64_t& h) {
     unsigned char b[2];
     if (!f.read(reinterpret_cast<char*>(b), 2) || b[0] != 0xFF || b[1] != 0xD8) return false;
     for (int guard = 0; guard < 4096; ++guard) {
@@ -51,29 +64,104 @@ bool jpeg_size(std::ifstream& f, int& w, int& h) {
     return false;
 }
 
+/// Radiance HDR: text lines up to an empty one, then the resolution line, e.g. "-Y 512 +X 1024"
+/// (the first axis runs over rows; either may be X).
+bool hdr_size(std::ifstream& f, int64_t& w, int64_t& h) {
+    std::string line;
+    if (!std::getline(f, line) || line.rfind("#?", 0) != 0) return false;
+    for (int lines = 0; std::getline(f, line) && !(line.empty() || line == "\r");)
+        if (++lines > 1024) return false;
+    if (!std::getline(f, line)) return false;
+    std::istringstream in(line);
+    std::string axis1, axis2;
+    int64_t n1 = 0, n2 = 0;
+    if (!(in >> axis1 >> n1 >> axis2 >> n2) || axis1.size() != 2 || axis2.size() != 2) return false;
+    const bool rows_are_y = std::toupper(axis1[1]) == 'Y';
+    w = rows_are_y ? n2 : n1;
+    h = rows_are_y ? n1 : n2;
+    return w > 0 && h > 0;
+}
+
+bool bmp_size(std::ifstream& f, int64_t& w, int64_t& h) {
+    unsigned char b[26];
+    if (!f.read(reinterpret_cast<char*>(b), 26) || b[0] != 'B' || b[1] != 'M') return false;
+    w = int32_t(le32(b + 18));
+    h = int32_t(le32(b + 22));
+    h = h < 0 ? -h : h;  // negative: rows stored top-down
+    return w > 0 && h > 0;
+}
+
+/// The header alone: OpenEXR's InputFile would read the chunk offset table too, whose size
+/// follows the declared height.
+bool exr_size(const std::string& path, int64_t& w, int64_t& h) {
+    try {
+        Imf::StdIFStream in(path.c_str());
+        int magic = 0, version = 0;
+        Imf::Xdr::read<Imf::StreamIO>(in, magic);
+        Imf::Xdr::read<Imf::StreamIO>(in, version);
+        Imf::Header header;
+        header.readFrom(in, version);
+        const Imath::Box2i dw = header.dataWindow();
+        w = int64_t(dw.max.x) - dw.min.x + 1;
+        h = int64_t(dw.max.y) - dw.min.y + 1;
+        return w > 0 && h > 0;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
 }  // namespace
 
-bool read_image_size(const std::string& path, int& width, int& height) {
+namespace image_io_detail {
+
+bool header_size(const std::string& path, int64_t& width, int64_t& height) {
     std::ifstream f(path, std::ios::binary);
     if (!f) return false;
     unsigned char magic[4] = {0, 0, 0, 0};
     f.read(reinterpret_cast<char*>(magic), 4);
     f.clear();
     f.seekg(0);
-    if (magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01) {
-        try {
-            Imf::InputFile exr(path.c_str());
-            const Imath::Box2i dw = exr.header().dataWindow();
-            width = dw.max.x - dw.min.x + 1;
-            height = dw.max.y - dw.min.y + 1;
-            return width > 0 && height > 0;
-        } catch (const std::exception&) {
-            return false;
-        }
-    }
+    if (magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01)
+        return exr_size(path, width, height);
     if (magic[0] == 0x89) return png_size(f, width, height);
     if (magic[0] == 0xFF && magic[1] == 0xD8) return jpeg_size(f, width, height);
+    if (magic[0] == '#' && magic[1] == '?') return hdr_size(f, width, height);
+    if (magic[0] == 'B' && magic[1] == 'M') return bmp_size(f, width, height);
     return false;
+}
+
+}  // namespace image_io_detail
+
+bool read_image_size(const std::string& path, int& width, int& height) {
+    int64_t w = 0, h = 0;
+    if (!image_io_detail::header_size(path, w, h) || w > std::numeric_limits<int>::max() ||
+        h > std::numeric_limits<int>::max())
+        return false;
+    width = int(w);
+    height = int(h);
+    return true;
+}
+
+uint64_t max_decoded_image_pixels() {
+    const uint64_t ram = physical_memory_bytes();
+    const uint64_t by_memory = ram > 0 ? uint64_t(0.5 * double(ram) / kDecodeBytesPerPixel) : kMaxImagePixels;
+    return std::min<uint64_t>(kMaxImagePixels, by_memory);
+}
+
+void check_image_size(const std::string& path, const std::string& field, int64_t width, int64_t height) {
+    const double pixels = double(width) * double(height);
+    if (pixels <= double(max_decoded_image_pixels())) return;
+    char buf[320];
+    std::snprintf(buf, sizeof(buf),
+                  "the image is %lld x %lld pixels; decoding it would take %s of memory, more than the limit of "
+                  "%llu pixels (%s: at most 2^28 pixels and half of this machine's %s): "
+                  "reduce it (a probe needs no more than 8192 x 4096)",
+                  static_cast<long long>(width), static_cast<long long>(height),
+                  format_bytes(pixels * kDecodeBytesPerPixel).c_str(),
+                  static_cast<unsigned long long>(max_decoded_image_pixels()),
+                  format_bytes(double(max_decoded_image_pixels()) * kDecodeBytesPerPixel).c_str(),
+                  format_bytes(double(physical_memory_bytes())).c_str());
+    throw InputError(path, field, buf);
 }
 
 }  // namespace dp

@@ -1,8 +1,6 @@
 #include "render/render_limits.h"
 #include "base/text.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -19,11 +17,6 @@ uint64_t pass_memory_bytes(const RenderScene& scene, const RenderSettings& setti
     const double per_pixel = 128.0;  // sums, odd-pass sums, plan and the pass's samples
     const double bytes = photons * per_photon + pixels * per_pixel;
     return bytes >= 1.8e19 ? UINT64_MAX : uint64_t(bytes);
-}
-
-uint64_t physical_memory_bytes() {
-    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && page > 0 ? uint64_t(pages) * uint64_t(page) : 0;
 }
 
 void check_render_limits(const RenderScene& scene, const RenderSettings& settings) {

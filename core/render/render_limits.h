@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "assets/render_scene.h"
+#include "base/memory.h"
 #include "scene/project.h"
 
 namespace dp {
@@ -10,9 +11,6 @@ namespace dp {
 /// (each emitted photon can leave a light and a shadow photon, plus the surroundings' quarter),
 /// their map, and the per-pixel accumulators.
 uint64_t pass_memory_bytes(const RenderScene& scene, const RenderSettings& settings);
-
-/// Physical memory of this machine in bytes (0 if unknown).
-uint64_t physical_memory_bytes();
 
 /// Refuses, before anything is allocated, settings the machine cannot render: a pass needing
 /// more than 80% of physical memory (the message gives the figure and the limit), or a gather

@@ -57,6 +57,10 @@ void RenderSession::run(std::shared_ptr<const RenderScene> scene, const RenderSe
                         const RendererFactory& factory) {
     bool cancelled = false;
     std::string error;
+    {
+        std::lock_guard<std::mutex> lock(failure_mutex_);
+        failure_ = nullptr;
+    }
     try {
         const int threads = worker_threads(rs.threads);
         tbb::task_arena arena(threads);
@@ -89,6 +93,8 @@ void RenderSession::run(std::shared_ptr<const RenderScene> scene, const RenderSe
         });
     } catch (const std::exception& e) {
         error = e.what();
+        std::lock_guard<std::mutex> lock(failure_mutex_);
+        failure_ = std::current_exception();
     }
     running_.store(false);
     if (sink_) sink_->on_stopped(cancelled, error);

@@ -1,6 +1,7 @@
 #pragma once
 #include <atomic>
 #include <condition_variable>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -63,6 +64,13 @@ public:
     /// Chooses the renderer of later runs (default: differential photon mapping). Takes effect
     /// at the next start().
     void set_renderer_factory(RendererFactory factory);
+    /// The exception that ended the last run (null if it finished or was cancelled), for a
+    /// caller that reports failures by kind (out of memory, bad input) rather than by text.
+    /// Read after wait().
+    std::exception_ptr failure() const {
+        std::lock_guard<std::mutex> lock(failure_mutex_);
+        return failure_;
+    }
 
 private:
     void run(std::shared_ptr<const RenderScene> scene, const RenderSettings& settings, const RendererFactory& factory);
@@ -73,6 +81,8 @@ private:
     std::atomic<bool> cancel_{false};
     std::atomic<bool> running_{false};
     std::mutex mutex_;
+    mutable std::mutex failure_mutex_;
+    std::exception_ptr failure_;
 };
 
 }  // namespace dp

@@ -1,4 +1,5 @@
 #include "scene/project.h"
+#include "base/text.h"
 
 #include "base/error.h"
 
@@ -87,7 +88,8 @@ void refuse_overwriting_inputs(const std::string& output, const std::string& opt
     for (const auto& [field, path] : project_inputs(project))
         if (same(path))
             throw InputError(output, option,
-                             "is the project's " + field + " ('" + path.string() + "'): a render must not overwrite its input");
+                             "is the project's " + field + " ('" + shorten_path(path.string()) +
+                                 "'): a render must not overwrite its input");
 }
 
 }  // namespace dp

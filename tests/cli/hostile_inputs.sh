@@ -99,4 +99,29 @@ for trial in $(seq 1 20); do
     run compare big.exr kill.exr
     expect_rc 0 "the output after SIGKILL in trial $trial"
 done
+# Double Ctrl-C: the first, once a pass is done, asks the render to stop and write it; the
+# second, a random moment later, ends the process at once, often in the middle of that write.
+# The output is always a complete file (the previous one or the new one) and the second signal
+# takes the half-written temporary file with it.
+rm -f .kill.tmp-*  # what the SIGKILL trials above may leave
+run make-test-image mid.exr --size 512 384 --value 0.5 0.5 0.5
+write_project mid.json "$BALL" "$FLOOR" mid.exr
+sed -i 's/"photons_per_pass": 20000/"photons_per_pass": 2000/' mid.json
+run render mid.json -o kill.exr --passes 1 --layers
+expect_rc 0 "the first complete output of the double SIGINT trials"
+cut_short=0
+for trial in $(seq 1 20); do
+    "$DP" render mid.json -o kill.exr --time 60 --layers --seed "$trial" >stdout.txt 2>stderr.txt &
+    pid=$!
+    for _ in $(seq 1 600); do grep -q "^pass 1 " stderr.txt && break; sleep 0.05; done
+    kill -INT "$pid" 2>/dev/null || true
+    sleep "0.$((RANDOM % 10))$((RANDOM % 10))"
+    kill -INT "$pid" 2>/dev/null || true
+    wait "$pid" 2>/dev/null
+    grep -q "^wrote" stdout.txt || cut_short=$((cut_short + 1))
+    run compare mid.exr kill.exr
+    expect_rc 0 "the output after a double SIGINT in trial $trial"
+    ls -a | grep -q '\.tmp-' && fail "a temporary output file was left after a double SIGINT in trial $trial"
+done
+echo "double SIGINT: $cut_short of 20 renders ended by the second signal before their output was written"
 echo "PASS"

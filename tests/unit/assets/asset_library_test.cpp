@@ -84,3 +84,57 @@ TEST_F(AssetLibraryTest, AProbeOfTheWrongShapeOrWithNegativeValuesIsSaid) {
     black.probe(project_);
     EXPECT_TRUE(warned(black, "the probe is black"));
 }
+
+TEST_F(AssetLibraryTest, AnAlbedoTextureOutsideZeroToOneIsSaidWithItsShare) {
+    Image texture(8, 8, vec3(0.5f));
+    for (int x = 0; x < 8; ++x) texture.at(x, 0) = vec3(-5.0f);  // one row of eight: 12.5%
+    texture.at(0, 1) = vec3(1e30f);
+    write("albedo.exr", texture);
+    RealProxy floor;
+    floor.shape.kind = Shape::Kind::Plane;
+    floor.albedo.kind = Albedo::Kind::Texture;
+    floor.albedo.texture_path = "albedo.exr";
+    project_.real.push_back(floor);
+    AssetLibrary library;
+    EXPECT_TRUE(warned(library, "real[0].albedo.texture"));
+    EXPECT_TRUE(warned(library, "14% of the texels are outside the albedo range [0, 1]"));
+    EXPECT_TRUE(warned(library, "from -5 to 1e+30"));
+
+    write("albedo.exr", Image(8, 8, vec3(0.9f)));
+    AssetLibrary clean;
+    EXPECT_FALSE(warned(clean, "albedo range"));
+}
+
+TEST_F(AssetLibraryTest, AClippedPhotoIsSaidBeyondAVisibleShare) {
+    Image photo(20, 10, vec3(0.2f));
+    const auto save_png = [&](const Image& image) { save_ldr((dir_ / "photo.png").string(), image); };
+    photo.at(0, 5) = vec3(1.0f);  // 0.5% of 200 pixels: a glint, not worth a word
+    save_png(photo);
+    project_.photo.path = "photo.png";
+    AssetLibrary glint;
+    EXPECT_FALSE(warned(glint, "clipped"));
+    for (int x = 0; x < 20; ++x) photo.at(x, 5) = vec3(0.2f, 3.0f, 0.2f);  // one channel over: clipped
+    save_png(photo);
+    AssetLibrary library;
+    EXPECT_TRUE(warned(library, "photo.path: 10% of the photo's pixels are clipped"));
+}
+
+TEST(ProbeSize, AWideProbeIsReducedKeepingItsLight) {
+    Image probe(256, 128, vec3(1.0f));
+    probe.at(100, 30) = vec3(4096.0f);  // a one-pixel sun
+    double before = 0;
+    for (size_t i = 0; i < probe.size(); ++i) before += probe[i].x;
+    std::vector<std::string> warnings;
+    limit_probe_size(probe, 64, warnings);
+    EXPECT_EQ(probe.width(), 64);
+    EXPECT_EQ(probe.height(), 32);
+    double after = 0;
+    for (size_t i = 0; i < probe.size(); ++i) after += probe[i].x;
+    EXPECT_NEAR(after * 16, before, 1e-3 * before);  // the mean radiance is kept, the sun too
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("256x128 probe is reduced to 64x32"), std::string::npos) << warnings[0];
+
+    std::vector<std::string> none;
+    limit_probe_size(probe, 64, none);
+    EXPECT_TRUE(none.empty());
+}

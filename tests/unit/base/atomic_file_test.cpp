@@ -91,3 +91,31 @@ TEST(AtomicFile, AMissingFolderIsAnErrorNamingTheFile) {
         EXPECT_NE(std::string(e.what()).find(f.string()), std::string::npos) << e.what();
     }
 }
+
+TEST(AtomicFile, AnInterruptedWriteLosesOnlyItsTemporaryFile) {
+    // What a second Ctrl-C does mid-write: the handler removes the temporaries in flight and
+    // the process ends; here the write goes on and must fail without touching the target.
+    TempDir d;
+    const fs::path f = d.path / "out.exr";
+    write_file_atomically(f.string(), "old");
+    std::string temp_seen;
+    EXPECT_THROW(write_atomically(f.string(),
+                                  [&](const std::string& temp) {
+                                      std::ofstream(temp) << "half of the new";
+                                      temp_seen = temp;
+                                      remove_temporaries_in_flight();
+                                  }),
+                 std::runtime_error);
+    EXPECT_FALSE(temp_seen.empty());
+    EXPECT_FALSE(fs::exists(temp_seen));
+    EXPECT_EQ(read(f), "old");
+    EXPECT_EQ(d.entries(), 1u);
+}
+
+TEST(AtomicFile, CleaningUpAfterAWriteLeavesTheNewFile) {
+    TempDir d;
+    const fs::path f = d.path / "out.txt";
+    write_file_atomically(f.string(), "new");
+    remove_temporaries_in_flight();  // nothing in flight: the finished file stays
+    EXPECT_EQ(read(f), "new");
+}

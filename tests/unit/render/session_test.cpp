@@ -6,6 +6,7 @@
 #include <mutex>
 #include <vector>
 
+#include "base/error.h"
 #include "render/session.h"
 #include "common/test_scenes.h"
 
@@ -130,4 +131,23 @@ TEST(RenderSession, BuildsNoImageForASinkThatPullsOnlyTheLastPass) {
     EXPECT_EQ(sink.updates.load(), 4);
     EXPECT_EQ(sink.with_images.load(), 0);  // a pass's images exist only when pulled
     EXPECT_EQ(sink.final_pixels.load(), 48u * 32u);
+}
+
+TEST(RenderSession, KeepsTheFailureByKindForTheCaller) {
+    // The CLI reports out of memory as such (not as "render failed: std::bad_alloc").
+    RecordingSink sink;
+    RenderSession session(&sink);
+    session.set_renderer_factory([](std::shared_ptr<const RenderScene>, const RenderSettings&) -> std::unique_ptr<PassRenderer> {
+        throw OutOfMemory("the photon map");
+    });
+    session.start(small_scene(), budget(1));
+    session.wait();
+    EXPECT_FALSE(sink.error_.empty());
+    ASSERT_TRUE(session.failure());
+    EXPECT_THROW(std::rethrow_exception(session.failure()), std::bad_alloc);
+
+    session.set_renderer_factory(nullptr);
+    session.start(small_scene(), budget(1));
+    session.wait();
+    EXPECT_FALSE(session.failure());  // a later run that succeeds clears it
 }
