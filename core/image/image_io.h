@@ -34,7 +34,8 @@ struct ExrLayer {
 bool read_image_size(const std::string& path, int& width, int& height);
 
 /// The most pixels load_image decodes: 2^28 (16384 x 16384, 3.2 GB as linear float), fewer
-/// where that would take more than half of this machine's memory (max_decoded_image_pixels).
+/// where that would take more than half of this machine's memory or where the environment's
+/// DP_MAX_IMAGE_PIXELS asks for fewer (max_decoded_image_pixels).
 inline constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
 /// Peak bytes per pixel while decoding: the decoder's buffer and the linear float image.
 inline constexpr double kDecodeBytesPerPixel = 24;

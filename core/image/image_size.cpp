@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -145,7 +146,14 @@ bool read_image_size(const std::string& path, int& width, int& height) {
 uint64_t max_decoded_image_pixels() {
     const uint64_t ram = physical_memory_bytes();
     const uint64_t by_memory = ram > 0 ? uint64_t(0.5 * double(ram) / kDecodeBytesPerPixel) : kMaxImagePixels;
-    return std::min<uint64_t>(kMaxImagePixels, by_memory);
+    uint64_t limit = std::min<uint64_t>(kMaxImagePixels, by_memory);
+    // A lower limit from the environment (a shared render node, the image fuzzer); never higher.
+    if (const char* env = std::getenv("DP_MAX_IMAGE_PIXELS")) {
+        char* end = nullptr;
+        const unsigned long long v = std::strtoull(env, &end, 10);
+        if (end != env && *end == '\0' && v > 0) limit = std::min<uint64_t>(limit, v);
+    }
+    return limit;
 }
 
 void check_image_size(const std::string& path, const std::string& field, int64_t width, int64_t height) {
