@@ -153,7 +153,13 @@ Image load_image(const std::string& path, const std::string& field, ImageLoadRep
     // The magic number catches EXRs whatever their extension; OpenCV sniffs the rest itself.
     const bool exr_magic = image_io_detail::check_image_file(path, field);
     int64_t width = 0, height = 0;
-    if (image_io_detail::header_size(path, width, height)) check_image_size(path, field, width, height);
+    bool known_format = false;
+    if (image_io_detail::header_size(path, width, height, &known_format)) {
+        check_image_size(path, field, width, height);
+    } else if (known_format) {
+        // A decoder handed a header it cannot size would guess, and may allocate gigabytes.
+        throw InputError(path, field, "corrupt image: its header gives no valid size");
+    }
     Image image;
     if (exr_magic || lower_extension(path) == ".exr") {
         image = image_io_detail::load_exr_main(path, field);

@@ -14,8 +14,9 @@ namespace dp::image_io_detail {
 bool check_image_file(const std::string& path, const std::string& field);
 
 /// The size an EXR, PNG, JPEG, Radiance HDR or BMP header declares (64-bit: a corrupt header
-/// may declare anything); false for other formats or an unreadable header.
-bool header_size(const std::string& path, int64_t& width, int64_t& height);
+/// may declare anything); false for other formats or an unreadable header. `known_format` tells
+/// the two apart: true when the magic number is one of those formats.
+bool header_size(const std::string& path, int64_t& width, int64_t& height, bool* known_format = nullptr);
 
 /// Throws the InputError used for every undecodable file, with `detail` saying why.
 [[noreturn]] inline void throw_unreadable(const std::string& path, const std::string& field,

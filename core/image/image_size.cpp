@@ -115,20 +115,23 @@ bool exr_size(const std::string& path, int64_t& w, int64_t& h) {
 
 namespace image_io_detail {
 
-bool header_size(const std::string& path, int64_t& width, int64_t& height) {
+bool header_size(const std::string& path, int64_t& width, int64_t& height, bool* known_format) {
     std::ifstream f(path, std::ios::binary);
+    if (known_format) *known_format = false;
     if (!f) return false;
     unsigned char magic[4] = {0, 0, 0, 0};
     f.read(reinterpret_cast<char*>(magic), 4);
     f.clear();
     f.seekg(0);
-    if (magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01)
-        return exr_size(path, width, height);
-    if (magic[0] == 0x89) return png_size(f, width, height);
-    if (magic[0] == 0xFF && magic[1] == 0xD8) return jpeg_size(f, width, height);
-    if (magic[0] == '#' && magic[1] == '?') return hdr_size(f, width, height);
-    if (magic[0] == 'B' && magic[1] == 'M') return bmp_size(f, width, height);
-    return false;
+    bool (*reader)(std::ifstream&, int64_t&, int64_t&) = nullptr;
+    const bool exr = magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01;
+    if (magic[0] == 0x89) reader = png_size;
+    if (magic[0] == 0xFF && magic[1] == 0xD8) reader = jpeg_size;
+    if (magic[0] == '#' && magic[1] == '?') reader = hdr_size;
+    if (magic[0] == 'B' && magic[1] == 'M') reader = bmp_size;
+    if (known_format) *known_format = exr || reader;
+    if (exr) return exr_size(path, width, height);
+    return reader && reader(f, width, height);
 }
 
 }  // namespace image_io_detail

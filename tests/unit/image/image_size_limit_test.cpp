@@ -112,3 +112,25 @@ TEST(ImageSizeLimit, TheLimitIsAtMost2To28Pixels) {
     EXPECT_THROW(check_image_size("x.exr", "photo.path", limit + 1, 1), InputError);
     EXPECT_THROW(check_image_size("x.exr", "photo.path", 16385, 16384), InputError);
 }
+
+// A JPEG, PNG, EXR, HDR or BMP whose header gives no size is refused rather than handed to a
+// decoder that would guess (a JPEG whose frame header says height 0 made OpenCV allocate 2 GB).
+TEST(ImageSizeLimit, AHeaderThatGivesNoSizeIsRefusedBeforeDecoding) {
+    TempDir dir;
+    const std::string jpeg = dir.file("zero_height.jpg");
+    // SOI, then a baseline frame header (SOF0) declaring 0 rows of 640 columns, then end of image.
+    write_bytes(jpeg, std::string("\xFF\xD8\xFF\xC0\x00\x11\x08\x00\x00\x02\x80\x03"
+                                  "\x01\x22\x00\x02\x11\x01\x03\x11\x01\xFF\xD9",
+                                  23));
+    const std::string png = dir.file("zero_width.png");
+    write_bytes(png, png_header(0, 480));
+    for (const std::string& path : {jpeg, png}) {
+        try {
+            load_image(path, "photo.path");
+            ADD_FAILURE() << "no InputError for " << path;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("header gives no valid size"), std::string::npos) << e.what();
+            EXPECT_EQ(e.field(), "photo.path");
+        }
+    }
+}
