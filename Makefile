@@ -41,7 +41,7 @@ test-asan: asan-configure
 # Each fuzz target for FUZZ_SECONDS (tests/fuzz/README.md). New inputs collect in out/fuzz/corpus;
 # a finding is written to out/fuzz/findings/<target>/ and fails the run.
 FUZZ_SECONDS ?= 60
-FUZZ_FLAGS ?= -rss_limit_mb=2560 -malloc_limit_mb=2048 -timeout=20
+FUZZ_FLAGS ?= -rss_limit_mb=2560 -malloc_limit_mb=2048 -timeout=60
 fuzz: asan-configure
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(FUZZ_EXES)
 	@for t in $(FUZZ_TARGETS); do \
