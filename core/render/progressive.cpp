@@ -122,8 +122,10 @@ void ProgressiveRenderer::mark_photon_pixels(const PassMaps& maps, PassWork& wor
             if (!cam.project(c, px)) continue;
             // Margin for the sub-pixel jitter and for lens distortion's local magnification.
             const float rho = 1.25f * reach * focal / (z - reach) + 1.5f;
-            const int x0 = std::max(0, int(std::floor(px.x - rho))), x1 = std::min(W - 1, int(std::ceil(px.x + rho)));
-            const int y0 = std::max(0, int(std::floor(px.y - rho))), y1 = std::min(H - 1, int(std::ceil(px.y + rho)));
+            // Clamped in float first: a cell far off the frame projects beyond int's range.
+            auto to_int = [](float v) { return v == v ? int(std::clamp(v, -1e9f, 1e9f)) : 0; };
+            const int x0 = std::max(0, to_int(std::floor(px.x - rho))), x1 = std::min(W - 1, to_int(std::ceil(px.x + rho)));
+            const int y0 = std::max(0, to_int(std::floor(px.y - rho))), y1 = std::min(H - 1, to_int(std::ceil(px.y + rho)));
             for (int ty = y0 / kTile; ty <= y1 / kTile; ++ty)
                 for (int tx = x0 / kTile; tx <= x1 / kTile; ++tx) {
                     const size_t t = size_t(ty) * plan_.tiles_x + tx;
