@@ -3,14 +3,6 @@
 source "$(dirname "$0")/testlib.bash" "$@"
 make_inputs
 
-expect_refused() {  # expect_refused DESCRIPTION TEXT COMMAND...
-    local what=$1 text=$2
-    shift 2
-    run "$@"
-    expect_rc 2 "$what"
-    expect_stderr "$text" "$what"
-}
-
 # A FIFO would block a reader forever; a device would feed it without end.
 mkfifo pipe.json pipe.exr
 expect_refused "a FIFO as the project" "is a FIFO" info pipe.json

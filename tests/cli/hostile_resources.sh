@@ -5,20 +5,6 @@
 source "$(dirname "$0")/testlib.bash" "$@"
 make_inputs
 
-expect_refused() {  # expect_refused DESCRIPTION TEXT COMMAND...
-    local what=$1 text=$2
-    shift 2
-    run "$@"
-    expect_rc 2 "$what"
-    expect_stderr "$text" "$what"
-}
-expect_warned() {  # expect_warned DESCRIPTION TEXT COMMAND...
-    local what=$1 text=$2
-    shift 2
-    run "$@"
-    expect_rc 0 "$what"
-    expect_stderr "$text" "$what"
-}
 
 # write_opencv FILE FX FY CX CY: the scene of write_project seen by an opencv camera.
 write_opencv() {

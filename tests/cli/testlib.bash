@@ -30,6 +30,22 @@ expect_stderr() {  # expect_stderr TEXT DESCRIPTION (fixed string)
     grep -qF -- "$1" stderr.txt || fail "$2: stderr does not contain '$1'"
 }
 
+# The command is refused (exit 2) or runs with a warning (exit 0), its stderr holding TEXT.
+expect_refused() {  # expect_refused DESCRIPTION TEXT COMMAND...
+    local what=$1 text=$2
+    shift 2
+    run "$@"
+    expect_rc 2 "$what"
+    expect_stderr "$text" "$what"
+}
+expect_warned() {  # expect_warned DESCRIPTION TEXT COMMAND...
+    local what=$1 text=$2
+    shift 2
+    run "$@"
+    expect_rc 0 "$what"
+    expect_stderr "$text" "$what"
+}
+
 expect_stdout() {
     grep -qF -- "$1" stdout.txt || fail "$2: stdout does not contain '$1'"
 }
