@@ -5,7 +5,6 @@
 source "$(dirname "$0")/testlib.bash" "$@"
 make_inputs
 
-
 # write_opencv FILE FX FY CX CY: the scene of write_project seen by an opencv camera.
 write_opencv() {
     cat >"$1" <<JSON
