@@ -12,6 +12,7 @@
 #include <QMessageBox>
 #include <QProgressBar>
 #include <QScrollArea>
+#include <QSettings>
 #include <QSlider>
 #include <QStandardPaths>
 #include <QStatusBar>
@@ -34,6 +35,7 @@
 #include "project_edit.h"
 #include "render_controller.h"
 #include "scene_panel.h"
+#include "render/preview.h"
 #include "settings_panel.h"
 #include "shortcut_policy.h"
 #include "number_field.h"
@@ -68,6 +70,7 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     renderer_->setRenderSize(options_.renderSize);
     renderer_->setPreviewFraction(options_.previewFraction);
     renderer_->setPreviewScale(options_.previewScale);
+    renderer_->setEndless(options_.endless);
     viewport_ = new Viewport(doc_, this);
     setCentralWidget(viewport_);
     status_ = new QLabel(tr("No project"));
@@ -276,6 +279,12 @@ void MainWindow::createDocks() {
     col->addWidget(materialPanel_);
     dock("sceneDock", tr("Scene"), objects, Qt::RightDockWidgetArea);
     settingsPanel_ = new SettingsPanel(doc_);
+    connect(settingsPanel_, &SettingsPanel::noiseTargetChanged, this, [this](double target) {
+        renderer_->setNoiseTarget(target);
+        if (options_.useSettings) QSettings().setValue("noiseTarget", target);
+        // A lower target goes on refining the picture already there.
+        if (renderer_->finished() && doc_->isOpen()) renderer_->request(doc_->project(), false);
+    });
     probePanel_ = new ProbePanel(doc_);
     cameraPanel_ = new CameraPanel(doc_);
     calibrationPanel_ = new CalibrationPanel(doc_, viewport_, cameraPanel_, reporter_);
@@ -327,7 +336,10 @@ void MainWindow::createToolbar() {
     exposure_->setMaximumWidth(180);
     exposure_->setToolTip(tr("Display exposure in stops (PNG export uses it too)"));
     connect(exposure_, &QSlider::valueChanged, this,
-            [this](int v) { viewport_->setExposure(float(v) / 10.0f); });
+            [this](int v) {
+                viewport_->setExposure(float(v) / 10.0f);
+                renderer_->setDisplayExposure(v / 10.0);
+            });
     bar->addWidget(exposure_);
 }
 
@@ -379,6 +391,12 @@ void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     text += tr("  ·  %1 M photons/s").arg(s.photons_per_second / 1e6, 0, 'f', 2);
     text += lastError_ >= 0 ? tr("  ·  est. error %1%").arg(lastError_ * 100, 0, 'f', 1)
                             : tr("  ·  est. error -");
+    if (!f->preview && options_.endless && s.mean_changed_value > 0) {
+        const double target = renderer_->noiseTarget() > 0
+                                  ? renderer_->noiseTarget()
+                                  : invisible_relative_error(s.mean_changed_value, viewport_->exposure());
+        text += tr(" (stops at %1%)").arg(target * 100, 0, 'f', 1);
+    }
     status_->setText(text);
 }
 

@@ -25,6 +25,7 @@
 #include "render/progressive.h"
 #include "render/render_output.h"
 #include "render_controller.h"
+#include "settings_panel.h"
 #include "scene/project_io.h"
 #include "scene_check.h"
 #include "scene_builder.h"
@@ -327,6 +328,9 @@ void MainWindow::restoreSettings() {
     restoreState(s.value("windowState").toByteArray());
     recent_ = s.value("recentFiles").toStringList();
     exposure_->setValue(s.value("exposure", 0).toInt());
+    const double noise = s.value("noiseTarget", 0.0).toDouble();
+    settingsPanel_->setNoiseTarget(noise);
+    renderer_->setNoiseTarget(noise);
     rebuildRecentMenu();
 }
 

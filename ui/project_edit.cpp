@@ -33,6 +33,19 @@ Change classify(const Project& a, const Project& b) {
     return a.render != b.render ? Change::Settings : Change::None;
 }
 
+bool edited_objects(const Project& a, const Project& b, std::vector<int>& edited) {
+    edited.clear();
+    if (classify(a, b) == Change::Assets || !(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real ||
+        a.render != b.render)
+        return false;
+    const size_t n = std::max(a.objects.size(), b.objects.size());
+    for (size_t i = 0; i < n; ++i)
+        if (i >= a.objects.size() || i >= b.objects.size() || !same_geometry(a.objects[i], b.objects[i]) ||
+            !(a.objects[i].material == b.objects[i].material))
+            edited.push_back(int(i));
+    return true;
+}
+
 VirtualObject make_object(Shape::Kind kind, const vec3& position, const std::string& name) {
     VirtualObject o;
     o.name = name;

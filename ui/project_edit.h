@@ -1,6 +1,7 @@
 #pragma once
 // Pure helpers over dp::Project used by the studio: what an edit changed, new objects, bounds.
 #include <string>
+#include <vector>
 
 #include "scene/project.h"
 
@@ -17,6 +18,11 @@ enum class Change {
 
 /// Classifies the difference between two projects (symmetric, so undo classifies as the edit).
 Change classify(const Project& before, const Project& after);
+
+/// The objects an edit from `before` to `after` changed (shape, transform, visibility or
+/// material; by index, so added and removed ones count), or false when it changed more than
+/// objects (photo, probe, camera, real proxies, render settings): then the whole picture can.
+bool edited_objects(const Project& before, const Project& after, std::vector<int>& edited);
 
 /// A new object of the given kind resting on the ground (y = 0) at `position` (x, z used).
 VirtualObject make_object(Shape::Kind kind, const vec3& position, const std::string& name);

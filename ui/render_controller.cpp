@@ -1,6 +1,8 @@
 #include "render_controller.h"
 
 #include <QMetaObject>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -24,16 +26,33 @@ class RenderController::Sink : public RenderSink {
 
     void on_update(const RenderUpdate& update) override {
         if (update.cancelled) return;  // an edit replaced this run: its pictures are stale
+        bool finished = update.finished;
+        std::shared_ptr<const RenderFrame> base;
+        std::shared_ptr<const Region> region;
+        bool preview;
         {
+            std::lock_guard<std::mutex> lock(c_->mutex_);
+            preview = c_->runPreview_;
+            if (!finished && c_->runEndless_ && !c_->runPreview_ && c_->reachedNoiseTarget(update.stats)) {
+                // Refined enough: this pass is the last; the session stops at its next check.
+                c_->runReachedTarget_ = finished = true;
+                c_->session_->cancel();
+            }
             // While the UI has not taken the last frame, a newer one would only replace it:
             // its pictures are built once the UI is ready for them (the final one always).
-            std::lock_guard<std::mutex> lock(c_->mutex_);
-            if (c_->posted_ && !update.finished) return;
+            if (c_->posted_ && !finished) return;
+            base = c_->base_;
+            region = c_->runRegion_;
         }
         auto frame = std::make_shared<RenderFrame>();
         frame->update = update;
+        frame->update.finished = finished;
         frame->update.pull_images();
         frame->update.source = nullptr;
+        frame->refinedPasses = update.stats.passes;
+        // A final picture is shown as it is; so is one that has caught up with the refined one.
+        if (base && region && !finished && (preview || update.stats.passes < base->refinedPasses))
+            compose(*frame, *base, *region);
         bool post = false;
         {
             std::lock_guard<std::mutex> lock(c_->mutex_);
@@ -43,6 +62,7 @@ class RenderController::Sink : public RenderSink {
             c_->latest_ = std::move(frame);
             if (c_->runFrames_++ == 0 && c_->runPreview_)
                 c_->timings_.firstQuick = ms_since(c_->runStart_);
+            if (c_->runInteractive_) c_->timings_.dragFrame = ms_since(c_->dragStart_);
             post = !c_->posted_;
             c_->posted_ = true;
         }
@@ -58,6 +78,7 @@ class RenderController::Sink : public RenderSink {
             gen = c_->runGeneration_;
             preview = c_->runPreview_;
             c_->runStopped_ = true;
+            if (c_->runReachedTarget_) cancelled = false;  // stopped by the noise target: done
         }
         c_->cv_.notify_all();  // a worker waiting for a first pass that will not come
         if (preview && error.empty()) return;  // quick passes end by being replaced
@@ -94,15 +115,21 @@ void RenderController::request(const Project& project, bool interactive) {
     r.project = project;
     r.interactive = interactive;
     r.generation = ++requested_;
+    if (!interactive) acceptFrom_ = r.generation;
     r.size = renderSize_;
     r.previewFraction = previewFraction_;
     r.previewScale = previewScale_;
+    r.endless = endless_;
     finished_ = false;
+    bool follow = false;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         pending_ = std::move(r);
+        // A drag's one-pass preview is left to finish and show: cancelling it for every mouse
+        // move would show nothing until the hand stops.
+        follow = interactive && runInteractive_;
     }
-    session_->cancel();  // atomic store: the pass in flight stops at its next check
+    if (!follow) session_->cancel();  // atomic store: the pass in flight stops at its next check
     cv_.notify_all();
 }
 
@@ -151,10 +178,23 @@ void RenderController::worker() {
 }
 
 void RenderController::handle(const Request& r) {
-    // The run in flight was told to stop by request(); the new quick scene is built while it
-    // winds down, and waited for only before the scenes it reads are touched.
-    session_->cancel();
+    // The run in flight was told to stop by request(), unless it is a drag's one pass, which
+    // finishes and shows first. The new quick scene is built while it winds down, and waited
+    // for only before the scenes it reads are touched.
+    bool followDrag = false;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        followDrag = r.interactive && runInteractive_;
+    }
+    if (!followDrag) session_->cancel();
     auto t0 = std::chrono::steady_clock::now();
+    if (followDrag) {
+        session_->wait();
+        t0 = std::chrono::steady_clock::now();
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (quit_ || (pending_ && !pending_->interactive)) return;  // the drag ended: refine at once
+    }
+    const auto requestStart = t0;
     Timings timings;
     const Project& p = r.project;
     Change change = haveScenes_ ? classify(built_, p) : Change::Assets;
@@ -174,18 +214,30 @@ void RenderController::handle(const Request& r) {
     PreviewPolicy policy;
     policy.photon_fraction = r.previewFraction;
     policy.scale = r.previewScale;
+    if (r.interactive) policy.max_pixels = std::min(policy.max_pixels, drag_preview_pixels(dragLevel_));
     int quick_w = 0, quick_h = 0;
     policy.size(full.width(), full.height(), quick_w, quick_h);
     const QSize quick(quick_w, quick_h);
-    const RenderSettings quickSettings = policy.settings(p.render);
+    RenderSettings quickSettings = policy.settings(p.render);
+    if (r.interactive) {
+        quickSettings.passes = 1;  // the next mouse move brings the next pass
+        // Photons follow the pixels down: the direct shadow (by rays) shows where the object
+        // goes; the photons' caustics and bounce light can wait for the hand to rest.
+        const double share = drag_preview_pixels(dragLevel_) / drag_preview_pixels(0);
+        quickSettings.photons_per_pass =
+            std::max<int64_t>(2000, int64_t(double(quickSettings.photons_per_pass) * share));
+    }
+    // A full-size scene of another state would be refined wrongly; a quick one of another size
+    // is simply rebuilt.
+    if (change >= Change::Scene) full_.reset();
 
-    if (change >= Change::Scene) {
-        full_.reset();
+    if (change >= Change::Scene || quick != quickSize_) {
         t0 = std::chrono::steady_clock::now();
         quick_ = builder_->build(p, quick.width(), quick.height());
         timings.buildQuick = ms_since(t0);
         ++scenesBuilt_;
         fullSize_ = full;
+        quickSize_ = quick;
     } else if (change == Change::Material) {
         t0 = std::chrono::steady_clock::now();
         session_->wait();
@@ -195,6 +247,9 @@ void RenderController::handle(const Request& r) {
     }
     built_ = p;
     haveScenes_ = true;
+    t0 = std::chrono::steady_clock::now();
+    std::shared_ptr<const Region> region = regionFor(p, *quick_);
+    timings.region = ms_since(t0);
 
     auto run = [&](std::shared_ptr<RenderScene> scene, const RenderSettings& settings, bool preview) {
         session_->cancel();
@@ -205,17 +260,39 @@ void RenderController::handle(const Request& r) {
             std::lock_guard<std::mutex> lock(mutex_);
             runGeneration_ = r.generation;
             runPreview_ = preview;
+            runInteractive_ = preview && r.interactive;
+            runEndless_ = !preview && r.endless;
+            runReachedTarget_ = false;
+            runRegion_ = region;
             runFrames_ = 0;
             runStopped_ = false;
             photo_ = builder_->photo();
-            if (preview) timings_ = timings;
+            if (preview) {
+                const double lastDrag = timings_.dragFrame;
+                timings_ = timings;
+                timings_.dragFrame = lastDrag;
+                timings_.dragLevel = dragLevel_;
+            }
             runStart_ = std::chrono::steady_clock::now();
+            dragStart_ = requestStart;
         }
         session_->start(std::move(scene), settings);
     };
 
+    if (r.interactive) {
+        // The last drag frame's time picks this one's size: a size step per frame keeps the
+        // frames within the target as the machine's load and the edit's cost change.
+        double last;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            last = runInteractive_ ? timings_.dragFrame : 0;
+        }
+        if (last > 1.15 * dragTargetMs_) dragLevel_ = std::min(dragLevel_ + 1, kDragPreviewLevels - 1);
+        if (last > 0 && last < 0.6 * dragTargetMs_) dragLevel_ = std::max(dragLevel_ - 1, 0);
+        run(quick_, quickSettings, true);
+        return;
+    }
     run(quick_, quickSettings, true);
-    if (r.interactive) return;
     {
         // The quick pass shows the edit at once; the full-size scene is built meanwhile.
         std::unique_lock<std::mutex> lock(mutex_);
@@ -232,7 +309,108 @@ void RenderController::handle(const Request& r) {
         timings_.buildFull = ms_since(t0);
     }
     if (superseded()) return;
-    run(full_, p.render, false);
+    rememberBase(r.generation, p, *full_);
+    RenderSettings fullSettings = p.render;
+    if (r.endless) {
+        // No budget: the sink stops the run once the noise is invisible (reachedNoiseTarget).
+        fullSettings.passes = 1 << 30;
+        fullSettings.time_budget_s = 0;
+    }
+    run(full_, fullSettings, false);
+}
+
+void RenderController::rememberBase(uint64_t generation, const Project& p, const RenderScene& scene) {
+    BaseState b;
+    b.project = p;
+    for (size_t i = 0; i < p.objects.size(); ++i) {
+        EditedBounds e;
+        if (scene.object_bounds(int(i), e.center, e.radius)) b.bounds.push_back(e);
+        else b.bounds.push_back(std::nullopt);
+    }
+    uint64_t keepFrom;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        keepFrom = base_ ? base_->generation : 0;
+    }
+    bases_[generation] = std::move(b);
+    // Only the refined picture's state and later ones can become the base of an edit.
+    while (bases_.size() > 1 && bases_.begin()->first < keepFrom) bases_.erase(bases_.begin());
+    while (bases_.size() > 8) bases_.erase(bases_.begin());
+}
+
+std::shared_ptr<const RenderController::Region> RenderController::regionFor(const Project& p,
+                                                                              const RenderScene& scene) {
+    uint64_t baseGeneration;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!base_) return nullptr;
+        baseGeneration = base_->generation;
+    }
+    auto it = bases_.find(baseGeneration);
+    if (it == bases_.end()) return nullptr;
+    const BaseState& base = it->second;
+    std::vector<int> edited;
+    if (!edited_objects(base.project, p, edited)) return nullptr;
+    std::vector<EditedBounds> spheres;
+    for (int i : edited) {
+        if (size_t(i) < base.bounds.size() && base.bounds[size_t(i)]) spheres.push_back(*base.bounds[size_t(i)]);
+        EditedBounds now;
+        if (size_t(i) < p.objects.size() && scene.object_bounds(i, now.center, now.radius)) spheres.push_back(now);
+    }
+    auto region = std::make_shared<Region>();
+    region->width = scene.photo().width();
+    region->height = scene.photo().height();
+    region->baseGeneration = baseGeneration;
+    region->mask = change_region(scene, spheres);
+    // A pixel of the preview stands for several of the full picture: the edge of the region is
+    // widened by one, so soft shadows are not cut at it.
+    dilate_mask(region->mask, region->width, region->height, 1);
+    return region;
+}
+
+void RenderController::compose(RenderFrame& f, const RenderFrame& base, const Region& region) {
+    const Image& bi = base.image();
+    const Image& bd = base.dL();
+    const int W = bi.width(), H = bi.height();
+    const Image& pi = f.update.image;
+    const Image& pd = f.update.dL;
+    if (W == 0 || bd.width() != W || pi.empty() || region.mask.empty()) return;
+    const int w = pi.width(), h = pi.height();
+    auto image = std::make_shared<Image>(W, H);
+    auto dL = std::make_shared<Image>(W, H);
+    // The mask is looked up at its own scale: a full-size pass uses its preview's region.
+    const float sx = float(w) / float(W), sy = float(h) / float(H);
+    const float mx = float(region.width) / float(W), my = float(region.height) / float(H);
+    tbb::parallel_for(0, H, [&](int y) {
+        const int ry = std::min(region.height - 1, int((float(y) + 0.5f) * my));
+        for (int x = 0; x < W; ++x) {
+            const size_t i = size_t(y) * W + x;
+            const int rx = std::min(region.width - 1, int((float(x) + 0.5f) * mx));
+            if (!region.mask[size_t(ry) * region.width + rx]) {
+                (*image)[i] = bi[i];
+                (*dL)[i] = bd[i];
+            } else if (w == W && h == H) {
+                (*image)[i] = pi[i];
+                (*dL)[i] = pd[i];
+            } else {
+                const float px = (float(x) + 0.5f) * sx - 0.5f, py = (float(y) + 0.5f) * sy - 0.5f;
+                (*image)[i] = pi.bilinear(px, py);
+                (*dL)[i] = pd.bilinear(px, py);
+            }
+        }
+    });
+    f.shownImage = std::move(image);
+    f.shownDL = std::move(dL);
+    f.refinedPasses = base.refinedPasses;
+}
+
+bool RenderController::reachedNoiseTarget(const RenderStats& s) const {
+    // A few passes first: the error estimate compares the two halves of the passes.
+    constexpr int kMinPasses = 8;
+    if (s.passes < kMinPasses || s.estimated_rel_error < 0) return false;
+    double target = noiseTarget_.load();
+    if (target <= 0) target = invisible_relative_error(s.mean_changed_value, exposure_.load());
+    return s.estimated_rel_error <= target;
 }
 
 void RenderController::deliver() {
@@ -242,9 +420,20 @@ void RenderController::deliver() {
         frame = std::move(latest_);
         posted_ = false;
     }
-    if (!frame || frame->generation != requested_) return;
+    if (!frame) return;
+    // A drag's preview of an earlier move is still the newest picture there is: shown, as long
+    // as no edit since then asked for more than previews. Anything else shows only the latest.
+    const bool current = frame->generation == requested_ ||
+                         (frame->preview && frame->generation >= acceptFrom_ &&
+                          (!last_ || frame->generation >= last_->generation));
+    if (!current) return;
     last_ = frame;
     if (!frame->preview) lastFull_ = frame;
+    if (!frame->preview && !frame->composited()) {
+        // A refined picture of its own: later edits are laid over it.
+        std::lock_guard<std::mutex> lock(mutex_);
+        base_ = frame;
+    }
     Q_EMIT frameReady(frame);
 }
 

@@ -1,6 +1,7 @@
 #include "settings_panel.h"
 
 #include <QFormLayout>
+#include <QSignalBlocker>
 #include <QSpinBox>
 
 #include "document.h"
@@ -19,8 +20,24 @@ SettingsPanel::SettingsPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     form->addRow(tr("Photons per pass"), photons_);
     passes_ = new QSpinBox;
     passes_->setRange(1, 100000);
-    passes_->setToolTip(tr("Passes to refine before stopping (ignored with a time budget)"));
+    passes_->setToolTip(
+        tr("Passes of `diffphoton render` (ignored with a time budget); the studio refines until "
+           "its noise target"));
     form->addRow(tr("Passes"), passes_);
+    noise_ = new NumberField;
+    noise_->setObjectName("noiseTarget");
+    noise_->setRange(0, 50);
+    noise_->setDecimals(2);
+    noise_->setSingleStep(0.25);
+    noise_->setSuffix(tr(" %"));
+    noise_->setSpecialValueText(tr("invisible"));
+    noise_->setToolTip(
+        tr("The studio refines until the estimated noise of the changed pixels is below this; "
+           "'invisible': below half an 8-bit step at the display exposure"));
+    noise_->setKeyboardTracking(false);
+    connect(noise_, &NumberField::valueChanged, this,
+            [this](double v) { Q_EMIT noiseTargetChanged(v / 100.0); });
+    form->addRow(tr("Stop at noise"), noise_);
     budget_ = new NumberField;
     budget_->setRange(0, 86400);
     budget_->setSuffix(tr(" s"));
@@ -48,6 +65,11 @@ SettingsPanel::SettingsPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     }
     connect(doc_, &Document::changed, this, [this] { refresh(); });
     refresh();
+}
+
+void SettingsPanel::setNoiseTarget(double relError) {
+    QSignalBlocker block(noise_);
+    noise_->setValue(relError * 100.0);
 }
 
 void SettingsPanel::refresh() {

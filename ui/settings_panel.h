@@ -16,6 +16,12 @@ public:
 
     QSpinBox* photonsField() const { return photons_; }
     NumberField* radiusField() const { return radius_; }
+    /// The studio's noise target (a preference, not part of the project).
+    void setNoiseTarget(double relError);
+
+Q_SIGNALS:
+    /// The user chose where refinement stops: relative error, 0 = invisible at the display.
+    void noiseTargetChanged(double relError);
 
 private:
     void refresh();
@@ -23,7 +29,7 @@ private:
 
     Document* doc_;
     QSpinBox *photons_, *passes_, *seed_;
-    NumberField *budget_, *radius_;
+    NumberField *budget_, *radius_, *noise_;
     bool refreshing_ = false;
 };
 

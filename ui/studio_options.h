@@ -14,6 +14,9 @@ struct StudioOptions {
     QSize renderSize;                ///< full render size (invalid: the photo's size)
     double previewFraction = 0.125;  ///< photons of the quick pass relative to the project's
     double previewScale = 0.5;       ///< size of the quick pass relative to the full render
+    /// Refine without a pass budget until the noise is below the target (the Render tab's
+    /// "Stop at noise"); false: stop at the project's passes or time budget, as the CLI does.
+    bool endless = true;
     ErrorReporter* reporter = nullptr;  ///< not owned; null: message boxes
     bool checkRecovery = true;          ///< offer to recover autosaved work on start
     bool useSettings = true;            ///< restore and store window state and recent files

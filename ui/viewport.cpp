@@ -73,9 +73,9 @@ void Viewport::rebuildImage() {
     } else if (mode_ == ViewMode::Photo && frame_->photo) {
         shown_ = to_display(*frame_->photo, exposure_);
     } else if (mode_ == ViewMode::Delta) {
-        shown_ = to_false_colour(frame_->update.dL, exposure_);
+        shown_ = to_false_colour(frame_->dL(), exposure_);
     } else {
-        shown_ = to_display(frame_->update.image, exposure_);
+        shown_ = to_display(frame_->image(), exposure_);
     }
     update();
 }

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "assets/scene_checks.h"
+#include "base/euler.h"
 #include "base/text.h"
 #include "image/image_io.h"
 #include "probe/probe.h"
@@ -203,10 +204,31 @@ void limit_probe_size(Image& probe, int max_width, std::vector<std::string>& war
     probe = resample(probe, width, height);
 }
 
-SceneAssets AssetLibrary::load(const Project& project) {
+std::shared_ptr<const LitProbe> AssetLibrary::lit_probe(const Project& p) {
+    const std::shared_ptr<const Image> latlong = probe(p);
+    char settings[160];
+    // The file's time in the key: a probe file rewritten is a new probe.
+    std::snprintf(settings, sizeof(settings), "|%.9g,%.9g,%.9g|%.9g|%lld", double(p.probe.rotation_deg.x),
+                  double(p.probe.rotation_deg.y), double(p.probe.rotation_deg.z), double(p.probe.intensity),
+                  static_cast<long long>(modified(p.resolve(p.probe.path)).time_since_epoch().count()));
+    const std::string key = probe_key(p) + settings;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (auto& [k, lit] : lit_probes_)
+            if (k == key) return lit;
+    }
+    auto lit = std::make_shared<const LitProbe>(*latlong, euler_xyz_deg(p.probe.rotation_deg), p.probe.intensity);
+    std::lock_guard<std::mutex> lock(mutex_);
+    constexpr size_t kKept = 4;
+    if (lit_probes_.size() >= kKept) lit_probes_.erase(lit_probes_.begin());
+    lit_probes_.emplace_back(key, lit);
+    return lit;
+}
+
+SceneAssets AssetLibrary::load(const Project& project, int photo_width, int photo_height, bool with_probe) {
     SceneAssets a;
-    a.photo = *photo(project);
-    a.probe_latlong = *probe(project);
+    a.photo = *photo_at(project, photo_width, photo_height);
+    if (with_probe) a.probe_latlong = *probe(project);
     auto load_list = [&](auto const& list, const char* name, std::vector<TriangleMesh>& meshes,
                          std::vector<Image>& textures, auto albedo_of) {
         meshes.resize(list.size());
@@ -279,6 +301,7 @@ float AssetLibrary::photo_clip_level(const Project& p) {
 void AssetLibrary::clear() {
     std::lock_guard<std::mutex> lock(mutex_);
     entries_.clear();
+    lit_probes_.clear();
 }
 
 SceneAssets load_assets(const Project& project) {
@@ -299,14 +322,18 @@ CameraSpec scaled_camera(const CameraSpec& c, int photo_w, int photo_h, int widt
 
 std::shared_ptr<RenderScene> build_scene(AssetLibrary& library, const Project& project, int width, int height,
                                          const std::string& project_file) {
-    SceneAssets a = library.load(project);
+    // The photo at the scene's size only: a copy of a full 12 MP photo for a preview would
+    // cost more than the preview.
+    // The probe's tables are shared between the scenes of the same probe settings.
+    // (Decoded first, so that load() reports what decoding it found.)
+    std::shared_ptr<const LitProbe> lit = library.lit_probe(project);
+    SceneAssets a = library.load(project, width, height, false);
     Project p = project;
-    const int pw = a.photo.width(), ph = a.photo.height();
-    if (width > 0 && height > 0 && (width != pw || height != ph)) {
-        a.photo = *library.photo_at(project, width, height);
+    const std::shared_ptr<const Image> full = library.photo(project);
+    const int pw = full->width(), ph = full->height();
+    if (width > 0 && height > 0 && (width != pw || height != ph))
         p.camera = scaled_camera(project.camera, pw, ph, width, height);
-    }
-    auto scene = std::make_shared<RenderScene>(p, std::move(a));
+    auto scene = std::make_shared<RenderScene>(p, std::move(a), std::move(lit));
     check_scene(*scene, project_file);
     return scene;
 }

@@ -20,8 +20,13 @@ namespace dp {
 /// benchmarks. Thread-safe; what it hands out is shared and never changes.
 class AssetLibrary {
 public:
-    /// Everything a render of `project` needs. Throws InputError naming the file and field.
-    SceneAssets load(const Project& project);
+    /// Everything a render of `project` needs, the photo resampled to photo_width x
+    /// photo_height when given (0: as decoded), the lat-long probe unless `with_probe` is false
+    /// (a scene given its lit_probe). Throws InputError naming the file and field.
+    SceneAssets load(const Project& project, int photo_width = 0, int photo_height = 0, bool with_probe = true);
+    /// The probe with its lights for the project's probe file, rotation and intensity (the
+    /// last few are kept: a rotation slider asks for many in turn).
+    std::shared_ptr<const LitProbe> lit_probe(const Project& project);
     /// The photo after the project's exposure; the probe as a lat-long map.
     std::shared_ptr<const Image> photo(const Project& project);
     std::shared_ptr<const Image> probe(const Project& project);
@@ -58,6 +63,7 @@ private:
 
     std::mutex mutex_;
     std::map<std::string, Entry> entries_;
+    std::vector<std::pair<std::string, std::shared_ptr<const LitProbe>>> lit_probes_;  ///< newest last
 };
 
 /// The widest lat-long probe a scene keeps: the photon emission's CDF and the sun/sky split need

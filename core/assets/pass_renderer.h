@@ -25,6 +25,9 @@ struct RenderStats {
     /// Estimated relative RMSE of the image so far over the pixels the objects change, from
     /// the difference of the two interleaved halves of the passes; negative while unknown.
     double estimated_rel_error = -1;
+    /// Mean luminance of the pixels the objects change (what estimated_rel_error is relative
+    /// to), 0 while unknown: a viewer judges from it whether the noise is still visible.
+    double mean_changed_value = 0;
     size_t tiles_total = 0, tiles_shaded = 0;  ///< tiles, and those the last pass shaded
     size_t tiles_stopped = 0;                  ///< tiles adaptive sampling found converged
     /// Where the last pass's time went (seconds): photons, maps, marking the pixels the photons

@@ -64,13 +64,17 @@ vec3 Surface::reflectance_at(const vec2& uv) const {
 }
 
 RenderScene::RenderScene(const Project& project, SceneAssets assets)
-    : project_(project), assets_(std::move(assets)) {
+    : RenderScene(project, std::move(assets), nullptr) {}
+
+RenderScene::RenderScene(const Project& project, SceneAssets assets, std::shared_ptr<const LitProbe> probe)
+    : project_(project), assets_(std::move(assets)), lit_(std::move(probe)) {
     project_.render = RenderSettings{};
     if (assets_.photo.empty()) throw std::invalid_argument("RenderScene: empty photograph");
     sanitize_images();
     camera_ = project_.camera.build(assets_.photo.width(), assets_.photo.height());
-    probe_ = Probe(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg), project_.probe.intensity);
-    lights_ = ProbeLights(probe_);
+    if (!lit_)
+        lit_ = std::make_shared<const LitProbe>(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg),
+                                                project_.probe.intensity);
     place_surfaces();
     check_extent();
     check_camera();

@@ -30,6 +30,17 @@ struct SceneAssets {
 /// Loads every file a project names. Throws InputError naming the file and field.
 SceneAssets load_assets(const Project& project);
 
+/// The probe with its sun and sky split, built once per probe file, rotation and intensity and
+/// shared by the scenes that use it: building them takes far longer than a preview's BVH.
+struct LitProbe {
+    LitProbe(Image latlong, const glm::mat3& rotation, float intensity)
+        : probe(std::move(latlong), rotation, intensity), lights(probe) {}
+    LitProbe(const LitProbe&) = delete;
+    LitProbe& operator=(const LitProbe&) = delete;
+    Probe probe;
+    ProbeLights lights;  ///< refers to probe
+};
+
 /// One surface the rays can hit: a real proxy or a virtual object.
 struct Surface {
     bool is_virtual = false;
@@ -68,14 +79,17 @@ public:
     /// The project's render settings are not kept: a scene holds geometry, materials and
     /// assets; how to render it is the renderer's RenderSettings.
     RenderScene(const Project& project, SceneAssets assets);
+    /// With a probe already built for the project's probe settings (assets.probe_latlong is
+    /// then not read and may be empty).
+    RenderScene(const Project& project, SceneAssets assets, std::shared_ptr<const LitProbe> probe);
     RenderScene(const RenderScene&) = delete;
     RenderScene& operator=(const RenderScene&) = delete;
 
     const Project& project() const { return project_; }
     const Image& photo() const { return assets_.photo; }
-    const Probe& probe() const { return probe_; }
+    const Probe& probe() const { return lit_->probe; }
     /// The probe split into its sun and sky for next-event estimation.
-    const ProbeLights& probe_lights() const { return lights_; }
+    const ProbeLights& probe_lights() const { return lit_->lights; }
     const Camera& camera() const { return camera_; }
     const SceneAssets& assets() const { return assets_; }
     const std::vector<EmissionCluster>& clusters() const { return clusters_; }
@@ -114,6 +128,10 @@ public:
     void update_materials(const Project& project);
 
     const std::vector<Surface>& real_surfaces() const { return real_surfaces_; }
+    const std::vector<Surface>& virtual_surfaces() const { return virtual_surfaces_; }
+    /// World-space bounding sphere of virtual object `index` (hidden ones too); false when it
+    /// has no geometry.
+    bool object_bounds(int index, vec3& center, float& radius) const;
 
 private:
     /// Replaces NaN/Inf in the photo and textures by 0, counting them in assets_.
@@ -135,8 +153,7 @@ private:
 
     Project project_;
     SceneAssets assets_;
-    Probe probe_;
-    ProbeLights lights_;  ///< refers to probe_
+    std::shared_ptr<const LitProbe> lit_;
     Camera camera_;
     std::vector<Surface> real_surfaces_, virtual_surfaces_;
     std::vector<TriangleMesh> real_world_meshes_, virtual_world_meshes_;

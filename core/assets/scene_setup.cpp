@@ -68,25 +68,33 @@ std::vector<EmissionCluster> cluster_objects(const std::vector<vec3>& centers, c
     return clusters;
 }
 
+bool RenderScene::object_bounds(int index, vec3& center, float& radius) const {
+    if (index < 0 || size_t(index) >= virtual_surfaces_.size()) return false;
+    const Surface& s = virtual_surfaces_[size_t(index)];
+    if (s.analytic_sphere) {
+        center = s.sphere_center;
+        radius = s.sphere_radius;
+        return true;
+    }
+    vec3 lo, hi;
+    if (!s.mesh || !s.mesh->bounds(lo, hi)) return false;
+    center = 0.5f * (lo + hi);
+    float r2 = 0;
+    for (const vec3& p : s.mesh->positions) r2 = std::max(r2, glm::dot(p - center, p - center));
+    radius = std::sqrt(r2);
+    return true;
+}
+
 void RenderScene::compute_clusters() {
     std::vector<vec3> centers;
     std::vector<float> radii;
     std::vector<int> ids;
     for (size_t i = 0; i < virtual_surfaces_.size(); ++i) {
-        const Surface& s = virtual_surfaces_[i];
-        if (!project_.objects[i].visible) continue;
-        if (s.analytic_sphere) {
-            centers.push_back(s.sphere_center);
-            radii.push_back(s.sphere_radius);
-        } else {
-            vec3 lo, hi;
-            if (!s.mesh->bounds(lo, hi)) continue;
-            vec3 c = 0.5f * (lo + hi);
-            float r2 = 0;
-            for (const vec3& p : s.mesh->positions) r2 = std::max(r2, glm::dot(p - c, p - c));
-            centers.push_back(c);
-            radii.push_back(std::sqrt(r2));
-        }
+        vec3 c;
+        float r;
+        if (!project_.objects[i].visible || !object_bounds(int(i), c, r)) continue;
+        centers.push_back(c);
+        radii.push_back(r);
         ids.push_back(int(i));
     }
     clusters_ = cluster_objects(centers, radii);
@@ -100,7 +108,7 @@ void RenderScene::compute_clusters() {
 void RenderScene::estimate_albedos() {
     bool any = std::any_of(project_.real.begin(), project_.real.end(),
                            [](const RealProxy& r) { return r.albedo.kind == Albedo::Kind::Estimate; });
-    if (!any || probe_.total_luminance_power() <= 0) return;
+    if (!any || probe().total_luminance_power() <= 0) return;
     const int W = camera_.width(), H = camera_.height();
     std::vector<std::vector<vec3>> estimates(real_surfaces_.size());
     Rng rng(0x5eed, 17);

@@ -310,6 +310,7 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     st.radius = maps.radius;
     st.non_finite_samples += bad.load();
     st.estimated_rel_error = stats_.estimated_rel_error;
+    st.mean_changed_value = stats_.mean_changed_value;
     st.tiles_stopped = stats_.tiles_stopped;
     stats_ = st;
     return true;
@@ -350,6 +351,7 @@ void ProgressiveRenderer::update_convergence() {
     }
     stats_.tiles_stopped = stopped;
     stats_.estimated_rel_error = passes < 2 ? -1.0 : changed ? std::sqrt(e2_changed / changed) / (value_changed / changed) : 0.0;
+    stats_.mean_changed_value = changed ? value_changed / double(changed) : 0.0;
 }
 
 void ProgressiveRenderer::render_single_pass(int pass, Image& pixel_change, Image& dL, Image& alpha) {

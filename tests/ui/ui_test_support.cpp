@@ -28,6 +28,7 @@ StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, 
     o.autosaveMs = 100000;
     o.renderSize = QSize(width, height);
     o.previewFraction = 0.25;
+    o.endless = false;  // tests wait for the project's passes
     o.reporter = reporter;
     o.checkRecovery = false;
     o.useSettings = false;

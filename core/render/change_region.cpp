@@ -1,0 +1,86 @@
+#include "render/change_region.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace dp {
+
+namespace {
+
+/// Distance from `c` to the half-line from `p` along unit `dir`.
+float distance_to_half_line(const vec3& c, const vec3& p, const vec3& dir) {
+    const float t = std::max(0.0f, glm::dot(c - p, dir));
+    return glm::length(c - (p + t * dir));
+}
+
+}  // namespace
+
+std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<EditedBounds>& edited,
+                                   float reach) {
+    const int W = scene.photo().width(), H = scene.photo().height();
+    std::vector<uint8_t> mask(size_t(W) * H, 0);
+    if (edited.empty()) return mask;
+    // The sun's direction: the middle of its table. Its shadow and caustics of an edited
+    // object lie along it, however far.
+    const ProbeLights& lights = scene.probe_lights();
+    const bool sun = lights.has_sun();
+    const vec3 to_sun = sun ? glm::normalize(lights.sample_sun(vec2(0.5f)).dir) : vec3(0, 1, 0);
+    tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            for (int x = 0; x < W; ++x) {
+                const Ray ray = scene.camera_ray(float(x), float(y));
+                const Hit hit = scene.intersect(ray);
+                bool in = false;
+                if (!hit) {
+                    // Nothing there: only an edited object seen against the void can change it.
+                    for (const EditedBounds& b : edited)
+                        in |= distance_to_half_line(b.center, ray.org, ray.dir) <= b.radius;
+                } else if (hit.surface->is_virtual) {
+                    in = hit.surface->material.kind != Material::Kind::Diffuse;
+                    for (const EditedBounds& b : edited) in |= glm::length(hit.p - b.center) <= b.radius * 1.01f;
+                } else {
+                    for (const EditedBounds& b : edited) {
+                        in |= glm::length(hit.p - b.center) <= reach * b.radius;
+                        in |= sun && distance_to_half_line(b.center, hit.p, to_sun) <= 1.25f * b.radius;
+                    }
+                }
+                mask[size_t(y) * W + x] = in;
+            }
+    });
+    return mask;
+}
+
+void dilate_mask(std::vector<uint8_t>& mask, int width, int height, int pixels) {
+    if (pixels <= 0) return;
+    // Separable: rows, then columns (a square structuring element).
+    std::vector<uint8_t> tmp(mask.size(), 0);
+    for (int y = 0; y < height; ++y) {
+        int last = -1 - pixels;  // last set pixel to the left
+        for (int x = 0; x < width; ++x) {
+            if (mask[size_t(y) * width + x]) last = x;
+            tmp[size_t(y) * width + x] = x - last <= pixels;
+        }
+        last = width + pixels;
+        for (int x = width - 1; x >= 0; --x) {
+            if (mask[size_t(y) * width + x]) last = x;
+            tmp[size_t(y) * width + x] |= last - x <= pixels;
+        }
+    }
+    for (int x = 0; x < width; ++x) {
+        int last = -1 - pixels;
+        for (int y = 0; y < height; ++y) {
+            if (tmp[size_t(y) * width + x]) last = y;
+            mask[size_t(y) * width + x] = y - last <= pixels;
+        }
+        last = height + pixels;
+        for (int y = height - 1; y >= 0; --y) {
+            if (tmp[size_t(y) * width + x]) last = y;
+            mask[size_t(y) * width + x] |= last - y <= pixels;
+        }
+    }
+}
+
+}  // namespace dp

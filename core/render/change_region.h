@@ -1,0 +1,32 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "assets/render_scene.h"
+
+namespace dp {
+
+/// A sphere around an edited virtual object, where it was or where it is now.
+struct EditedBounds {
+    vec3 center{0};
+    float radius = 0;
+};
+
+/// How far from an edited object its change is looked for, in multiples of its radius: its
+/// contact and sky shadows, ambient occlusion and colour bleeding fade within a few radii.
+inline constexpr float kChangeReach = 3.0f;
+
+/// The pixels of `scene`'s image whose render an edit of some virtual objects can change (1)
+/// and those it cannot (0), row-major at the scene's resolution. A pixel can change when its
+/// centre ray sees one of `edited` or any virtual mirror or glass (which may show the edited
+/// objects), or meets a real surface within kChangeReach radii of an edited sphere or in the
+/// sun's shadow (or caustic) of one. `edited` holds each edited object's sphere before and
+/// after. A viewer that keeps a refined picture replaces only these pixels with a preview.
+std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<EditedBounds>& edited,
+                                   float reach = kChangeReach);
+
+/// Grows a pixel mask by `pixels` in each direction (the edges of soft shadows, pixel
+/// footprints of a lower-resolution preview).
+void dilate_mask(std::vector<uint8_t>& mask, int width, int height, int pixels);
+
+}  // namespace dp
