@@ -1,0 +1,47 @@
+#pragma once
+#include <stdexcept>
+#include <string>
+
+#include "image/image.h"
+
+namespace dp {
+
+/// Intel Open Image Denoise (2.x, CPU device) applied to the change a render makes to the photo,
+/// never to the photo itself. The library is loaded at run time (dlopen), from the first of:
+/// $DP_OIDN_LIBRARY (only that file when set), `.deps/oidn/lib/libOpenImageDenoise.so.2` in the
+/// executable's folder or one above it, the same in the source tree, the default loader path.
+
+/// Thrown when the library cannot be loaded; the message says how to get it.
+class DenoiserUnavailable : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// True when the library loads and a CPU device can be made. Otherwise false, and `why` (if not
+/// null) tells what failed and how to get the library (scripts/install-deps.sh, or
+/// DP_OIDN_LIBRARY=/path/libOpenImageDenoise.so.2).
+bool denoiser_available(std::string* why = nullptr);
+
+/// Denoises a signed HDR change (negative shadows, positive caustics and reflections) with the
+/// RT filter. `albedo` and `normal` are noise-free per-pixel guides of the same size (or both
+/// empty for none); see denoise_aovs in render/denoise_aovs.h. Pixels farther than
+/// kDenoiseSupport pixels from any non-zero pixel of `change` come back exactly 0, so photo plus
+/// the result leaves them bit-exact. Every value returned is finite. Throws
+/// DenoiserUnavailable, or std::invalid_argument for mismatched sizes, std::runtime_error when
+/// the library reports an error.
+Image denoise_change(const Image& change, const Image& albedo = {}, const Image& normal = {});
+
+/// The augmented photograph with only the renderer's noise removed. `alpha` is the render's
+/// virtual coverage (its red channel is read; empty: none): the photo a virtual object covers
+/// is taken out before denoising, so `augmented - (1 - alpha) photo` is denoised (the signed
+/// change on real surfaces, the objects' own radiance where they cover the photo) and
+/// `(1 - alpha) photo` added back. Pixels where alpha is 0 and the denoised change is 0 keep
+/// the photo's bits. Same sizes required; throws as denoise_change.
+Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
+                        const Image& albedo = {}, const Image& normal = {});
+
+/// How far (pixels) the denoised change may reach beyond the pixels the raw change touches:
+/// enough to fill the holes of a noisy estimate, not enough to move the photo far away.
+inline constexpr int kDenoiseSupport = 8;
+
+}  // namespace dp
