@@ -12,6 +12,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "image/image_metrics.h"
+
 namespace dp {
 
 namespace {
@@ -159,7 +161,12 @@ void check_size(const Image& a, const Image& b, const char* what) {
 
 bool denoiser_available(std::string* why) { return library(why) != nullptr; }
 
-Image denoise_change(const Image& change, const Image& albedo_in, const Image& normal_in) {
+float denoise_ceiling(const Image& photo) {
+    return kDenoiseCeilingFactor * std::max(luminance_quantile(photo, 0.999), 1e-6f);
+}
+
+Image denoise_change(const Image& change, const Image& albedo_in, const Image& normal_in,
+                     float ceiling) {
     std::string why;
     Oidn* o = library(&why);
     if (!o) throw DenoiserUnavailable(why);
@@ -178,9 +185,11 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
     // transfer (so it would smooth less), and its size would depend on one pixel.
     Image pos(W, H), neg(W, H);
     bool any_pos = false, any_neg = false;
+    std::vector<uint8_t> highlight(change.size(), 0);
     for (size_t i = 0; i < change.size(); ++i)
         for (int c = 0; c < 3; ++c) {
-            const float v = std::isfinite(change[i][c]) ? change[i][c] : 0.0f;
+            float v = std::isfinite(change[i][c]) ? change[i][c] : 0.0f;
+            if (std::abs(v) > ceiling) highlight[i] = 1, v = std::clamp(v, -ceiling, ceiling);
             pos[i][c] = std::max(v, 0.0f);
             neg[i][c] = std::max(-v, 0.0f);
             any_pos |= v > 0;
@@ -207,7 +216,7 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
     Image out(W, H);
     for (size_t i = 0; i < out.size(); ++i) {
         if (!support[i]) continue;
-        const vec3 v = dpos[i] - dneg[i];
+        const vec3 v = highlight[i] ? change[i] : dpos[i] - dneg[i];
         for (int c = 0; c < 3; ++c) out[i][c] = std::isfinite(v[c]) ? v[c] : 0.0f;
     }
     return out;
@@ -223,7 +232,7 @@ Image denoise_augmented(const Image& photo, const Image& augmented, const Image&
     Image signal(augmented.width(), augmented.height());
     for (size_t i = 0; i < signal.size(); ++i)
         signal[i] = augmented[i] - (1.0f - covered(i)) * photo[i];
-    Image out = denoise_change(signal, albedo, normal);
+    Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo));
     for (size_t i = 0; i < out.size(); ++i) {
         const float a = covered(i);
         out[i] = a == 0 && out[i] == vec3(0) ? photo[i] : (1.0f - a) * photo[i] + out[i];

@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -26,19 +27,27 @@ bool denoiser_available(std::string* why = nullptr);
 /// RT filter. `albedo` and `normal` are noise-free per-pixel guides of the same size (or both
 /// empty for none); see denoise_aovs in render/denoise_aovs.h. Pixels farther than
 /// kDenoiseSupport pixels from any non-zero pixel of `change` come back exactly 0, so photo plus
-/// the result leaves them bit-exact. Every value returned is finite. Throws
-/// DenoiserUnavailable, or std::invalid_argument for mismatched sizes, std::runtime_error when
-/// the library reports an error.
-Image denoise_change(const Image& change, const Image& albedo = {}, const Image& normal = {});
+/// the result leaves them bit-exact. A pixel with a channel beyond +-`ceiling` (the sun seen in
+/// a mirror) is not noise: it keeps its raw value, and the filter sees it clamped so that its
+/// energy does not spread. Every value returned is finite. Throws DenoiserUnavailable, or
+/// std::invalid_argument for mismatched sizes, std::runtime_error when the library fails.
+Image denoise_change(const Image& change, const Image& albedo = {}, const Image& normal = {},
+                     float ceiling = INFINITY);
 
 /// The augmented photograph with only the renderer's noise removed. `alpha` is the render's
 /// virtual coverage (its red channel is read; empty: none): the photo a virtual object covers
 /// is taken out before denoising, so `augmented - (1 - alpha) photo` is denoised (the signed
 /// change on real surfaces, the objects' own radiance where they cover the photo) and
 /// `(1 - alpha) photo` added back. Pixels where alpha is 0 and the denoised change is 0 keep
-/// the photo's bits. Same sizes required; throws as denoise_change.
+/// the photo's bits. The ceiling is denoise_ceiling(photo). Same sizes required; throws as
+/// denoise_change.
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
                         const Image& albedo = {}, const Image& normal = {});
+
+/// kDenoiseCeilingFactor times the photo's 99.9% luminance quantile: the brightness above which
+/// a pixel is a highlight to keep (the same level the benchmarks clamp errors at).
+float denoise_ceiling(const Image& photo);
+inline constexpr float kDenoiseCeilingFactor = 8.0f;
 
 /// How far (pixels) the denoised change may reach beyond the pixels the raw change touches:
 /// enough to fill the holes of a noisy estimate, not enough to move the photo far away.
