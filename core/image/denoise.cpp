@@ -227,7 +227,8 @@ Image denoise_augmented(const Image& photo, const Image& augmented, const Image&
     check_size(photo, augmented, "the photo");
     if (!alpha.empty()) check_size(alpha, augmented, "alpha");
     // Where an object covers the photo the change is its radiance minus the photo: denoising
-    // that would smear the photo's own detail, so the covered part of the photo is left out.
+    // that would smear the photo's own detail, so the covered part of the photo is left out of
+    // what the filter sees.
     auto covered = [&](size_t i) { return alpha.empty() ? 0.0f : std::clamp(alpha[i].x, 0.0f, 1.0f); };
     Image signal(augmented.width(), augmented.height());
     for (size_t i = 0; i < signal.size(); ++i)
@@ -235,7 +236,10 @@ Image denoise_augmented(const Image& photo, const Image& augmented, const Image&
     Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo));
     for (size_t i = 0; i < out.size(); ++i) {
         const float a = covered(i);
-        out[i] = a == 0 && out[i] == vec3(0) ? photo[i] : (1.0f - a) * photo[i] + out[i];
+        if (a == 0)
+            out[i] = out[i] == vec3(0) ? photo[i] : photo[i] + out[i];
+        else
+            out[i] = a * augmented[i] + (1.0f - a) * (photo[i] + out[i]);
     }
     return out;
 }

@@ -34,13 +34,14 @@ bool denoiser_available(std::string* why = nullptr);
 Image denoise_change(const Image& change, const Image& albedo = {}, const Image& normal = {},
                      float ceiling = INFINITY);
 
-/// The augmented photograph with only the renderer's noise removed. `alpha` is the render's
-/// virtual coverage (its red channel is read; empty: none): the photo a virtual object covers
-/// is taken out before denoising, so `augmented - (1 - alpha) photo` is denoised (the signed
-/// change on real surfaces, the objects' own radiance where they cover the photo) and
-/// `(1 - alpha) photo` added back. Pixels where alpha is 0 and the denoised change is 0 keep
-/// the photo's bits. The ceiling is denoise_ceiling(photo). Same sizes required; throws as
-/// denoise_change.
+/// The augmented photograph with the noise of the change on real surfaces removed. `alpha` is
+/// the render's virtual coverage (red channel; empty: none). Pixels an object covers keep the
+/// raw render, in proportion to alpha: denoised, the mirror and glass of the sample came out
+/// worse against a truth (docs/method-notes.md, "Denoising"). The filter sees
+/// `augmented - (1 - alpha) photo`, so no photo detail behind an object enters it; the result
+/// is `alpha augmented + (1 - alpha) (photo + denoised)`. Pixels where alpha is 0 and the
+/// denoised change is 0 keep the photo's bits. The ceiling is denoise_ceiling(photo). Same
+/// sizes required; throws as denoise_change.
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
                         const Image& albedo = {}, const Image& normal = {});
 
