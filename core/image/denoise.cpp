@@ -32,6 +32,7 @@ constexpr const char* kHowToGet =
 
 struct Oidn {
     OIDNDevice (*newDevice)(int);
+    void (*setDeviceBool)(OIDNDevice, const char*, bool);
     void (*commitDevice)(OIDNDevice);
     int (*getDeviceError)(OIDNDevice, const char**);
     OIDNFilter (*newFilter)(OIDNDevice, const char*);
@@ -83,6 +84,7 @@ Oidn* open_library(const std::string& path, std::string& why) {
         ok = ok && fn;
     };
     get(o->newDevice, "oidnNewDevice");
+    get(o->setDeviceBool, "oidnSetDeviceBool");
     get(o->commitDevice, "oidnCommitDevice");
     get(o->getDeviceError, "oidnGetDeviceError");
     get(o->newFilter, "oidnNewFilter");
@@ -96,7 +98,12 @@ Oidn* open_library(const std::string& path, std::string& why) {
         return nullptr;  // left open: safer than unloading a library we know nothing of
     }
     o->device = o->newDevice(kDeviceTypeCpu);
-    if (o->device) o->commitDevice(o->device);
+    if (o->device) {
+        // No thread pinning: it makes TBB load its hwloc binding with RTLD_DEEPBIND, which
+        // AddressSanitizer refuses, and the renderer's own threads are not pinned either.
+        o->setDeviceBool(o->device, "setAffinity", false);
+        o->commitDevice(o->device);
+    }
     const char* msg = nullptr;
     if (!o->device || o->getDeviceError(o->device, &msg) != kErrorNone) {
         why = path + ": no CPU device: " + (msg ? msg : "unknown error");
@@ -109,7 +116,8 @@ Oidn* open_library(const std::string& path, std::string& why) {
 // tried again on the next call (DP_OIDN_LIBRARY may have changed).
 Oidn* library(std::string* why) {
     static std::mutex mutex;
-    static std::map<std::string, Oidn*> loaded;
+    // Never destroyed, like the libraries: what it points to stays reachable until exit.
+    static auto& loaded = *new std::map<std::string, Oidn*>;
     std::lock_guard<std::mutex> lock(mutex);
     std::string reasons;
     for (const std::string& path : candidates()) {
