@@ -61,7 +61,10 @@ std::vector<std::string> candidates() {
     out.push_back(std::string(DP_SOURCE_DIR) + "/.deps/oidn/lib/" + kLibraryName);
 #endif
     out.push_back(kLibraryName);  // the default loader path
-    return out;
+    std::vector<std::string> unique;
+    for (const std::string& c : out)
+        if (std::find(unique.begin(), unique.end(), c) == unique.end()) unique.push_back(c);
+    return unique;
 }
 
 // Opens `path` and makes a CPU device; nullptr with `why` set on failure.
@@ -119,17 +122,22 @@ Oidn* library(std::string* why) {
     // Never destroyed, like the libraries: what it points to stays reachable until exit.
     static auto& loaded = *new std::map<std::string, Oidn*>;
     std::lock_guard<std::mutex> lock(mutex);
-    std::string reasons;
+    const bool env = std::getenv("DP_OIDN_LIBRARY") && *std::getenv("DP_OIDN_LIBRARY");
+    std::string reasons;  // what failed beyond a file not being there
     for (const std::string& path : candidates()) {
         if (auto it = loaded.find(path); it != loaded.end()) return it->second;
         std::string reason;
         if (Oidn* o = open_library(path, reason)) return loaded[path] = o;
-        reasons += (reasons.empty() ? "" : "; ") + reason;
+        const bool absent = reason.ends_with("does not exist") || path == kLibraryName;
+        if (env || !absent) reasons += (reasons.empty() ? "" : "; ") + reason;
     }
     if (why) {
-        const bool env = std::getenv("DP_OIDN_LIBRARY") && *std::getenv("DP_OIDN_LIBRARY");
-        *why = std::string("Intel Open Image Denoise is missing") +
-               (env ? " (DP_OIDN_LIBRARY: " : " (") + reasons + "): " + kHowToGet;
+        *why = std::string("Intel Open Image Denoise is missing (") +
+               (env ? "DP_OIDN_LIBRARY: " + reasons
+                    : std::string(kLibraryName) + " is not in a .deps/oidn/lib above the program "
+                                                  "or in the source tree, nor on the loader path" +
+                          (reasons.empty() ? "" : "; " + reasons)) +
+               "): " + kHowToGet;
     }
     return nullptr;
 }
