@@ -20,10 +20,48 @@ for p in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
+else
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "install-deps: installing ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-sudo=""
-[ "$(id -u)" -eq 0 ] || sudo="sudo"
-echo "install-deps: installing ${missing[*]}"
-$sudo apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+
+# Intel Open Image Denoise for `render --denoise`: Debian 12 has no package, so the prebuilt CPU
+# libraries come from the pinned pyoidn wheel into .deps/oidn/lib (loaded at run time by
+# core/image/denoise.cpp; the wheel's own libtbb.so.12 is newer than Debian's and is kept).
+oidn_version=2.3.0
+oidn_dir="$(cd "$(dirname "$0")/.." && pwd)/.deps/oidn"
+if [ -f "$oidn_dir/lib/libOpenImageDenoise.so.2" ] && [ "$(cat "$oidn_dir/VERSION" 2>/dev/null)" = "$oidn_version" ]; then
+  echo "install-deps: Open Image Denoise $oidn_version present in .deps/oidn"
+else
+  echo "install-deps: fetching Open Image Denoise $oidn_version (pyoidn wheel) into .deps/oidn"
+  if ! python3 -m pip --version >/dev/null 2>&1; then
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    ${sudo:-} apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive ${sudo:-} apt-get install -y -qq --no-install-recommends python3-pip
+  fi
+  tmp="$(mktemp -d)"
+  trap 'rm -rf "$tmp"' EXIT
+  python3 -m pip download --quiet --no-deps --only-binary=:all: --platform manylinux2014_x86_64 \
+    -d "$tmp" "pyoidn==$oidn_version"
+  python3 -m zipfile -e "$tmp"/pyoidn-*.whl "$tmp/wheel"
+  src="$tmp/wheel/pyoidn/oidn/lib"
+  rm -rf "$oidn_dir" && mkdir -p "$oidn_dir/lib"
+  # The API library, its core (the trained weights), the CPU device and the TBB it was built with.
+  for f in libOpenImageDenoise.so.2 "libOpenImageDenoise_core.so.$oidn_version" \
+           "libOpenImageDenoise_device_cpu.so.$oidn_version" libtbb.so.12; do
+    cp "$src/$f" "$oidn_dir/lib/"
+  done
+  cp "$tmp"/wheel/pyoidn-*.dist-info/LICENSE "$oidn_dir/LICENSE" 2>/dev/null || true
+  echo "$oidn_version" > "$oidn_dir/VERSION"
+fi
+# Every library must resolve its dependencies (the CPU device needs the wheel's libtbb.so.12).
+for f in "$oidn_dir"/lib/*.so*; do
+  if LD_LIBRARY_PATH="$oidn_dir/lib" ldd "$f" | grep -q "not found"; then
+    echo "install-deps: $f has unresolved libraries:" >&2
+    LD_LIBRARY_PATH="$oidn_dir/lib" ldd "$f" | grep "not found" >&2
+    exit 1
+  fi
+done

@@ -8,6 +8,8 @@
 #include "commands.h"
 #include "common.h"
 #include "image/image_io.h"
+#include "image/image_metrics.h"
+#include "render/progressive.h"
 
 namespace dp::cli {
 
@@ -38,34 +40,59 @@ int run_convert(const ConvertOptions& o) {
 }
 
 struct CompareOptions {
-    std::string a, b, layer;
+    std::string a, b, layer, layer_a, changed, only;
 };
 
 int run_compare(const CompareOptions& o) {
-    auto load = [&](const std::string& path, const char* field) {
-        return o.layer.empty() ? load_input(path, field) : load_exr_layer(path, o.layer);
+    auto load = [&](const std::string& path, const char* field, const std::string& layer) {
+        return layer.empty() ? load_input(path, field) : load_exr_layer(path, layer);
     };
-    const Image a = load(o.a, "first image"), b = load(o.b, "second image");
+    const Image a = load(o.a, "first image", o.layer_a.empty() ? o.layer : o.layer_a),
+                b = load(o.b, "second image", o.layer);
     if (a.width() != b.width() || a.height() != b.height())
         throw InputError(o.b, "second image",
                          "size " + std::to_string(b.width()) + "x" + std::to_string(b.height()) +
                              " differs from " + o.a + "'s " + std::to_string(a.width()) + "x" +
                              std::to_string(a.height()));
+    // The pixels the objects change in b (the truth), and the ceiling values are clamped to, as
+    // the benchmarks count them (a mirror showing the sun would otherwise decide the figure).
+    std::vector<bool> mask;
+    double ceiling = INFINITY;
+    if (!o.changed.empty()) {
+        const Image photo = load_input(o.changed, "--changed");
+        if (photo.width() != b.width() || photo.height() != b.height())
+            throw InputError(o.changed, "--changed", "differs in size from " + o.b);
+        Image alpha;
+        try {
+            alpha = load_exr_layer(o.b, "alpha");
+        } catch (const std::exception&) {  // no alpha layer: the luminance change alone decides
+        }
+        if (!o.only.empty() && alpha.size() != b.size())
+            throw InputError(o.b, "--only", "needs the truth's alpha layer (render it with --layers)");
+        mask = changed_pixels(photo, b, alpha.size() == b.size() ? alpha : Image());
+        if (!o.only.empty())  // the objects' own pixels, or the real surfaces around them
+            for (size_t i = 0; i < mask.size(); ++i) mask[i] = mask[i] && (alpha[i].x > 0) == (o.only == "objects");
+        ceiling = kErrorCeilingFactor * luminance_quantile(photo, 0.999);
+    }
     double sum_sq = 0, max_diff = 0;
-    size_t differing = 0;
+    size_t differing = 0, compared = 0;
     for (size_t i = 0; i < a.size(); ++i) {
+        if (!mask.empty() && !mask[i]) continue;
+        ++compared;
         bool differs = false;
         for (int c = 0; c < 3; ++c) {
-            double d = std::abs(double(a[i][c]) - double(b[i][c]));
+            double d = std::abs(std::min(double(a[i][c]), ceiling) - std::min(double(b[i][c]), ceiling));
             sum_sq += d * d;
             max_diff = std::max(max_diff, d);
             differs |= d > 0;
         }
         differing += differs;
     }
-    const double rmse = a.size() ? std::sqrt(sum_sq / (3.0 * double(a.size()))) : 0.0;
-    std::printf("rmse %.9g  max_diff %.9g  differing_pixels %zu/%zu\n", rmse, max_diff, differing,
-                a.size());
+    const double rmse = compared ? std::sqrt(sum_sq / (3.0 * double(compared))) : 0.0;
+    std::printf("rmse %.9g  max_diff %.9g  differing_pixels %zu/%zu", rmse, max_diff, differing,
+                compared);
+    if (!mask.empty()) std::printf("  ceiling %.6g", ceiling);
+    std::printf("\n");
     return 0;
 }
 
@@ -87,6 +114,16 @@ Command add_compare_command(CLI::App& app) {
     sub->add_option("a", o->a, "First image")->required();
     sub->add_option("b", o->b, "Second image")->required();
     sub->add_option("--layer", o->layer, "Compare this EXR layer of both (e.g. dL, alpha, shadow)");
+    sub->add_option("--layer-a", o->layer_a,
+                    "This EXR layer of the first image instead (e.g. denoised against a truth's main)");
+    sub->add_option("--changed", o->changed,
+                    "Only the pixels the objects change in the second image (the truth): its "
+                    "luminance differs from this photo's by over 1%, or its alpha layer is above 0; "
+                    "values clamped at 8x the photo's 99.9% luminance quantile, as in `bench`");
+    sub->add_option("--only", o->only,
+                    "With --changed: only the pixels an object covers in the truth (objects) or "
+                    "the others (real)")
+        ->check(CLI::IsMember({"objects", "real"}));
     return {sub, [o] { return run_compare(*o); }};
 }
 

@@ -10,8 +10,10 @@
 #include "base/error.h"
 #include "commands.h"
 #include "common.h"
+#include "image/denoise.h"
 #include "image/image_io.h"
 #include "reference/standard_differential.h"
+#include "render/denoise_aovs.h"
 #include "render/progressive.h"
 #include "render/render_limits.h"
 #include "render/render_output.h"
@@ -30,7 +32,7 @@ struct RenderOptions {
     int64_t photons = 0;
     uint64_t seed = 0;
     float exposure = 0;
-    bool layers = false;
+    bool layers = false, denoise = false;
     CLI::Option *passes_opt = nullptr, *time_opt = nullptr, *photons_opt = nullptr,
                 *seed_opt = nullptr, *threads_opt = nullptr, *pixel_opt = nullptr;
 };
@@ -46,12 +48,36 @@ void apply_overrides(const RenderOptions& o, Project& p) {
     if (o.threads_opt->count()) p.render.threads = o.threads;
 }
 
-void write_result(const RenderOptions& o, ImageKind kind, const Image& photo, RenderUpdate& u) {
+/// The denoised augmented photo and change (docs/method-notes.md, "Denoising"): only the
+/// render's change is denoised, guided by albedo and normal from the pixel centres.
+struct Denoised {
+    Image image, dL;
+};
+
+Denoised denoise_result(const RenderScene& scene, const RenderUpdate& u, bool with_dL) {
+    const int w = u.image.width(), h = u.image.height();
+    DenoiseAovs aovs = denoise_aovs(scene);
+    const Image& photo = scene.photo();
+    const bool same = photo.width() == w && photo.height() == h;
+    if (!same) aovs = {resample(aovs.albedo, w, h), resample(aovs.normal, w, h)};
+    Denoised d;
+    d.image = denoise_augmented(same ? photo : resample(photo, w, h), u.image, u.alpha, aovs.albedo,
+                                aovs.normal);
+    if (with_dL) d.dL = denoise_change(u.dL, aovs.albedo, aovs.normal, denoise_ceiling(photo));
+    return d;
+}
+
+void write_result(const RenderOptions& o, ImageKind kind, const RenderScene& scene, RenderUpdate& u) {
+    std::optional<Denoised> denoised;
+    if (o.denoise) denoised = denoise_result(scene, u, kind == ImageKind::Exr);
     if (kind == ImageKind::Ldr) {
-        write_image(o.output, std::move(u.image), o.exposure);
+        write_image(o.output, denoised ? std::move(denoised->image) : std::move(u.image), o.exposure);
         return;
     }
-    for (const std::string& w : save_render_exr(o.output, u, photo, o.layers)) warn(o.output + ": " + w);
+    std::vector<ExrLayer> extra;
+    if (denoised) extra = {{"denoised", &denoised->image}, {"dL_denoised", &denoised->dL}};
+    for (const std::string& w : save_render_exr(o.output, u, scene.photo(), o.layers, extra))
+        warn(o.output + ": " + w);
 }
 
 int run_render(const RenderOptions& o) {
@@ -71,6 +97,11 @@ int run_render(const RenderOptions& o) {
         throw InputError("", "--focus-after", "only the path-traced methods (standard, standard-correlated) focus");
     if (!standard && o.samples_per_pass != 1)
         throw InputError("", "--samples-per-pass", "only the path-traced methods take camera samples per pass");
+    if (o.denoise && debug) throw InputError("", "--denoise", "the per-pixel debugger does not denoise");
+    if (o.denoise) {  // bad input, exit 2, before any pass
+        std::string why;
+        if (!denoiser_available(&why)) throw InputError("", "--denoise", why);
+    }
     if (standard && o.photons_opt->count())
         warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
 
@@ -81,7 +112,8 @@ int run_render(const RenderOptions& o) {
             refuse_overwriting_inputs(o.output, "--output", loaded.project, o.project);
             const Camera& camera = scene->camera();
             check_output_space(o.output, "--output",
-                               output_bytes(kind, camera.width(), camera.height(), o.layers ? 4 : 1));
+                               output_bytes(kind, camera.width(), camera.height(),
+                                            (o.layers ? 4 : 1) + (o.denoise && kind == ImageKind::Exr ? 2 : 0)));
         }
         if (!standard) check_render_limits(*scene, loaded.settings);  // bad input, exit 2, before any pass
         if (debug) return debug_pixel(scene, loaded.settings, o.project, px, py, o.pass);
@@ -117,12 +149,15 @@ int run_render(const RenderOptions& o) {
         if (sink.cancelled())
             warn("interrupted: writing the " + std::to_string(last->stats.passes) +
                  " passes done so far");
-        write_result(o, kind, scene->photo(), *last);
+        const double render_s = progress.elapsed();
+        write_result(o, kind, *scene, *last);
         const RenderStats& st = last->stats;
         const double skipped =
             st.pixels_total ? 1.0 - double(st.pixels_gathered) / double(st.pixels_total) : 0.0;
-        std::printf("wrote %s  passes %d  seconds %.2f  skipped pixels %.3f\n", o.output.c_str(),
-                    st.passes, progress.elapsed(), skipped);
+        std::printf("wrote %s  passes %d  seconds %.2f  skipped pixels %.3f", o.output.c_str(),
+                    st.passes, o.denoise ? render_s : progress.elapsed(), skipped);
+        if (o.denoise) std::printf("  denoise seconds %.2f", progress.elapsed() - render_s);
+        std::printf("\n");
         if (st.non_finite_samples > 0)
             warn(std::to_string(st.non_finite_samples) + " NaN/Inf samples were discarded");
         return sink.cancelled() ? kInterruptedExit : 0;
@@ -148,6 +183,9 @@ Command add_render_command(CLI::App& app) {
     o->threads_opt = sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")
                          ->check(kNonNegative);
     sub->add_flag("--layers", o->layers, "EXR only: also write layers dL, alpha and shadow");
+    sub->add_flag("--denoise", o->denoise,
+                  "Denoise the change with Open Image Denoise: EXR gets layers denoised and "
+                  "dL_denoised beside the raw image; PNG/JPEG is the denoised image");
     sub->add_option("--exposure", o->exposure, "PNG/JPEG only: exposure in stops")
         ->check(kFinite);
     sub->add_option("--method", o->method,

@@ -6,7 +6,7 @@
 namespace dp {
 
 std::vector<std::string> save_render_exr(const std::string& path, RenderUpdate& update, const Image& photo,
-                                         bool with_layers) {
+                                         bool with_layers, const std::vector<ExrLayer>& extra) {
     std::vector<std::string> warnings;
     auto clean = [&](Image& image, const std::string& layer) {
         if (const size_t n = replace_non_finite(image))
@@ -25,6 +25,7 @@ std::vector<std::string> save_render_exr(const std::string& path, RenderUpdate& 
         layers.push_back({"alpha", &update.alpha});
         layers.push_back({"shadow", &shadow});
     }
+    layers.insert(layers.end(), extra.begin(), extra.end());
     save_exr(path, layers);
     return warnings;
 }

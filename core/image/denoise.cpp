@@ -1,0 +1,263 @@
+#include "image/denoise.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <type_traits>
+#include <vector>
+
+#include "image/image_metrics.h"
+
+namespace dp {
+
+namespace {
+
+// The part of the OIDN 2.x C API used here (include/OpenImageDenoise/oidn.h); values checked
+// against that header, since Debian ships no OIDN headers.
+using OIDNDevice = void*;
+using OIDNFilter = void*;
+constexpr int kDeviceTypeCpu = 1;  // OIDN_DEVICE_TYPE_CPU
+constexpr int kFormatFloat3 = 3;   // OIDN_FORMAT_FLOAT3
+constexpr int kErrorNone = 0;      // OIDN_ERROR_NONE
+
+constexpr const char* kLibraryName = "libOpenImageDenoise.so.2";
+constexpr const char* kHowToGet =
+    "run scripts/install-deps.sh, or set DP_OIDN_LIBRARY=/path/libOpenImageDenoise.so.2";
+
+struct Oidn {
+    OIDNDevice (*newDevice)(int);
+    void (*setDeviceBool)(OIDNDevice, const char*, bool);
+    void (*commitDevice)(OIDNDevice);
+    int (*getDeviceError)(OIDNDevice, const char**);
+    OIDNFilter (*newFilter)(OIDNDevice, const char*);
+    void (*setSharedFilterImage)(OIDNFilter, const char*, void*, int, size_t, size_t, size_t,
+                                 size_t, size_t);
+    void (*setFilterBool)(OIDNFilter, const char*, bool);
+    void (*commitFilter)(OIDNFilter);
+    void (*executeFilter)(OIDNFilter);
+    void (*releaseFilter)(OIDNFilter);
+    OIDNDevice device = nullptr;
+    std::mutex run;  // one filter at a time on the shared device
+};
+
+std::vector<std::string> candidates() {
+    if (const char* env = std::getenv("DP_OIDN_LIBRARY"); env && *env) return {env};
+    namespace fs = std::filesystem;
+    std::vector<std::string> out;
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec)  // build/app/cli/diffphoton and build/tests/unit/x reach the repository's .deps
+        for (fs::path d = exe.parent_path(); !d.empty(); d = d.parent_path()) {
+            out.push_back((d / ".deps/oidn/lib" / kLibraryName).string());
+            if (d == d.root_path()) break;
+        }
+#ifdef DP_SOURCE_DIR
+    out.push_back(std::string(DP_SOURCE_DIR) + "/.deps/oidn/lib/" + kLibraryName);
+#endif
+    out.push_back(kLibraryName);  // the default loader path
+    std::vector<std::string> unique;
+    for (const std::string& c : out)
+        if (std::find(unique.begin(), unique.end(), c) == unique.end()) unique.push_back(c);
+    return unique;
+}
+
+// Opens `path` and makes a CPU device; nullptr with `why` set on failure.
+Oidn* open_library(const std::string& path, std::string& why) {
+    const bool bare = path.find('/') == std::string::npos;
+    if (!bare && !std::filesystem::exists(path)) {
+        why = path + " does not exist";
+        return nullptr;
+    }
+    void* lib = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+        const char* e = dlerror();
+        why = e ? e : path + " cannot be loaded";
+        return nullptr;
+    }
+    auto o = std::make_unique<Oidn>();
+    bool ok = true;
+    auto get = [&](auto& fn, const char* name) {
+        fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(dlsym(lib, name));
+        ok = ok && fn;
+    };
+    get(o->newDevice, "oidnNewDevice");
+    get(o->setDeviceBool, "oidnSetDeviceBool");
+    get(o->commitDevice, "oidnCommitDevice");
+    get(o->getDeviceError, "oidnGetDeviceError");
+    get(o->newFilter, "oidnNewFilter");
+    get(o->setSharedFilterImage, "oidnSetSharedFilterImage");
+    get(o->setFilterBool, "oidnSetFilterBool");
+    get(o->commitFilter, "oidnCommitFilter");
+    get(o->executeFilter, "oidnExecuteFilter");
+    get(o->releaseFilter, "oidnReleaseFilter");
+    if (!ok) {
+        why = path + " is not Open Image Denoise 2.x (a function is missing)";
+        return nullptr;  // left open: safer than unloading a library we know nothing of
+    }
+    o->device = o->newDevice(kDeviceTypeCpu);
+    if (o->device) {
+        // No thread pinning: it makes TBB load its hwloc binding with RTLD_DEEPBIND, which
+        // AddressSanitizer refuses, and the renderer's own threads are not pinned either.
+        o->setDeviceBool(o->device, "setAffinity", false);
+        o->commitDevice(o->device);
+    }
+    const char* msg = nullptr;
+    if (!o->device || o->getDeviceError(o->device, &msg) != kErrorNone) {
+        why = path + ": no CPU device: " + (msg ? msg : "unknown error");
+        return nullptr;
+    }
+    return o.release();  // kept for the life of the process, like the library
+}
+
+// The loaded library for the current candidates; the first that loads wins. A failed load is
+// tried again on the next call (DP_OIDN_LIBRARY may have changed).
+Oidn* library(std::string* why) {
+    static std::mutex mutex;
+    // Never destroyed, like the libraries: what it points to stays reachable until exit.
+    static auto& loaded = *new std::map<std::string, Oidn*>;
+    std::lock_guard<std::mutex> lock(mutex);
+    const bool env = std::getenv("DP_OIDN_LIBRARY") && *std::getenv("DP_OIDN_LIBRARY");
+    std::string reasons;  // what failed beyond a file not being there
+    for (const std::string& path : candidates()) {
+        if (auto it = loaded.find(path); it != loaded.end()) return it->second;
+        std::string reason;
+        if (Oidn* o = open_library(path, reason)) return loaded[path] = o;
+        const bool absent = reason.ends_with("does not exist") || path == kLibraryName;
+        if (env || !absent) reasons += (reasons.empty() ? "" : "; ") + reason;
+    }
+    if (why) {
+        *why = std::string("Intel Open Image Denoise is missing (") +
+               (env ? "DP_OIDN_LIBRARY: " + reasons
+                    : std::string(kLibraryName) + " is not in a .deps/oidn/lib above the program "
+                                                  "or in the source tree, nor on the loader path" +
+                          (reasons.empty() ? "" : "; " + reasons)) +
+               "): " + kHowToGet;
+    }
+    return nullptr;
+}
+
+// One run of the RT filter on a non-negative HDR image.
+Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal) {
+    const size_t w = size_t(color.width()), h = size_t(color.height());
+    Image out(color.width(), color.height());
+    std::lock_guard<std::mutex> lock(o.run);
+    OIDNFilter f = o.newFilter(o.device, "RT");
+    if (!f) throw std::runtime_error("Open Image Denoise: cannot make the RT filter");
+    o.setSharedFilterImage(f, "color", color.data(), kFormatFloat3, w, h, 0, 0, 0);
+    o.setSharedFilterImage(f, "output", out.data(), kFormatFloat3, w, h, 0, 0, 0);
+    if (!albedo.empty()) {
+        o.setSharedFilterImage(f, "albedo", albedo.data(), kFormatFloat3, w, h, 0, 0, 0);
+        o.setSharedFilterImage(f, "normal", normal.data(), kFormatFloat3, w, h, 0, 0, 0);
+        o.setFilterBool(f, "cleanAux", true);  // one ray per pixel centre: no noise to remove
+    }
+    o.setFilterBool(f, "hdr", true);
+    o.commitFilter(f);
+    o.executeFilter(f);
+    o.releaseFilter(f);
+    const char* msg = nullptr;
+    if (o.getDeviceError(o.device, &msg) != kErrorNone)
+        throw std::runtime_error(std::string("Open Image Denoise: ") +
+                                 (msg ? msg : "unknown error"));
+    return out;
+}
+
+void check_size(const Image& a, const Image& b, const char* what) {
+    if (a.width() != b.width() || a.height() != b.height())
+        throw std::invalid_argument(std::string("denoise: ") + what +
+                                    " differs in size from the change");
+}
+
+}  // namespace
+
+bool denoiser_available(std::string* why) { return library(why) != nullptr; }
+
+float denoise_ceiling(const Image& photo) {
+    return kDenoiseCeilingFactor * std::max(luminance_quantile(photo, 0.999), 1e-6f);
+}
+
+Image denoise_change(const Image& change, const Image& albedo_in, const Image& normal_in,
+                     float ceiling) {
+    std::string why;
+    Oidn* o = library(&why);
+    if (!o) throw DenoiserUnavailable(why);
+    if (albedo_in.empty() != normal_in.empty())
+        throw std::invalid_argument("denoise: give both albedo and normal, or neither");
+    if (!albedo_in.empty()) {
+        check_size(albedo_in, change, "the albedo");
+        check_size(normal_in, change, "the normal");
+    }
+    const int W = change.width(), H = change.height();
+    if (change.empty()) return change;
+
+    // The RT filter expects non-negative radiance, and the change is signed. Its positive and
+    // negative parts are denoised apart and subtracted: an offset large enough for the deepest
+    // negative outlier would make the noise look small next to the offset to the filter's HDR
+    // transfer (so it would smooth less), and its size would depend on one pixel.
+    Image pos(W, H), neg(W, H);
+    bool any_pos = false, any_neg = false;
+    std::vector<uint8_t> highlight(change.size(), 0);
+    for (size_t i = 0; i < change.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            float v = std::isfinite(change[i][c]) ? change[i][c] : 0.0f;
+            if (std::abs(v) > ceiling) highlight[i] = 1, v = std::clamp(v, -ceiling, ceiling);
+            pos[i][c] = std::max(v, 0.0f);
+            neg[i][c] = std::max(-v, 0.0f);
+            any_pos |= v > 0;
+            any_neg |= v < 0;
+        }
+    Image albedo = albedo_in, normal = normal_in;  // shared with the filter, which wants non-const
+    for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
+    const Image dpos = any_pos ? run_filter(*o, std::move(pos), albedo, normal) : Image(W, H);
+    const Image dneg = any_neg ? run_filter(*o, std::move(neg), albedo, normal) : Image(W, H);
+
+    // Support: the raw change's non-zero pixels grown by kDenoiseSupport (separable max).
+    std::vector<uint8_t> row(size_t(W) * H, 0), support(size_t(W) * H, 0);
+    const int r = kDenoiseSupport;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0, last = -r - 1; x < W + r; ++x) {
+            if (x < W && change.at(x, y) != vec3(0)) last = x;
+            if (x - r >= 0 && x - r - last <= r) row[size_t(y) * W + x - r] = 1;
+        }
+    for (int x = 0; x < W; ++x)
+        for (int y = 0, last = -r - 1; y < H + r; ++y) {
+            if (y < H && row[size_t(y) * W + x]) last = y;
+            if (y - r >= 0 && y - r - last <= r) support[size_t(y - r) * W + x] = 1;
+        }
+    Image out(W, H);
+    for (size_t i = 0; i < out.size(); ++i) {
+        if (!support[i]) continue;
+        const vec3 v = highlight[i] ? change[i] : dpos[i] - dneg[i];
+        for (int c = 0; c < 3; ++c) out[i][c] = std::isfinite(v[c]) ? v[c] : 0.0f;
+    }
+    return out;
+}
+
+Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
+                        const Image& albedo, const Image& normal) {
+    check_size(photo, augmented, "the photo");
+    if (!alpha.empty()) check_size(alpha, augmented, "alpha");
+    // Where an object covers the photo the change is its radiance minus the photo: denoising
+    // that would smear the photo's own detail, so the covered part of the photo is left out of
+    // what the filter sees.
+    auto covered = [&](size_t i) { return alpha.empty() ? 0.0f : std::clamp(alpha[i].x, 0.0f, 1.0f); };
+    Image signal(augmented.width(), augmented.height());
+    for (size_t i = 0; i < signal.size(); ++i)
+        signal[i] = augmented[i] - (1.0f - covered(i)) * photo[i];
+    Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo));
+    for (size_t i = 0; i < out.size(); ++i) {
+        const float a = covered(i);
+        if (a == 0)
+            out[i] = out[i] == vec3(0) ? photo[i] : photo[i] + out[i];
+        else
+            out[i] = a * augmented[i] + (1.0f - a) * (photo[i] + out[i]);
+    }
+    return out;
+}
+
+}  // namespace dp

@@ -1,0 +1,57 @@
+#pragma once
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "image/image.h"
+
+namespace dp {
+
+/// Intel Open Image Denoise (2.x, CPU device) applied to the change a render makes to the photo,
+/// never to the photo itself. The library is loaded at run time (dlopen), from the first of:
+/// $DP_OIDN_LIBRARY (only that file when set), `.deps/oidn/lib/libOpenImageDenoise.so.2` in the
+/// executable's folder or one above it, the same in the source tree, the default loader path.
+
+/// Thrown when the library cannot be loaded; the message says how to get it.
+class DenoiserUnavailable : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// True when the library loads and a CPU device can be made. Otherwise false, and `why` (if not
+/// null) tells what failed and how to get the library (scripts/install-deps.sh, or
+/// DP_OIDN_LIBRARY=/path/libOpenImageDenoise.so.2).
+bool denoiser_available(std::string* why = nullptr);
+
+/// Denoises a signed HDR change (negative shadows, positive caustics and reflections) with the
+/// RT filter. `albedo` and `normal` are noise-free per-pixel guides of the same size (or both
+/// empty for none); see denoise_aovs in render/denoise_aovs.h. Pixels farther than
+/// kDenoiseSupport pixels from any non-zero pixel of `change` come back exactly 0, so photo plus
+/// the result leaves them bit-exact. A pixel with a channel beyond +-`ceiling` (the sun seen in
+/// a mirror) is not noise: it keeps its raw value, and the filter sees it clamped so that its
+/// energy does not spread. Every value returned is finite. Throws DenoiserUnavailable, or
+/// std::invalid_argument for mismatched sizes, std::runtime_error when the library fails.
+Image denoise_change(const Image& change, const Image& albedo = {}, const Image& normal = {},
+                     float ceiling = INFINITY);
+
+/// The augmented photograph with the noise of the change on real surfaces removed. `alpha` is
+/// the render's virtual coverage (red channel; empty: none). Pixels an object covers keep the
+/// raw render, in proportion to alpha: denoised, the mirror and glass of the sample came out
+/// worse against a truth (docs/method-notes.md, "Denoising"). The filter sees
+/// `augmented - (1 - alpha) photo`, so no photo detail behind an object enters it; the result
+/// is `alpha augmented + (1 - alpha) (photo + denoised)`. Pixels where alpha is 0 and the
+/// denoised change is 0 keep the photo's bits. The ceiling is denoise_ceiling(photo). Same
+/// sizes required; throws as denoise_change.
+Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
+                        const Image& albedo = {}, const Image& normal = {});
+
+/// kDenoiseCeilingFactor times the photo's 99.9% luminance quantile: the brightness above which
+/// a pixel is a highlight to keep (the same level the benchmarks clamp errors at).
+float denoise_ceiling(const Image& photo);
+inline constexpr float kDenoiseCeilingFactor = 8.0f;
+
+/// How far (pixels) the denoised change may reach beyond the pixels the raw change touches:
+/// enough to fill the holes of a noisy estimate, not enough to move the photo far away.
+inline constexpr int kDenoiseSupport = 8;
+
+}  // namespace dp
