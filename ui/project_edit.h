@@ -18,9 +18,6 @@ enum class Change {
 /// Classifies the difference between two projects (symmetric, so undo classifies as the edit).
 Change classify(const Project& before, const Project& after);
 
-/// A new object of the given kind resting on the ground (y = 0) at `position` (x, z used).
-VirtualObject make_object(Shape::Kind kind, const vec3& position, const std::string& name);
-
 /// A name not yet used by the project's objects ("sphere", "sphere 2", ...).
 std::string unique_name(const Project& project, const std::string& base);
 
