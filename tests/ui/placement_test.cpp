@@ -7,7 +7,9 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QCursor>
+#include <QFile>
 #include <QListWidget>
+#include <QStatusBar>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QToolButton>
@@ -36,6 +38,7 @@ private Q_SLOTS:
     void gYFollowsTheMouseUpTheVerticalOnly();
     void endDropsARaisedObjectOntoTheSurfaceBelow();
     void uniformLockScalesAllThreeFromOneField();
+    void importedMeshesGetTheirUnitAndFitTheView();
 
 private:
     void press(int key, Qt::KeyboardModifiers modifiers = {});
@@ -189,11 +192,12 @@ void PlacementTest::twoNewSpheresRestOnTheGroundApartSizedByTheView() {
         QVERIFY2(offset < 3.0f, qPrintable(QString::number(offset)));
     }
     // A narrower view sees less floor: the next sphere is smaller.
+    const float first = a.shape.radius;  // `p` is replaced by the next edit
     Project narrow = p;
     narrow.camera.vfov_deg = 20;
     w_->document()->edit("narrow", narrow);
     QTest::mouseClick(button, Qt::LeftButton);
-    QVERIFY(w_->document()->project().objects.back().shape.radius < 0.75f * a.shape.radius);
+    QVERIFY(w_->document()->project().objects.back().shape.radius < 0.75f * first);
 }
 
 void PlacementTest::sTypedTwoDoublesTheScaleAndTheObjectStaysOnTheGround() {
@@ -326,6 +330,40 @@ void PlacementTest::uniformLockScalesAllThreeFromOneField() {
     QVERIFY(glm::length(object(1).transform.scale - vec3(6, 3, 3)) < 1e-5f);
     // Scaled about its base: still resting on the floor.
     QVERIFY(std::abs(object_bottom(w_->document()->project(), object(1))) < 1e-5f);
+}
+
+void PlacementTest::importedMeshesGetTheirUnitAndFitTheView() {
+    // A cube 2700 units across: millimetres, so 2.7 m, standing on the floor.
+    auto cube = [this](const QString& name, double size) {
+        const QString path = dir_->filePath(name);
+        QFile f(path);
+        if (!f.open(QIODevice::WriteOnly)) return QString();
+        for (int i = 0; i < 8; ++i)
+            f.write(QString("v %1 %2 %3\n")
+                        .arg(i & 1 ? size : 0)
+                        .arg(i & 2 ? size : 0)
+                        .arg(i & 4 ? size : 0)
+                        .toUtf8());
+        f.write("f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n");
+        return path;
+    };
+    QVERIFY(w_->importMesh(cube("chair.obj", 2700)));
+    const Project& p = w_->document()->project();
+    const VirtualObject chair = p.objects.back();  // a copy: the next import replaces `p`
+    QVERIFY(chair.transform.scale == vec3(0.001f));
+    QVERIFY(std::abs(object_bottom(p, chair)) < 1e-4f);
+    QVERIFY(w_->statusBar()->currentMessage().contains("millimetres"));
+    // A million units is far larger than the view even in millimetres: fitted to it.
+    QVERIFY(w_->importMesh(cube("city.obj", 1e6)));
+    const float fit = view_object_size(w_->document()->project(), w_->viewport()->viewCamera());
+    const VirtualObject city = w_->document()->project().objects.back();
+    QVERIFY(std::abs(city.transform.scale.x * 1e6f - fit) < 1e-3f * fit);
+    QVERIFY(w_->statusBar()->currentMessage().contains("scaled to"));
+    vec3 c, oc;
+    float r, orad;
+    world_sphere(w_->document()->project(), city, c, r);
+    world_sphere(w_->document()->project(), chair, oc, orad);
+    QVERIFY(glm::length(c - oc) >= r + orad - 1e-4f);
 }
 
 QTEST_MAIN(PlacementTest)
