@@ -96,6 +96,84 @@ Transform drag_transform(GizmoMode mode, const Transform& start, const Camera& c
     return t;
 }
 
+vec3 rotate_about_world_axis(const vec3& e, int axis, float degrees) {
+    // M = Rz Ry Rx: a world turn about Z composes with Rz; about Y it commutes past Rz = I; about
+    // X past Rz = Ry = I. Those cases stay exact (no round trip through a matrix).
+    vec3 out = e;
+    if (axis == 2 || (axis == 1 && e.z == 0) || (axis == 0 && e.y == 0 && e.z == 0)) {
+        out[axis] = std::remainder(e[axis] + degrees, 360.0f);
+        return out;
+    }
+    Transform a, b;
+    a.rotation_deg = e;
+    b.rotation_deg[axis] = degrees;
+    const glm::mat3 r = glm::mat3(b.matrix()) * glm::mat3(a.matrix());
+    // r = Rz(c) Ry(b) Rx(a), glm's m[col][row].
+    const float sb = std::clamp(-r[0][2], -1.0f, 1.0f);
+    const float by = std::asin(sb);
+    float ax, cz;
+    if (std::abs(sb) < 0.99999f) {
+        ax = std::atan2(r[1][2], r[2][2]);
+        cz = std::atan2(r[0][1], r[0][0]);
+    } else {  // gimbal lock: only a + c (or a - c) is defined
+        ax = 0;
+        cz = std::atan2(-r[1][0], r[1][1]);
+    }
+    return vec3(glm::degrees(ax), glm::degrees(by), glm::degrees(cz));
+}
+
+Transform typed_transform(GizmoMode mode, const Transform& start, int axis, float value) {
+    Transform t = start;
+    switch (mode) {
+        case GizmoMode::Translate:
+            t.translation[axis < 0 ? 0 : axis] += value;
+            break;
+        case GizmoMode::Rotate:
+            t.rotation_deg =
+                rotate_about_world_axis(start.rotation_deg, axis < 0 ? 1 : axis, value);
+            break;
+        case GizmoMode::Scale:
+            if (axis < 0)
+                t.scale = start.scale * value;
+            else
+                t.scale[axis] = start.scale[axis] * value;
+            break;
+    }
+    return t;
+}
+
+Transform axis_drag_transform(GizmoMode mode, const Transform& start, const Camera& camera,
+                              vec2 from, vec2 to, int axis, const Project* snap) {
+    if (axis < 0) return drag_transform(mode, start, camera, from, to, snap);
+    Transform t = start;
+    switch (mode) {
+        case GizmoMode::Translate: {
+            // The axis's image through the object: pixels per metre along it.
+            vec3 dir(0);
+            dir[axis] = 1;
+            vec2 a, b;
+            if (!camera.project(start.translation, a) ||
+                !camera.project(start.translation + 0.1f * dir, b))
+                break;
+            const vec2 perMetre = (b - a) / 0.1f;
+            const float len2 = glm::dot(perMetre, perMetre);
+            if (len2 < 1e-6f) break;  // the axis points at the camera
+            t.translation[axis] += glm::dot(to - from, perMetre) / len2;
+            break;
+        }
+        case GizmoMode::Rotate:
+            t.rotation_deg =
+                rotate_about_world_axis(start.rotation_deg, axis, 0.5f * (to.x - from.x));
+            break;
+        case GizmoMode::Scale: {
+            const Transform u = drag_transform(mode, start, camera, from, to);
+            t.scale[axis] = start.scale[axis] * (u.scale.x / start.scale.x);
+            break;
+        }
+    }
+    return t;
+}
+
 Camera view_camera(const Project& project, int photo_w, int photo_h, int width, int height) {
     return scaled_camera(project.camera, photo_w, photo_h, width, height).build(width, height);
 }

@@ -28,6 +28,24 @@ float support_height(const Project& project, float x, float z);
 Transform drag_transform(GizmoMode mode, const Transform& start, const Camera& camera, vec2 from,
                          vec2 to, const Project* snap = nullptr);
 
+/// Euler angles (degrees, X then Y then Z as in Transform) of the rotation `euler_deg` followed
+/// by a turn of `degrees` about the world axis `axis` (0 X, 1 Y, 2 Z). A turn about Z, or
+/// about an axis the rotation has not left yet, just adds to that angle.
+vec3 rotate_about_world_axis(const vec3& euler_deg, int axis, float degrees);
+
+/// The keyed transform's typed value applied to `start`: Translate moves `value` metres along
+/// `axis` (X when -1), Rotate turns `value` degrees about the world `axis` (the vertical when
+/// -1), Scale multiplies the scale by `value` (all three components when -1, else only
+/// `axis`'s).
+Transform typed_transform(GizmoMode mode, const Transform& start, int axis, float value);
+
+/// drag_transform constrained to the world axis `axis` (0 X, 1 Y, 2 Z; -1: unconstrained,
+/// drag_transform itself): Translate moves along the axis by the cursor's travel along the
+/// axis's image on screen, Rotate turns about it (0.5 degree per pixel across), Scale scales
+/// only that component.
+Transform axis_drag_transform(GizmoMode mode, const Transform& start, const Camera& camera,
+                              vec2 from, vec2 to, int axis, const Project* snap = nullptr);
+
 /// The camera the viewport draws with: the project's camera for the render size.
 Camera view_camera(const Project& project, int photo_w, int photo_h, int width, int height);
 

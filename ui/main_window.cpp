@@ -191,8 +191,20 @@ void MainWindow::createActions() {
              [this, i] { startModal(GizmoMode(i)); });
     make("keyMap", tr("&Keyboard Shortcuts"), QKeySequence(tr("F1")),
          tr("Every key the studio answers to"), [this] { showKeyMap(); });
-    make("hide", tr("Hide/Show"), QKeySequence(tr("H")), tr("Hide or show the selected object"),
-         [this] { toggleSelectedVisible(); });
+    make("hide", tr("Hide/Show"), QKeySequence(tr("Shift+H")),
+         tr("Hide or show the selected object"), [this] { toggleSelectedVisible(); });
+    make("onGround", tr("On &Ground"), QKeySequence(tr("End")),
+         tr("Drop the selected object onto the real surface below it"),
+         [this] { dropSelectedToSurface(); });
+    QAction* overlays =
+        make("overlays", tr("&Overlays"), QKeySequence(tr("H")),
+             tr("Grid, proxy wireframes and object outlines over the augmented and dL views"),
+             [this](bool on) { viewport_->setOverlaysVisible(on); });
+    overlays->setCheckable(true);
+    QAction* exportExposure = make(
+        "exportExposure", tr("Apply Display Exposure to Exports"), {},
+        tr("PNG and JPEG exports at the display exposure instead of the render's own 0 EV"), [] {});
+    exportExposure->setCheckable(true);
     make("fit", tr("Fit View"), QKeySequence(tr("Home")), tr("Fit the render in the window"),
          [this] { viewport_->fitView(); });
 
@@ -235,7 +247,7 @@ void MainWindow::createMenus() {
     recentMenu_->setToolTipsVisible(true);
     file->addActions({action("save"), action("saveAs")});
     file->addSeparator();
-    file->addAction(action("export"));
+    file->addActions({action("export"), action("exportExposure")});
     file->addSeparator();
     file->addAction(action("quit"));
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
@@ -243,11 +255,19 @@ void MainWindow::createMenus() {
     edit->addSeparator();
     QMenu* add = edit->addMenu(tr("&Add"));
     add->addActions({action("addSphere"), action("addBox"), action("addPlane")});
-    edit->addActions({action("import"), action("duplicate"), action("delete"), action("hide")});
-    QMenu* transform = edit->addMenu(tr("&Transform"));
+    edit->addAction(action("import"));
+    QMenu* object = menuBar()->addMenu(tr("&Object"));
+    object->setObjectName("objectMenu");
+    QMenu* transform = object->addMenu(tr("&Transform"));
     transform->addActions({action("grab"), action("rotate"), action("scale")});
+    object->addAction(action("onGround"));
+    object->addSeparator();
+    object->addActions({action("duplicate"), action("delete"), action("hide")});
     QMenu* view = menuBar()->addMenu(tr("&View"));
+    view->setObjectName("viewMenu");
     view->addActions(viewGroup_->actions());
+    view->addSeparator();
+    view->addAction(action("overlays"));
     view->addSeparator();
     view->addAction(action("fit"));
     view->addSeparator();
@@ -332,15 +352,26 @@ void MainWindow::createToolbar() {
     bar->addSeparator();
     bar->addWidget(new QLabel(tr(" Exposure ")));
     exposure_ = new QSlider(Qt::Horizontal);
+    exposure_->setObjectName("exposureSlider");
     exposure_->setRange(-80, 80);
     exposure_->setMaximumWidth(180);
-    exposure_->setToolTip(tr("Display exposure in stops (PNG export uses it too)"));
+    exposure_->setToolTip(
+        tr("Display exposure in stops, kept in the project (exports use it "
+           "only with File > Apply Display Exposure to Exports)"));
+    // One undo step per stroke of the slider.
+    connect(exposure_, &QSlider::sliderPressed, this,
+            [this] { exposureKey_ = doc_->newMergeKey(); });
+    connect(exposure_, &QSlider::sliderReleased, this, [this] { exposureKey_ = -1; });
     connect(exposure_, &QSlider::valueChanged, this,
-            [this](int v) {
-                viewport_->setExposure(float(v) / 10.0f);
-                renderer_->setDisplayExposure(v / 10.0);
-            });
+            [this](int v) { setDisplayExposure(float(v) / 10.0f); });
     bar->addWidget(exposure_);
+    exposureLabel_ = new QLabel;
+    exposureLabel_->setObjectName("exposureLabel");
+    exposureLabel_->setMinimumWidth(60);
+    exposureLabel_->setToolTip(tr("Display exposure in stops (EV)"));
+    bar->addWidget(exposureLabel_);
+    connect(doc_, &Document::changed, this, [this] { showDisplaySettings(); });
+    showDisplaySettings();
 }
 
 void MainWindow::connectRenderer() {
@@ -412,62 +443,6 @@ void MainWindow::endInteraction() {
     editedWhileInteractive_ = false;
 }
 
-void MainWindow::addObject(Shape::Kind kind) {
-    if (!doc_->isOpen()) return;
-    Project p = doc_->project();
-    // New objects appear where the camera looks, on the ground.
-    vec3 at = p.camera.model == CameraSpec::Model::LookAt ? p.camera.target : vec3(0);
-    p.objects.push_back(make_object(kind, at, unique_name(p, shape_kind_name(kind))));
-    doc_->edit(tr("Add %1").arg(shape_kind_name(kind)), p);
-    doc_->select(int(p.objects.size()) - 1);
-}
-
-void MainWindow::duplicateSelected() {
-    const int sel = doc_->selected();
-    if (sel < 0) return;
-    Project p = doc_->project();
-    VirtualObject copy = p.objects[size_t(sel)];
-    copy.name = unique_name(p, copy.name);
-    vec3 c;
-    float r;
-    bounding_sphere(copy, c, r);
-    copy.transform.translation.x += 2.2f * r;  // beside the original, not inside it
-    p.objects.push_back(copy);
-    doc_->edit(tr("Duplicate object"), p);
-    doc_->select(int(p.objects.size()) - 1);
-}
-
-void MainWindow::deleteSelected() {
-    const int sel = doc_->selected();
-    if (sel < 0) return;
-    Project p = doc_->project();
-    p.objects.erase(p.objects.begin() + sel);
-    doc_->select(-1);
-    doc_->edit(tr("Delete object"), p);
-}
-
-void MainWindow::toggleSelectedVisible() {
-    const int sel = doc_->selected();
-    if (sel < 0) return;
-    Project p = doc_->project();
-    p.objects[size_t(sel)].visible = !p.objects[size_t(sel)].visible;
-    doc_->edit(p.objects[size_t(sel)].visible ? tr("Show object") : tr("Hide object"), p);
-}
-
-void MainWindow::startModal(GizmoMode mode) {
-    if (viewport_->transforming()) return;
-    if (doc_->selected() < 0) {
-        statusBar()->showMessage(tr("Select an object first (click it in the viewport or the list)"),
-                                 5000);
-        return;
-    }
-    commitTypedValue();  // a value typed into a field counts before the object moves
-    if (viewport_->startModalTransform(mode))
-        statusBar()->showMessage(tr("Move the mouse; click or Enter to confirm, Esc or right "
-                                    "click to cancel"),
-                                 5000);
-}
-
 void MainWindow::commitTypedValue() {
     if (auto* field = qobject_cast<QAbstractSpinBox*>(QApplication::focusWidget()))
         field->interpretText();
@@ -479,10 +454,11 @@ void MainWindow::showKeyMap() {
         rows += QStringLiteral("<tr><td><b>%1</b></td><td>%2</td></tr>")
                     .arg(keys.toHtmlEscaped(), what.toHtmlEscaped());
     };
-    const char* names[] = {"new",    "open",      "save",     "saveAs",  "export", "quit",
-                           "undo",   "redo",      "grab",     "rotate",  "scale",  "delete",
-                           "hide",   "duplicate", "import",   "viewPhoto", "viewAugmented",
-                           "viewdL", "fit",       "keyMap"};
+    const char* names[] = {"new",      "open",      "save",          "saveAs",    "export",
+                           "quit",     "undo",      "redo",          "grab",      "rotate",
+                           "scale",    "delete",    "hide",          "duplicate", "import",
+                           "onGround", "viewPhoto", "viewAugmented", "viewdL",    "overlays",
+                           "fit",      "keyMap"};
     for (const char* name : names) {
         QAction* a = action(name);
         if (!a || a->shortcuts().isEmpty()) continue;
@@ -491,6 +467,8 @@ void MainWindow::showKeyMap() {
         row(keys.join(QStringLiteral(", ")), a->text().remove(QLatin1Char('&')));
     }
     row(tr("Enter / left click"), tr("Confirm a G / R / S transform"));
+    row(tr("X / Y / Z during G / R / S"), tr("Keep to that world axis (again: free)"));
+    row(tr("Digits during G / R / S"), tr("Type the value: metres, degrees or a factor"));
     row(tr("Esc / right click"), tr("Cancel a transform or a pick"));
     row(tr("Left drag"), tr("Transform the object in the toolbar's mode"));
     row(tr("Wheel / middle drag"), tr("Zoom / pan the view"));
@@ -505,10 +483,6 @@ void MainWindow::showKeyMap() {
     box->setTextFormat(Qt::RichText);
     box->setAttribute(Qt::WA_DeleteOnClose);
     box->open();
-}
-
-void MainWindow::setDisplayExposure(float stops) {
-    exposure_->setValue(int(std::lround(stops * 10)));
 }
 
 void MainWindow::error(const QString& title, const QString& text) {

@@ -54,8 +54,17 @@ public:
     Autosave* autosave() const { return autosave_; }
     QAction* action(const QString& objectName) const;
 
-    /// Display exposure in stops (the toolbar slider; PNG export uses it).
+    /// Display exposure in stops: the project's `display.exposure`, set as one undoable edit
+    /// (the toolbar slider and its label show it). Exports apply it only when asked
+    /// (setExportAppliesExposure).
     void setDisplayExposure(float stops);
+    float displayExposure() const;
+    /// PNG / JPEG exports at the display exposure (on) or at 0 EV, the render as it is (off,
+    /// the default). File > Apply Display Exposure to Exports.
+    void setExportAppliesExposure(bool on);
+    bool exportAppliesExposure() const;
+    /// Overlays over the augmented and dL views (View > Overlays, H); never over the photo.
+    void setOverlaysVisible(bool on);
 
     /// Offers to recover autosaved work, if any (called once the window is shown).
     void checkRecovery();
@@ -89,8 +98,11 @@ public:
     void duplicateSelected();
     void deleteSelected();
     void toggleSelectedVisible();
+    /// Moves the selected object down (or up) onto the real surface below it (Object > On
+    /// Ground, End).
+    void dropSelectedToSurface();
 
-Q_SIGNALS:
+  Q_SIGNALS:
     /// An export was written (ok) or failed; `path` as passed to exportImage.
     void exportFinished(const QString& path, bool ok);
 
@@ -118,6 +130,10 @@ private:
     bool writeExport(const QString& path, const RenderFrame& f);
     void failPendingExport(const QString& why);
     void startModal(GizmoMode mode);
+    /// The slider and label show the project's display exposure.
+    void showDisplaySettings();
+    /// The camera new objects are placed for: the viewport's, or the photo's before it has one.
+    Camera placementCamera() const;
     void showKeyMap();
     void openRecent(const QString& path);
     // Dialog front-ends of the file operations.
@@ -145,6 +161,8 @@ private:
     QLabel* status_;
     QToolButton* warnings_;  ///< "n asset warnings", hidden while there are none
     QSlider* exposure_ = nullptr;
+    QLabel* exposureLabel_ = nullptr;
+    int exposureKey_ = -1;  ///< merge key of the slider stroke under way (-1: none)
     QMenu* recentMenu_ = nullptr;
     QActionGroup *viewGroup_ = nullptr, *gizmoGroup_ = nullptr;
     QStringList recent_;

@@ -21,14 +21,15 @@
 #include "image/image_io.h"
 #include "main_window.h"
 #include "new_project_dialog.h"
+#include "placement.h"
 #include "project_edit.h"
 #include "render/progressive.h"
 #include "render/render_output.h"
 #include "render_controller.h"
 #include "settings_panel.h"
 #include "scene/project_io.h"
-#include "scene_check.h"
 #include "scene_builder.h"
+#include "scene_check.h"
 #include "viewport.h"
 
 namespace dp::ui {
@@ -169,7 +170,9 @@ bool MainWindow::writeExport(const QString& path, const RenderFrame& f) {
             Image image = f.update.image;
             if (const size_t n = replace_non_finite(image))
                 warnings.push_back(std::to_string(n) + " NaN/Inf values replaced by 0");
-            save_ldr(path.toStdString(), image, viewport_->exposure());
+            // The render as it is (0 EV) unless asked for the display's exposure.
+            save_ldr(path.toStdString(), image,
+                     exportAppliesExposure() ? doc_->project().display.exposure : 0.0f);
         } else if (suffix == "exr") {
             RenderUpdate u = f.update;
             warnings = save_render_exr(path.toStdString(), u, *f.photo, true);
@@ -201,18 +204,34 @@ bool MainWindow::importMesh(const QString& path) {
     }
     vec3 lo, hi;
     mesh.mesh.bounds(lo, hi);
-    const float radius = 0.5f * glm::length(hi - lo);
-    // Huge or tiny models are brought to about the size of the objects already there.
-    const float scale = radius > 2.0f || radius < 0.05f ? 0.4f / std::max(radius, 1e-6f) : 1.0f;
+    const float size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9f});
     Project p = doc_->project();
+    const Camera camera = placementCamera();
+    // The file's unit from its size; a model still far larger (or smaller) than what the view
+    // shows is brought to the size of a new object in this view.
+    const UnitGuess unit = guess_mesh_unit(size);
+    float scale = unit.scale;
+    const VisibleGround ground = visible_ground(p, camera);
+    const float fit = view_object_size(p, camera);
+    const QString name = QFileInfo(path).fileName();
+    QString note = tr("Imported %1: %2 units across, read as %3 (%4 m)")
+                       .arg(name)
+                       .arg(double(size), 0, 'g', 4)
+                       .arg(tr(unit.unit))
+                       .arg(double(size * scale), 0, 'g', 3);
+    const float largest = ground.valid ? ground.extent : 10.0f * fit;
+    if (size * scale > largest || size * scale < 0.02f * fit) {
+        scale = fit / size;
+        note += tr("; %1 than the view, scaled to %2 m")
+                    .arg(size * unit.scale > largest ? tr("far larger") : tr("far smaller"))
+                    .arg(double(fit), 0, 'g', 3);
+    }
     VirtualObject o;
     o.name = unique_name(p, QFileInfo(path).baseName().toStdString());
     o.shape.kind = Shape::Kind::Mesh;
     o.shape.mesh_path = QFileInfo(path).absoluteFilePath().toStdString();
     o.transform.scale = vec3(scale);
-    const vec3 at = p.camera.model == CameraSpec::Model::LookAt ? p.camera.target : vec3(0);
-    const vec3 centre = 0.5f * (lo + hi);
-    o.transform.translation = vec3(at.x - centre.x * scale, -lo.y * scale, at.z - centre.z * scale);
+    place_free(p, o, view_centre_point(p, camera), &camera);
     p.objects.push_back(o);
     if (const QString why = doc_->editProblem(p); !why.isEmpty()) {
         error(tr("Cannot import mesh"), why);
@@ -220,6 +239,7 @@ bool MainWindow::importMesh(const QString& path) {
     }
     doc_->edit(tr("Import %1").arg(QFileInfo(path).fileName()), p);
     doc_->select(int(p.objects.size()) - 1);
+    statusBar()->showMessage(note, 15000);
     return true;
 }
 
@@ -327,7 +347,6 @@ void MainWindow::restoreSettings() {
     restoreGeometry(s.value("geometry").toByteArray());
     restoreState(s.value("windowState").toByteArray());
     recent_ = s.value("recentFiles").toStringList();
-    exposure_->setValue(s.value("exposure", 0).toInt());
     const double noise = s.value("noiseTarget", 0.0).toDouble();
     settingsPanel_->setNoiseTarget(noise);
     renderer_->setNoiseTarget(noise);
@@ -365,7 +384,6 @@ void MainWindow::closeEvent(QCloseEvent* e) {
         QSettings s;
         s.setValue("geometry", saveGeometry());
         s.setValue("windowState", saveState());
-        s.setValue("exposure", exposure_->value());
     }
     renderer_->stop();
     autosave_->clear();  // saved, discarded or unmodified: nothing left to recover

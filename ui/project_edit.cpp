@@ -46,35 +46,6 @@ bool edited_objects(const Project& a, const Project& b, std::vector<int>& edited
     return true;
 }
 
-VirtualObject make_object(Shape::Kind kind, const vec3& position, const std::string& name) {
-    VirtualObject o;
-    o.name = name;
-    o.shape.kind = kind;
-    o.material.kind = Material::Kind::Diffuse;
-    o.material.albedo.rgb = vec3(0.7f);
-    float lift = 0;
-    switch (kind) {
-        case Shape::Kind::Sphere:
-            o.shape.radius = 0.3f;
-            lift = 0.3f;
-            break;
-        case Shape::Kind::Box:
-            o.shape.size = vec3(0.5f);
-            lift = 0.25f;
-            break;
-        case Shape::Kind::Plane:
-            // A card standing upright, so that it is seen and casts a shadow.
-            o.shape.size = vec3(0.8f, 1.0f, 0.8f);
-            o.transform.rotation_deg = vec3(90, 0, 0);
-            lift = 0.4f;
-            break;
-        case Shape::Kind::Mesh:
-            break;
-    }
-    o.transform.translation = vec3(position.x, lift, position.z);
-    return o;
-}
-
 std::string unique_name(const Project& project, const std::string& base) {
     std::set<std::string> used;
     for (const VirtualObject& o : project.objects) used.insert(o.name);

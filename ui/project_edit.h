@@ -24,9 +24,6 @@ Change classify(const Project& before, const Project& after);
 /// objects (photo, probe, camera, real proxies, render settings): then the whole picture can.
 bool edited_objects(const Project& before, const Project& after, std::vector<int>& edited);
 
-/// A new object of the given kind resting on the ground (y = 0) at `position` (x, z used).
-VirtualObject make_object(Shape::Kind kind, const vec3& position, const std::string& name);
-
 /// A name not yet used by the project's objects ("sphere", "sphere 2", ...).
 std::string unique_name(const Project& project, const std::string& base);
 

@@ -1,6 +1,7 @@
 #include "scene_panel.h"
 
 #include <QAction>
+#include <QCheckBox>
 #include <QFormLayout>
 #include <QGridLayout>
 #include <QHBoxLayout>
@@ -12,6 +13,7 @@
 
 #include "document.h"
 #include "number_field.h"
+#include "placement.h"
 
 namespace dp::ui {
 
@@ -52,6 +54,12 @@ ScenePanel::ScenePanel(Document* doc, const QList<QAction*>& actions, QWidget* p
             fields_[r * 3 + c] = f;
             row->addWidget(f);
             connect(f, &NumberField::valueChanged, this, [this, i = r * 3 + c] { applyTransform(i); });
+        }
+        if (r == 2) {
+            uniform_ = new QCheckBox(tr("Uniform"));
+            uniform_->setObjectName("uniformScale");
+            uniform_->setToolTip(tr("Editing one scale field scales all three alike"));
+            row->addWidget(uniform_);
         }
         form->addRow(tr(rows[r]), row);
     }
@@ -119,7 +127,15 @@ void ScenePanel::applyTransform(int index) {
     Project p = doc_->project();
     Transform& t = p.objects[size_t(sel)].transform;
     vec3* v[3] = {&t.translation, &t.rotation_deg, &t.scale};
-    (*v[index / 3])[index % 3] = float(fields_[index]->value());
+    const float value = float(fields_[index]->value());
+    if (index >= 6 && uniform_->isChecked()) {
+        const float k = value / t.scale[index - 6];  // the others by the same factor
+        t.scale *= k;
+        t.scale[index - 6] = value;  // exactly as typed
+    } else {
+        (*v[index / 3])[index % 3] = value;
+    }
+    if (index >= 6) t = kept_on_base(p, doc_->project().objects[size_t(sel)], t);
     doc_->tryEdit(tr("Transform %1").arg(QString::fromStdString(p.objects[size_t(sel)].name)), p);
 }
 

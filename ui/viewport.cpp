@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "document.h"
+#include "placement.h"
 
 namespace dp::ui {
 
@@ -52,6 +53,11 @@ void Viewport::setExposure(float stops) {
 void Viewport::setOverlays(const OverlayOptions& o) {
     overlays_ = o;
     overlays_.selected = doc_->selected();
+    update();
+}
+
+void Viewport::setOverlaysVisible(bool on) {
+    showOverlays_ = on;
     update();
 }
 
@@ -137,12 +143,26 @@ void Viewport::paintEvent(QPaintEvent*) {
         p.restore();
     }
     const QTransform camToWidget = QTransform::fromTranslate(0.5, 0.5) * t;
-    OverlayOptions o = overlays_;
-    o.selected = doc_->selected();
-    p.setClipRect(imageRect());  // overlays belong to the photo, not the margin around it
-    draw_overlays(p, doc_->project(), camera(), camToWidget, o);
-    p.setClipping(false);
+    if (overlaysDrawn()) {
+        OverlayOptions o = overlays_;
+        o.selected = doc_->selected();
+        p.setClipRect(imageRect());  // overlays belong to the photo, not the margin around it
+        draw_overlays(p, doc_->project(), camera(), camToWidget, o);
+        p.setClipping(false);
+    }
     pick_->paint(p, camToWidget);
+    if (modal_) {
+        // What the keys have set so far, as Blender shows it in its header.
+        static const char* verbs[] = {"Move", "Rotate", "Scale"};
+        QString text = tr(verbs[int(gizmo_)]);
+        if (axis_ >= 0) text += tr(" along %1").arg(QChar('X' + axis_));
+        if (!typed_.isEmpty()) text += QStringLiteral(": %1|").arg(typed_);
+        text += tr("   (X Y Z: axis; digits: value; Enter confirms, Esc cancels)");
+        const QRectF box(10, 10, std::min(width() - 20, 560), 26);
+        p.fillRect(box, QColor(0, 0, 0, 170));
+        p.setPen(QColor(255, 230, 120));
+        p.drawText(box.adjusted(8, 0, -8, 0), Qt::AlignVCenter | Qt::AlignLeft, text);
+    }
 }
 
 void Viewport::beginDrag(QPointF pos) {
@@ -153,6 +173,8 @@ void Viewport::beginDrag(QPointF pos) {
     projectAtDrag_ = doc_->project();
     dragStart_ = projectAtDrag_.objects[size_t(sel)].transform;
     dragKey_ = doc_->newMergeKey();
+    axis_ = -1;
+    typed_.clear();
     Q_EMIT dragStarted();
 }
 
@@ -179,6 +201,8 @@ bool Viewport::startModalTransform(GizmoMode mode) {
 void Viewport::finishDrag(bool cancel) {
     if (!dragging_) return;
     dragging_ = false;
+    axis_ = -1;
+    typed_.clear();
     setMouseTracking(false);
     if (cancel) doc_->edit(tr("Cancel transform"), projectAtDrag_, dragKey_);
     if (modal_) {
@@ -220,17 +244,68 @@ void Viewport::mouseMoveEvent(QMouseEvent* e) {
         pick_->move(QPointF(px.x, px.y));
         return;
     }
+    if (!dragging_ || doc_->selected() < 0) return;
+    lastPos_ = e->position();
+    if (typed_.isEmpty()) applyDrag();  // a typed value holds until it is erased
+}
+
+void Viewport::applyDrag() {
     const int sel = doc_->selected();
     if (!dragging_ || sel < 0) return;
-    lastPos_ = e->position();
     Project p = projectAtDrag_;
     VirtualObject& obj = p.objects[size_t(sel)];
-    obj.transform =
-        drag_transform(gizmo_, dragStart_, camera(), toImage(pressPos_), toImage(lastPos_),
-                       &projectAtDrag_);
+    bool typed = false;
+    const float value = typed_.toFloat(&typed);
+    if (typed && std::isfinite(value) && !(gizmo_ == GizmoMode::Scale && value <= 0))
+        obj.transform = typed_transform(gizmo_, dragStart_, axis_, value);
+    else
+        obj.transform = axis_drag_transform(gizmo_, dragStart_, camera(), toImage(pressPos_),
+                                            toImage(lastPos_), axis_, &projectAtDrag_);
+    // Scaling keeps the lowest point where it was: an object on the floor stays on it.
+    if (gizmo_ == GizmoMode::Scale)
+        obj.transform =
+            kept_on_base(projectAtDrag_, projectAtDrag_.objects[size_t(sel)], obj.transform);
     static const char* verbs[] = {"Move", "Rotate", "Scale"};
     doc_->edit(tr("%1 %2").arg(tr(verbs[int(gizmo_)]), QString::fromStdString(obj.name)), p,
                dragKey_);
+    update();
+}
+
+bool Viewport::modalKey(QKeyEvent* e) {
+    if (!modal_ || (e->modifiers() & ~(Qt::ShiftModifier | Qt::KeypadModifier))) return false;
+    const int key = e->key();
+    if (key == Qt::Key_X || key == Qt::Key_Y || key == Qt::Key_Z) {
+        const int axis = key - Qt::Key_X;
+        axis_ = axis_ == axis ? -1 : axis;  // the same axis again frees it
+    } else if ((key >= Qt::Key_0 && key <= Qt::Key_9) || key == Qt::Key_Period ||
+               key == Qt::Key_Comma) {
+        typed_ += key == Qt::Key_Comma ? QChar('.') : QChar(key);
+    } else if (key == Qt::Key_Minus) {
+        // As in Blender: minus negates what is typed, wherever the cursor is.
+        typed_ = typed_.startsWith('-') ? typed_.mid(1) : QStringLiteral("-") + typed_;
+    } else if (key == Qt::Key_Backspace) {
+        typed_.chop(1);
+    } else {
+        return false;
+    }
+    applyDrag();
+    return true;
+}
+
+bool Viewport::event(QEvent* e) {
+    // During a modal transform X, Y, Z and the digits belong to it, not to the window's
+    // shortcuts (X would delete the object).
+    if (e->type() == QEvent::ShortcutOverride && modal_) {
+        auto* k = static_cast<QKeyEvent*>(e);
+        const int key = k->key();
+        if (key == Qt::Key_X || key == Qt::Key_Y || key == Qt::Key_Z ||
+            (key >= Qt::Key_0 && key <= Qt::Key_9) || key == Qt::Key_Period ||
+            key == Qt::Key_Comma || key == Qt::Key_Minus || key == Qt::Key_Backspace) {
+            e->accept();
+            return true;
+        }
+    }
+    return QWidget::event(e);
 }
 
 void Viewport::mouseReleaseEvent(QMouseEvent* e) {
@@ -257,7 +332,8 @@ void Viewport::wheelEvent(QWheelEvent* e) {
 
 void Viewport::keyPressEvent(QKeyEvent* e) {
     // G, R, S and X are the window's actions (they work from any panel); here only what ends a
-    // drag or a pick.
+    // drag or a pick, and a modal transform's axes and typed value.
+    if (modalKey(e)) return;
     switch (e->key()) {
         case Qt::Key_Return:
         case Qt::Key_Enter:

@@ -43,6 +43,19 @@ public:
     bool startModalTransform(GizmoMode mode);
     /// A drag or a modal transform is under way.
     bool transforming() const { return dragging_; }
+    /// During a modal transform: the world axis it is constrained to (X, Y or Z pressed: 0, 1,
+    /// 2; -1 none) and the value typed so far (Blender's numeric input).
+    int transformAxis() const { return axis_; }
+    QString typedValue() const { return typed_; }
+    /// Grid, proxy wireframes and object outlines (which ones: setOverlays) over the
+    /// augmented and dL views; never over the photo, which stays as taken.
+    void setOverlaysVisible(bool on);
+    bool overlaysVisible() const { return showOverlays_; }
+    /// Whether the overlays are drawn in the current view.
+    bool overlaysDrawn() const { return showOverlays_ && mode_ != ViewMode::Photo; }
+    ViewMode viewMode() const { return mode_; }
+    /// The camera the viewport draws and picks with (the render's size).
+    Camera viewCamera() const { return camera(); }
     /// Fits the render into the widget (zoom 1, no pan).
     void fitView();
 
@@ -69,14 +82,19 @@ protected:
     void mouseReleaseEvent(QMouseEvent*) override;
     void wheelEvent(QWheelEvent*) override;
     void keyPressEvent(QKeyEvent*) override;
+    bool event(QEvent*) override;
 
-private:
+  private:
     void rebuildImage();
     QTransform imageToWidget() const;
     vec2 toImage(QPointF widget) const;
     Camera camera() const;
     void beginDrag(QPointF pos);
     void finishDrag(bool cancel);
+    /// Applies the drag so far: the typed value if there is one, else the cursor's travel.
+    void applyDrag();
+    /// Handles a key of the modal transform's numeric input and axes; false if not one.
+    bool modalKey(QKeyEvent* e);
 
     Document* doc_;
     PickTool* pick_;
@@ -97,6 +115,9 @@ private:
     int dragKey_ = -1;
     bool modal_ = false;  ///< the drag is a keyed G / R / S, not a mouse drag
     GizmoMode modeBeforeModal_ = GizmoMode::Translate;
+    int axis_ = -1;  ///< world axis of the modal transform, -1 none
+    QString typed_;  ///< value typed during the modal transform
+    bool showOverlays_ = false;
 };
 
 }  // namespace dp::ui

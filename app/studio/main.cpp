@@ -53,7 +53,8 @@ int main(int argc, char** argv) {
     QCommandLineOption exposure("exposure", "Display exposure in stops.", "stops");
     QCommandLineOption wait("wait", "With --screenshot: longest wait for the render (ms).", "ms",
                             "60000");
-    cli.addOptions({shot, view, select, size, raise, exposure, wait});
+    QCommandLineOption overlays("overlays", "Show the overlays (grid, proxies, outlines).");
+    cli.addOptions({shot, view, select, size, raise, exposure, wait, overlays});
     cli.process(app);
 
     StudioOptions options;
@@ -68,8 +69,10 @@ int main(int argc, char** argv) {
     const QStringList wh = cli.value(size).split('x');
     if (wh.size() == 2) window.resize(wh[0].toInt(), wh[1].toInt());
     window.show();
-    if (cli.isSet(exposure)) window.setDisplayExposure(cli.value(exposure).toFloat());
     if (!cli.positionalArguments().isEmpty()) window.openProject(cli.positionalArguments().first());
+    // The project's own display exposure unless the command line gives one.
+    if (cli.isSet(exposure)) window.setDisplayExposure(cli.value(exposure).toFloat());
+    if (cli.isSet(overlays)) window.setOverlaysVisible(true);
     if (!screenshot) {
         QTimer::singleShot(0, &window, [&window] { window.checkRecovery(); });
         return app.exec();

@@ -138,6 +138,12 @@ struct RenderSettings {
     bool operator==(const RenderSettings&) const = default;
 };
 
+/// How the studio shows the render; never changes what is rendered.
+struct DisplaySettings {
+    float exposure = 0.0f;  ///< stops applied to the viewport (and to exports only when asked)
+    bool operator==(const DisplaySettings&) const = default;
+};
+
 /// Everything a render needs, as written in the project file. Paths are kept as written;
 /// `resolve()` turns one into a path relative to the project file's folder.
 struct Project {
@@ -149,6 +155,7 @@ struct Project {
     std::vector<RealProxy> real;
     std::vector<VirtualObject> objects;
     RenderSettings render;
+    DisplaySettings display;
 
     std::filesystem::path resolve(const std::string& path) const;
     bool operator==(const Project& o) const;

@@ -403,6 +403,7 @@ J write_project(const Project& p) {
     render["adaptive_min_passes"] = s.adaptive_min_passes;
     render["low_discrepancy"] = s.low_discrepancy;
     doc["render"] = render;
+    doc["display"] = J{{"exposure", num(p.display.exposure)}};
     return doc;
 }
 
@@ -419,7 +420,9 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     r.check(v == kProjectSchemaVersion, "schema_version",
             "unsupported schema version " + std::to_string(v) + "; this build reads version " +
                 std::to_string(kProjectSchemaVersion));
-    r.object(doc, "", {"schema_version", "photo", "probe", "camera", "real", "objects", "render"});
+    r.object(
+        doc, "",
+        {"schema_version", "photo", "probe", "camera", "real", "objects", "render", "display"});
 
     Project p;
     p.base_dir = std::move(base_dir);
@@ -467,6 +470,11 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
         p.objects.push_back(parse_object(r, j, path));
     });
     if (auto* s = r.optional(doc, "render")) p.render = parse_render(r, *s);
+    if (auto* d = r.optional(doc, "display")) {
+        r.object(*d, "display", {"exposure"});
+        if (auto* e = r.optional(*d, "exposure"))
+            p.display.exposure = r.real(*e, "display.exposure");
+    }
     return p;
 }
 

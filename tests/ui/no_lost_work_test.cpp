@@ -196,7 +196,7 @@ void NoLostWorkTest::exportRightAfterAnEditWritesTheEditedState() {
     QVERIFY(covered > 20);  // the ball is in the picture
 
     selectInList(0);
-    press(Qt::Key_H);  // hide it
+    press(Qt::Key_H, Qt::ShiftModifier);  // hide it
     QVERIFY(!w_->document()->project().objects[0].visible);
     const QString after = dir_->filePath("after.exr");
     QSignalSpy done(w_, &MainWindow::exportFinished);

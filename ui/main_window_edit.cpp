@@ -1,0 +1,130 @@
+// MainWindow: object edits (add, duplicate, delete, hide, on ground, G / R / S) and the
+// display (exposure per project, overlays).
+#include <QAction>
+#include <QLabel>
+#include <QSlider>
+#include <QStatusBar>
+#include <cmath>
+
+#include "document.h"
+#include "main_window.h"
+#include "photo_geometry.h"
+#include "placement.h"
+#include "project_edit.h"
+#include "render_controller.h"
+#include "viewport.h"
+
+namespace dp::ui {
+
+Camera MainWindow::placementCamera() const {
+    if (viewport_->renderSize().isValid()) return viewport_->viewCamera();
+    try {
+        return photo_camera(doc_->assets(), doc_->project());
+    } catch (const std::exception&) {
+        return doc_->project().camera.build(1024, 512);  // a photo that cannot be read
+    }
+}
+
+void MainWindow::addObject(Shape::Kind kind) {
+    if (!doc_->isOpen()) return;
+    Project p = doc_->project();
+    // Sized to what the view shows, on the real surface under the view centre, clear of the
+    // objects already there.
+    p.objects.push_back(
+        new_primitive(p, placementCamera(), kind, unique_name(p, shape_kind_name(kind))));
+    doc_->edit(tr("Add %1").arg(shape_kind_name(kind)), p);
+    doc_->select(int(p.objects.size()) - 1);
+}
+
+void MainWindow::duplicateSelected() {
+    const int sel = doc_->selected();
+    if (sel < 0) return;
+    Project p = doc_->project();
+    VirtualObject copy = p.objects[size_t(sel)];
+    copy.name = unique_name(p, copy.name);
+    vec3 c;
+    float r;
+    bounding_sphere(copy, c, r);
+    copy.transform.translation.x += 2.2f * r;  // beside the original, not inside it
+    p.objects.push_back(copy);
+    doc_->edit(tr("Duplicate object"), p);
+    doc_->select(int(p.objects.size()) - 1);
+}
+
+void MainWindow::deleteSelected() {
+    const int sel = doc_->selected();
+    if (sel < 0) return;
+    Project p = doc_->project();
+    p.objects.erase(p.objects.begin() + sel);
+    doc_->select(-1);
+    doc_->edit(tr("Delete object"), p);
+}
+
+void MainWindow::toggleSelectedVisible() {
+    const int sel = doc_->selected();
+    if (sel < 0) return;
+    Project p = doc_->project();
+    p.objects[size_t(sel)].visible = !p.objects[size_t(sel)].visible;
+    doc_->edit(p.objects[size_t(sel)].visible ? tr("Show object") : tr("Hide object"), p);
+}
+
+void MainWindow::dropSelectedToSurface() {
+    const int sel = doc_->selected();
+    if (sel < 0 || viewport_->transforming()) return;
+    commitTypedValue();
+    Project p = doc_->project();
+    VirtualObject& o = p.objects[size_t(sel)];
+    o.transform = dropped_to_surface(p, o);
+    doc_->edit(tr("Put %1 on the ground").arg(QString::fromStdString(o.name)), p);
+}
+
+void MainWindow::startModal(GizmoMode mode) {
+    if (viewport_->transforming()) return;
+    if (doc_->selected() < 0) {
+        statusBar()->showMessage(
+            tr("Select an object first (click it in the viewport or the list)"), 5000);
+        return;
+    }
+    commitTypedValue();  // a value typed into a field counts before the object moves
+    if (viewport_->startModalTransform(mode))
+        statusBar()->showMessage(tr("Move the mouse or type a value; X, Y or Z keeps to that "
+                                    "axis; click or Enter confirms, Esc or right click cancels"),
+                                 5000);
+}
+
+void MainWindow::setDisplayExposure(float stops) {
+    if (!doc_->isOpen()) return;
+    Project p = doc_->project();
+    p.display.exposure = stops;
+    doc_->edit(tr("Display exposure"), p, exposureKey_);
+}
+
+float MainWindow::displayExposure() const {
+    return doc_->project().display.exposure;
+}
+
+void MainWindow::showDisplaySettings() {
+    // The slider and the label follow the project (open, undo, redo).
+    const float stops = doc_->project().display.exposure;
+    {
+        const QSignalBlocker block(exposure_);
+        exposure_->setValue(int(std::lround(stops * 10)));
+    }
+    exposureLabel_->setText(tr("%1%2 EV").arg(stops >= 0 ? "+" : "").arg(stops, 0, 'f', 1));
+    if (viewport_->exposure() != stops) viewport_->setExposure(stops);
+    renderer_->setDisplayExposure(stops);  // the noise target is judged at it
+}
+
+void MainWindow::setOverlaysVisible(bool on) {
+    action("overlays")->setChecked(on);
+}
+
+void MainWindow::setExportAppliesExposure(bool on) {
+    action("exportExposure")->setChecked(on);
+}
+
+bool MainWindow::exportAppliesExposure() const {
+    return action("exportExposure")->isChecked();
+}
+
+}  // namespace dp::ui
