@@ -33,6 +33,7 @@
 #include "probe_panel.h"
 #include "proxy_panel.h"
 #include "project_edit.h"
+#include "denoise_worker.h"
 #include "render_controller.h"
 #include "scene_panel.h"
 #include "render/preview.h"
@@ -71,6 +72,7 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     renderer_->setPreviewFraction(options_.previewFraction);
     renderer_->setPreviewScale(options_.previewScale);
     renderer_->setEndless(options_.endless);
+    denoiser_ = new DenoiseWorker(this);
     viewport_ = new Viewport(doc_, this);
     setCentralWidget(viewport_);
     status_ = new QLabel(tr("No project"));
@@ -101,6 +103,18 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     createMenus();
     createToolbar();
     connectRenderer();
+    connect(denoiser_, &DenoiseWorker::denoised, viewport_,
+            [this](std::shared_ptr<const RenderFrame> f, std::shared_ptr<const Image> image) {
+                viewport_->setDenoised(std::move(f), std::move(image));
+            });
+    if (options_.denoise) {
+        // On where the library is there; quietly off (its tooltip says why) where not.
+        QString why;
+        if (DenoiseWorker::available(&why))
+            setDenoise(true);
+        else
+            action("denoise")->setToolTip(tr("Denoising is not available: %1").arg(why));
+    }
 
     QString dir = options_.recoveryDir;
     if (dir.isEmpty())
@@ -201,6 +215,11 @@ void MainWindow::createActions() {
              tr("Grid, proxy wireframes and object outlines over the augmented and dL views"),
              [this](bool on) { viewport_->setOverlaysVisible(on); });
     overlays->setCheckable(true);
+    QAction* denoise = make("denoise", tr("&Denoise"), QKeySequence(tr("D")),
+                            tr("Show the render with its change denoised (Open Image Denoise); "
+                               "the photo and the exports stay as rendered"),
+                            [this](bool on) { setDenoise(on); });
+    denoise->setCheckable(true);
     QAction* exportExposure = make(
         "exportExposure", tr("Apply Display Exposure to Exports"), {},
         tr("PNG and JPEG exports at the display exposure instead of the render's own 0 EV"), [] {});
@@ -268,6 +287,7 @@ void MainWindow::createMenus() {
     view->addActions(viewGroup_->actions());
     view->addSeparator();
     view->addAction(action("overlays"));
+    view->addAction(action("denoise"));
     view->addSeparator();
     view->addAction(action("fit"));
     view->addSeparator();
@@ -406,6 +426,15 @@ void MainWindow::connectRenderer() {
 
 void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     viewport_->setFrame(f);
+    if (renderer_->denoise() && !f->preview && !f->composited()) {
+        // A refined frame is denoised on its own thread: at most every few seconds (it takes
+        // the cores from the render), and always the last one.
+        const double gap = std::max(2000.0, 3.0 * denoiser_->lastMs());
+        if (f->update.finished || !sinceDenoise_.isValid() || sinceDenoise_.elapsed() >= gap) {
+            denoiser_->request(f);
+            sinceDenoise_.start();
+        }
+    }
     // The renderer only delivers frames of the latest request: a full one is the current state.
     if (!pendingExport_.isEmpty() && !f->preview) {
         const QString path = pendingExport_;

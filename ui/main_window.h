@@ -1,4 +1,5 @@
 #pragma once
+#include <QElapsedTimer>
 #include <QMainWindow>
 #include <memory>
 
@@ -29,6 +30,7 @@ class ProxyPanel;
 class RenderController;
 class ScenePanel;
 class SettingsPanel;
+class DenoiseWorker;
 class ShortcutPolicy;
 class Viewport;
 struct RenderFrame;
@@ -65,6 +67,10 @@ public:
     bool exportAppliesExposure() const;
     /// Overlays over the augmented and dL views (View > Overlays, H); never over the photo.
     void setOverlaysVisible(bool on);
+    /// The augmented view with the render's change denoised (View > Denoise, D): previews at
+    /// once, refined frames every few seconds on a thread of their own. Off, with the reason
+    /// in its tooltip, where Open Image Denoise is not installed.
+    void setDenoise(bool on);
 
     /// Offers to recover autosaved work, if any (called once the window is shown).
     void checkRecovery();
@@ -152,6 +158,8 @@ private:
     ScenePanel* scenePanel_ = nullptr;
     MaterialPanel* materialPanel_ = nullptr;
     SettingsPanel* settingsPanel_ = nullptr;
+    DenoiseWorker* denoiser_ = nullptr;
+    QElapsedTimer sinceDenoise_;  ///< since a refined frame was last sent to the denoiser
     ProbePanel* probePanel_ = nullptr;
     CameraPanel* cameraPanel_ = nullptr;
     CalibrationPanel* calibrationPanel_ = nullptr;

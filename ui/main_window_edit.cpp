@@ -2,6 +2,7 @@
 // display (exposure per project, overlays).
 #include <QAction>
 #include <QLabel>
+#include <QSignalBlocker>
 #include <QSlider>
 #include <QStatusBar>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "photo_geometry.h"
 #include "placement.h"
 #include "project_edit.h"
+#include "denoise_worker.h"
 #include "render_controller.h"
 #include "viewport.h"
 
@@ -117,6 +119,23 @@ void MainWindow::showDisplaySettings() {
 
 void MainWindow::setOverlaysVisible(bool on) {
     action("overlays")->setChecked(on);
+}
+
+void MainWindow::setDenoise(bool on) {
+    QString why;
+    if (on && !DenoiseWorker::available(&why)) {
+        on = false;
+        action("denoise")->setToolTip(tr("Denoising is not available: %1").arg(why));
+        statusBar()->showMessage(tr("Denoising is not available: %1").arg(why), 8000);
+    }
+    const QSignalBlocker block(action("denoise"));
+    action("denoise")->setChecked(on);
+    renderer_->setDenoise(on);
+    viewport_->setDenoise(on);
+    if (!on) return;
+    // What is on screen now: denoised without waiting for the next pass.
+    if (const auto f = renderer_->lastFullFrame(); f && !f->composited()) denoiser_->request(f);
+    sinceDenoise_.start();
 }
 
 void MainWindow::setExportAppliesExposure(bool on) {

@@ -16,6 +16,7 @@
 #include "assets/asset_library.h"
 #include "project_edit.h"
 #include "render/change_region.h"
+#include "render/denoise_aovs.h"
 #include "render/session.h"
 
 namespace dp::ui {
@@ -34,6 +35,11 @@ struct RenderFrame {
     std::shared_ptr<const Image> shownImage, shownDL;
     /// Passes behind the picture outside the edited region (update's own when not composited).
     int refinedPasses = 0;
+    /// The scene it was rendered from (the denoiser's guides come from it).
+    std::shared_ptr<const RenderScene> scene;
+    /// A preview's augmented image with its change denoised (RenderController::setDenoise), at
+    /// the preview's size; null when not denoised.
+    std::shared_ptr<const Image> denoised;
 
     bool composited() const { return shownImage != nullptr; }
     const Image& image() const { return shownImage ? *shownImage : update.image; }
@@ -77,6 +83,9 @@ public:
     double noiseTarget() const { return noiseTarget_.load(); }
     /// The display exposure the invisible noise target is judged at.
     void setDisplayExposure(double stops) { exposure_.store(stops); }
+    /// Denoise the previews' change (Open Image Denoise, when it is installed).
+    void setDenoise(bool on) { denoise_.store(on); }
+    bool denoise() const { return denoise_.load(); }
     /// Time a drag frame should take (milliseconds): the preview size follows it.
     void setDragFrameTarget(double ms) { dragTargetMs_ = ms; }
 
@@ -159,6 +168,7 @@ private:
     bool endless_ = false;
     std::atomic<double> noiseTarget_{0};
     std::atomic<double> exposure_{0};
+    std::atomic<bool> denoise_{false};
     double dragTargetMs_ = 45;
     // Worker-thread state: the scenes built for `built_` (quick and full size).
     std::unique_ptr<SceneBuilder> builder_;
@@ -168,6 +178,8 @@ private:
     QSize fullSize_, quickSize_;
     int dragLevel_ = 2;
     std::map<uint64_t, BaseState> bases_;
+    std::shared_ptr<const RenderScene> aovsScene_;  ///< the scene aovs_ were made for
+    std::shared_ptr<const DenoiseAovs> aovs_;
     // Shared with the render thread's sink, under mutex_.
     std::shared_ptr<RenderFrame> latest_;
     bool posted_ = false;
@@ -177,6 +189,8 @@ private:
     bool runEndless_ = false;
     bool runReachedTarget_ = false;
     std::shared_ptr<const Region> runRegion_;
+    std::shared_ptr<const RenderScene> runScene_;
+    std::shared_ptr<const DenoiseAovs> runAovs_;  ///< the preview scene's guides, when denoising
     int runFrames_ = 0;
     bool runStopped_ = false;
     Timings timings_;

@@ -17,6 +17,8 @@ struct StudioOptions {
     /// Refine without a pass budget until the noise is below the target (the Render tab's
     /// "Stop at noise"); false: stop at the project's passes or time budget, as the CLI does.
     bool endless = true;
+    /// The augmented view denoised (View > Denoise), where Open Image Denoise is installed.
+    bool denoise = true;
     ErrorReporter* reporter = nullptr;  ///< not owned; null: message boxes
     bool checkRecovery = true;          ///< offer to recover autosaved work on start
     bool useSettings = true;            ///< restore and store window state and recent files

@@ -35,6 +35,21 @@ void Viewport::setFrame(std::shared_ptr<const RenderFrame> frame) {
     rebuildImage();
 }
 
+void Viewport::setDenoise(bool on) {
+    denoise_ = on;
+    rebuildImage();
+}
+
+void Viewport::setDenoised(std::shared_ptr<const RenderFrame> frame, std::shared_ptr<const Image> image) {
+    if (!frame || !image) return;
+    // An older pass of the same state never replaces a newer one's.
+    if (frame->generation == denoisedGeneration_ && frame->update.stats.passes < denoisedPasses_) return;
+    denoised_ = std::move(image);
+    denoisedGeneration_ = frame->generation;
+    denoisedPasses_ = frame->update.stats.passes;
+    if (frame_ && frame_->generation == denoisedGeneration_) rebuildImage();
+}
+
 void Viewport::setRenderSize(QSize size) {
     renderSize_ = size;
     update();
@@ -74,6 +89,7 @@ void Viewport::fitView() {
 }
 
 void Viewport::rebuildImage() {
+    showingDenoised_ = false;
     if (!frame_) {
         shown_ = QImage();
     } else if (mode_ == ViewMode::Photo && frame_->photo) {
@@ -81,7 +97,20 @@ void Viewport::rebuildImage() {
     } else if (mode_ == ViewMode::Delta) {
         shown_ = to_false_colour(frame_->dL(), exposure_);
     } else {
-        shown_ = to_display(frame_->image(), exposure_);
+        // Denoised: a composited or preview frame carries its own; a refined frame shows the
+        // denoised picture of its state, however many passes behind.
+        const Image* image = &frame_->image();
+        if (denoise_ && frame_->denoised && !frame_->composited()) {
+            image = frame_->denoised.get();
+            showingDenoised_ = true;
+        } else if (denoise_ && frame_->denoised) {
+            showingDenoised_ = true;  // laid over the refined picture already
+        } else if (denoise_ && !frame_->preview && denoised_ && denoisedGeneration_ == frame_->generation &&
+                   denoised_->width() == frame_->image().width()) {
+            image = denoised_.get();
+            showingDenoised_ = true;
+        }
+        shown_ = to_display(*image, exposure_);
     }
     update();
 }

@@ -25,6 +25,15 @@ public:
     explicit Viewport(Document* doc, QWidget* parent = nullptr);
 
     void setFrame(std::shared_ptr<const RenderFrame> frame);
+    /// Shows denoised pictures in the augmented view (previews' own, and `setDenoised`'s for
+    /// refined frames of the same state).
+    void setDenoise(bool on);
+    bool denoise() const { return denoise_; }
+    /// The denoised augmented image of `frame`; shown while the frames on screen are of its
+    /// state (generation), until a newer one comes.
+    void setDenoised(std::shared_ptr<const RenderFrame> frame, std::shared_ptr<const Image> image);
+    /// Whether the picture shown is a denoised one.
+    bool showingDenoised() const { return showingDenoised_; }
     /// Size of the full render in pixels (overlays and picking work in it).
     void setRenderSize(QSize size);
     QSize renderSize() const { return renderSize_; }
@@ -99,6 +108,10 @@ protected:
     Document* doc_;
     PickTool* pick_;
     std::shared_ptr<const RenderFrame> frame_;
+    bool denoise_ = false, showingDenoised_ = false;
+    std::shared_ptr<const Image> denoised_;
+    uint64_t denoisedGeneration_ = 0;
+    int denoisedPasses_ = 0;
     QImage shown_;
     QSize renderSize_;
     ViewMode mode_ = ViewMode::Augmented;

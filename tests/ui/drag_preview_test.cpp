@@ -5,6 +5,7 @@
 #include <QTemporaryDir>
 #include <QTest>
 
+#include "denoise_worker.h"
 #include "document.h"
 #include "render_controller.h"
 #include "ui_test_support.h"
@@ -18,6 +19,7 @@ class DragPreviewTest : public QObject {
 private Q_SLOTS:
     void aThreeSecondDragShowsThirtyFramesAndTheLastShowsTheObjectWhereTheHandStopped();
     void previewsReplaceOnlyThePixelsTheEditCanChange();
+    void theDenoiseKeyShowsDenoisedPreviewsAndRefinedFrames();
 };
 
 namespace {
@@ -163,6 +165,51 @@ void DragPreviewTest::previewsReplaceOnlyThePixelsTheEditCanChange() {
     QVERIFY2(composited >= 2, qPrintable(QString("%1 composited frames").arg(composited)));
     // The last frame is the new state's own render, not a composite.
     QVERIFY(!frames.back()->composited());
+}
+
+void DragPreviewTest::theDenoiseKeyShowsDenoisedPreviewsAndRefinedFrames() {
+    QString why;
+    if (!DenoiseWorker::available(&why)) QSKIP(qPrintable(why));
+    QTemporaryDir dir;
+    RecordingReporter reporter;
+    MainWindow w(test::test_options(&reporter, dir.filePath("recovery"), 512, 256));
+    w.resize(1200, 700);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.openProject(test::write_small_sample(dir.path(), 30000, 6)));
+    QVERIFY(test::wait_refined(w));
+    QVERIFY(!w.viewport()->showingDenoised());
+    const QImage raw = w.viewport()->shownImage();
+
+    // D with the focus in the viewport: the refined frame on screen is denoised and shown.
+    w.viewport()->setFocus();
+    QTest::keyClick(w.viewport(), Qt::Key_D);
+    QVERIFY(w.action("denoise")->isChecked());
+    QVERIFY(QTest::qWaitFor([&] { return w.viewport()->showingDenoised(); }, 30000));
+    const QImage denoised = w.viewport()->shownImage();
+    QCOMPARE(denoised.size(), raw.size());
+    // Smoother where the shadows are, the same far from every change (the photo is never
+    // denoised): count pixels that differ.
+    int differ = 0;
+    for (int y = 0; y < raw.height(); ++y)
+        for (int x = 0; x < raw.width(); ++x) differ += raw.pixel(x, y) != denoised.pixel(x, y);
+    QVERIFY2(differ > 100, qPrintable(QString("%1 pixels changed").arg(differ)));
+    QVERIFY2(differ < raw.width() * raw.height() / 2, qPrintable(QString("%1 pixels changed").arg(differ)));
+
+    // An edit's preview is denoised before it is shown.
+    std::vector<std::shared_ptr<const RenderFrame>> previews;
+    connect(w.renderer(), &RenderController::frameReady, &w, [&](std::shared_ptr<const RenderFrame> f) {
+        if (f->preview) previews.push_back(f);
+    });
+    Project p = w.document()->project();
+    p.objects[0].transform.translation.x += 0.2f;
+    w.document()->edit("move", p);
+    QVERIFY(QTest::qWaitFor([&] { return !previews.empty(); }, 10000));
+    QVERIFY(previews.front()->denoised != nullptr);
+    // And D again shows the raw render.
+    QTest::keyClick(w.viewport(), Qt::Key_D);
+    QVERIFY(!w.action("denoise")->isChecked());
+    QVERIFY(!w.viewport()->showingDenoised());
 }
 
 QTEST_MAIN(DragPreviewTest)

@@ -29,6 +29,7 @@ StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, 
     o.renderSize = QSize(width, height);
     o.previewFraction = 0.25;
     o.endless = false;  // tests wait for the project's passes
+    o.denoise = false;  // tests compare raw pictures (drag_preview_test turns it on)
     o.reporter = reporter;
     o.checkRecovery = false;
     o.useSettings = false;

@@ -1,0 +1,83 @@
+#include "denoise_worker.h"
+
+#include <QMetaObject>
+#include <chrono>
+
+#include "image/denoise.h"
+#include "render_controller.h"
+
+namespace dp::ui {
+
+DenoiseWorker::DenoiseWorker(QObject* parent) : QObject(parent) {
+    thread_ = std::thread([this] { run(); });
+}
+
+DenoiseWorker::~DenoiseWorker() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        quit_ = true;
+    }
+    cv_.notify_all();
+    thread_.join();
+}
+
+bool DenoiseWorker::available(QString* why) {
+    std::string reason;
+    const bool ok = denoiser_available(&reason);
+    if (why) *why = QString::fromStdString(reason);
+    return ok;
+}
+
+void DenoiseWorker::request(std::shared_ptr<const RenderFrame> frame) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        pending_ = std::move(frame);
+    }
+    cv_.notify_all();
+}
+
+double DenoiseWorker::lastMs() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return lastMs_;
+}
+
+Image DenoiseWorker::denoise_now(const RenderFrame& f, const DenoiseAovs& aovs) {
+    if (!f.scene || f.update.image.empty() || !denoiser_available()) return {};
+    const Image& photo = f.scene->photo();
+    if (photo.width() != f.update.image.width() || aovs.albedo.width() != photo.width()) return {};
+    return denoise_augmented(photo, f.update.image, f.update.alpha, aovs.albedo, aovs.normal);
+}
+
+void DenoiseWorker::run() {
+    for (;;) {
+        std::shared_ptr<const RenderFrame> frame;
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            cv_.wait(lock, [&] { return quit_ || pending_; });
+            if (quit_) return;
+            frame = std::move(pending_);
+        }
+        if (!frame->scene) continue;
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+            // The guides are one ray per pixel: once per scene, not per pass.
+            if (aovScene_ != frame->scene.get()) {
+                aovs_ = denoise_aovs(*frame->scene);
+                aovScene_ = frame->scene.get();
+                aovSceneHold_ = frame->scene;  // the address stays this scene's while held
+            }
+            auto image = std::make_shared<const Image>(denoise_now(*frame, aovs_));
+            if (image->empty()) continue;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            }
+            QMetaObject::invokeMethod(
+                this, [this, frame, image] { Q_EMIT denoised(frame, image); }, Qt::QueuedConnection);
+        } catch (const std::exception&) {
+            // A denoiser that fails leaves the raw picture on screen; the render is unaffected.
+        }
+    }
+}
+
+}  // namespace dp::ui

@@ -1,0 +1,55 @@
+#pragma once
+// Denoises the studio's refined frames on a thread of its own, so that neither the UI nor the
+// renderer waits for it: the newest frame wins, older requests are dropped.
+#include <QObject>
+#include <condition_variable>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "image/image.h"
+#include "render/denoise_aovs.h"
+
+namespace dp::ui {
+
+struct RenderFrame;
+
+/// Runs Open Image Denoise (image/denoise.h) on the change of the frames it is given, guided by
+/// the albedo and normal of their scene (computed once per scene), and hands each result back
+/// on the UI thread. Where the library is missing, available() says so and nothing runs.
+class DenoiseWorker : public QObject {
+    Q_OBJECT
+public:
+    explicit DenoiseWorker(QObject* parent = nullptr);
+    ~DenoiseWorker() override;
+
+    /// Whether the denoiser can run; `why` says how to get it where not.
+    static bool available(QString* why = nullptr);
+    /// Denoises `frame` (replacing a request not yet started).
+    void request(std::shared_ptr<const RenderFrame> frame);
+    /// Milliseconds the last denoise took (0 before the first).
+    double lastMs() const;
+    /// Synchronously, for a small frame (a preview): the denoised augmented image at the
+    /// frame's size; empty where the denoiser is missing or the frame has no scene.
+    static Image denoise_now(const RenderFrame& frame, const DenoiseAovs& aovs);
+
+Q_SIGNALS:
+    /// The denoised augmented image of `frame`, at its size.
+    void denoised(std::shared_ptr<const dp::ui::RenderFrame> frame, std::shared_ptr<const dp::Image> image);
+
+private:
+    void run();
+
+    std::thread thread_;
+    mutable std::mutex mutex_;
+    std::condition_variable cv_;
+    std::shared_ptr<const RenderFrame> pending_;
+    bool quit_ = false;
+    double lastMs_ = 0;
+    const void* aovScene_ = nullptr;  ///< worker thread: the scene `aovs_` belongs to
+    std::shared_ptr<const void> aovSceneHold_;
+    DenoiseAovs aovs_;
+};
+
+}  // namespace dp::ui
