@@ -30,8 +30,8 @@ public:
     void request(std::shared_ptr<const RenderFrame> frame);
     /// Milliseconds the last denoise took (0 before the first).
     double lastMs() const;
-    /// Synchronously, for a small frame (a preview): the denoised augmented image at the
-    /// frame's size; empty where the denoiser is missing or the frame has no scene.
+    /// The denoised augmented image of `frame` at its size, at the interactive quality;
+    /// empty where the denoiser is missing or the frame has no scene.
     static Image denoise_now(const RenderFrame& frame, const DenoiseAovs& aovs);
 
 Q_SIGNALS:

@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "render/preview.h"
-#include "denoise_worker.h"
 #include "scene_builder.h"
 
 namespace dp::ui {
@@ -31,13 +30,11 @@ class RenderController::Sink : public RenderSink {
         std::shared_ptr<const RenderFrame> base;
         std::shared_ptr<const Region> region;
         std::shared_ptr<const RenderScene> scene;
-        std::shared_ptr<const DenoiseAovs> aovs;
         bool preview;
         {
             std::lock_guard<std::mutex> lock(c_->mutex_);
             preview = c_->runPreview_;
             scene = c_->runScene_;
-            aovs = c_->runAovs_;
             if (!finished && c_->runEndless_ && !c_->runPreview_ && c_->reachedNoiseTarget(update.stats)) {
                 // Refined enough: this pass is the last; the session stops at its next check.
                 c_->runReachedTarget_ = finished = true;
@@ -56,15 +53,6 @@ class RenderController::Sink : public RenderSink {
         frame->update.source = nullptr;
         frame->refinedPasses = update.stats.passes;
         frame->scene = scene;
-        if (preview && aovs && c_->denoise_.load()) {
-            // A preview is small: its change is denoised here, before it is laid over the
-            // refined picture. A failing denoiser leaves it raw.
-            try {
-                Image d = DenoiseWorker::denoise_now(*frame, *aovs);
-                if (!d.empty()) frame->denoised = std::make_shared<const Image>(std::move(d));
-            } catch (const std::exception&) {
-            }
-        }
         // A final picture is shown as it is; so is one that has caught up with the refined one.
         if (base && region && !finished && (preview || update.stats.passes < base->refinedPasses))
             compose(*frame, *base, *region);
@@ -266,16 +254,6 @@ void RenderController::handle(const Request& r) {
     std::shared_ptr<const Region> region = regionFor(p, *quick_);
     timings.region = ms_since(t0);
 
-    // The denoiser's guides for the preview scene, once per scene.
-    std::shared_ptr<const DenoiseAovs> previewAovs;
-    if (denoise_.load() && DenoiseWorker::available()) {
-        if (aovsScene_ != quick_) {
-            aovs_ = std::make_shared<const DenoiseAovs>(denoise_aovs(*quick_));
-            aovsScene_ = quick_;
-        }
-        previewAovs = aovs_;
-    }
-
     auto run = [&](std::shared_ptr<RenderScene> scene, const RenderSettings& settings, bool preview) {
         session_->cancel();
         t0 = std::chrono::steady_clock::now();
@@ -290,7 +268,6 @@ void RenderController::handle(const Request& r) {
             runReachedTarget_ = false;
             runRegion_ = region;
             runScene_ = scene;
-            runAovs_ = preview ? previewAovs : nullptr;
             runFrames_ = 0;
             runStopped_ = false;
             photo_ = builder_->photo();
@@ -399,7 +376,7 @@ void RenderController::compose(RenderFrame& f, const RenderFrame& base, const Re
     const Image& bi = base.image();
     const Image& bd = base.dL();
     const int W = bi.width(), H = bi.height();
-    const Image& pi = f.denoised ? *f.denoised : f.update.image;
+    const Image& pi = f.update.image;
     const Image& pd = f.update.dL;
     if (W == 0 || bd.width() != W || pi.empty() || region.mask.empty()) return;
     const int w = pi.width(), h = pi.height();

@@ -16,7 +16,6 @@
 #include "assets/asset_library.h"
 #include "project_edit.h"
 #include "render/change_region.h"
-#include "render/denoise_aovs.h"
 #include "render/session.h"
 
 namespace dp::ui {
@@ -37,9 +36,6 @@ struct RenderFrame {
     int refinedPasses = 0;
     /// The scene it was rendered from (the denoiser's guides come from it).
     std::shared_ptr<const RenderScene> scene;
-    /// A preview's augmented image with its change denoised (RenderController::setDenoise), at
-    /// the preview's size; null when not denoised.
-    std::shared_ptr<const Image> denoised;
 
     bool composited() const { return shownImage != nullptr; }
     const Image& image() const { return shownImage ? *shownImage : update.image; }
@@ -83,7 +79,7 @@ public:
     double noiseTarget() const { return noiseTarget_.load(); }
     /// The display exposure the invisible noise target is judged at.
     void setDisplayExposure(double stops) { exposure_.store(stops); }
-    /// Denoise the previews' change (Open Image Denoise, when it is installed).
+    /// Whether the viewer shows refined frames denoised (it asks DenoiseWorker for them).
     void setDenoise(bool on) { denoise_.store(on); }
     bool denoise() const { return denoise_.load(); }
     /// Time a drag frame should take (milliseconds): the preview size follows it.
@@ -178,8 +174,6 @@ private:
     QSize fullSize_, quickSize_;
     int dragLevel_ = 2;
     std::map<uint64_t, BaseState> bases_;
-    std::shared_ptr<const RenderScene> aovsScene_;  ///< the scene aovs_ were made for
-    std::shared_ptr<const DenoiseAovs> aovs_;
     // Shared with the render thread's sink, under mutex_.
     std::shared_ptr<RenderFrame> latest_;
     bool posted_ = false;
@@ -190,7 +184,6 @@ private:
     bool runReachedTarget_ = false;
     std::shared_ptr<const Region> runRegion_;
     std::shared_ptr<const RenderScene> runScene_;
-    std::shared_ptr<const DenoiseAovs> runAovs_;  ///< the preview scene's guides, when denoising
     int runFrames_ = 0;
     bool runStopped_ = false;
     Timings timings_;

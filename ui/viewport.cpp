@@ -97,16 +97,11 @@ void Viewport::rebuildImage() {
     } else if (mode_ == ViewMode::Delta) {
         shown_ = to_false_colour(frame_->dL(), exposure_);
     } else {
-        // Denoised: a composited or preview frame carries its own; a refined frame shows the
-        // denoised picture of its state, however many passes behind.
+        // Denoised: a refined frame shows the denoised picture of its state, however many
+        // passes behind; previews (and frames laid over the refined picture) stay raw.
         const Image* image = &frame_->image();
-        if (denoise_ && frame_->denoised && !frame_->composited()) {
-            image = frame_->denoised.get();
-            showingDenoised_ = true;
-        } else if (denoise_ && frame_->denoised) {
-            showingDenoised_ = true;  // laid over the refined picture already
-        } else if (denoise_ && !frame_->preview && denoised_ && denoisedGeneration_ == frame_->generation &&
-                   denoised_->width() == frame_->image().width()) {
+        if (denoise_ && !frame_->preview && !frame_->composited() && denoised_ &&
+            denoisedGeneration_ == frame_->generation && denoised_->width() == frame_->image().width()) {
             image = denoised_.get();
             showingDenoised_ = true;
         }

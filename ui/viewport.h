@@ -25,8 +25,8 @@ public:
     explicit Viewport(Document* doc, QWidget* parent = nullptr);
 
     void setFrame(std::shared_ptr<const RenderFrame> frame);
-    /// Shows denoised pictures in the augmented view (previews' own, and `setDenoised`'s for
-    /// refined frames of the same state).
+    /// Shows denoised pictures in the augmented view (`setDenoised`'s, for refined frames of
+    /// the same state).
     void setDenoise(bool on);
     bool denoise() const { return denoise_; }
     /// The denoised augmented image of `frame`; shown while the frames on screen are of its

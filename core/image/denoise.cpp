@@ -39,6 +39,7 @@ struct Oidn {
     void (*setSharedFilterImage)(OIDNFilter, const char*, void*, int, size_t, size_t, size_t,
                                  size_t, size_t);
     void (*setFilterBool)(OIDNFilter, const char*, bool);
+    void (*setFilterInt)(OIDNFilter, const char*, int);
     void (*commitFilter)(OIDNFilter);
     void (*executeFilter)(OIDNFilter);
     void (*releaseFilter)(OIDNFilter);
@@ -93,6 +94,7 @@ Oidn* open_library(const std::string& path, std::string& why) {
     get(o->newFilter, "oidnNewFilter");
     get(o->setSharedFilterImage, "oidnSetSharedFilterImage");
     get(o->setFilterBool, "oidnSetFilterBool");
+    get(o->setFilterInt, "oidnSetFilterInt");
     get(o->commitFilter, "oidnCommitFilter");
     get(o->executeFilter, "oidnExecuteFilter");
     get(o->releaseFilter, "oidnReleaseFilter");
@@ -143,7 +145,7 @@ Oidn* library(std::string* why) {
 }
 
 // One run of the RT filter on a non-negative HDR image.
-Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal) {
+Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal, DenoiseQuality quality) {
     const size_t w = size_t(color.width()), h = size_t(color.height());
     Image out(color.width(), color.height());
     std::lock_guard<std::mutex> lock(o.run);
@@ -157,6 +159,8 @@ Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal) {
         o.setFilterBool(f, "cleanAux", true);  // one ray per pixel centre: no noise to remove
     }
     o.setFilterBool(f, "hdr", true);
+    // OIDNQuality: 5 balanced, 6 high (the library's default for CPUs).
+    o.setFilterInt(f, "quality", quality == DenoiseQuality::Interactive ? 5 : 6);
     o.commitFilter(f);
     o.executeFilter(f);
     o.releaseFilter(f);
@@ -182,7 +186,7 @@ float denoise_ceiling(const Image& photo) {
 }
 
 Image denoise_change(const Image& change, const Image& albedo_in, const Image& normal_in,
-                     float ceiling) {
+                     float ceiling, DenoiseQuality quality) {
     std::string why;
     Oidn* o = library(&why);
     if (!o) throw DenoiserUnavailable(why);
@@ -213,8 +217,8 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
         }
     Image albedo = albedo_in, normal = normal_in;  // shared with the filter, which wants non-const
     for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
-    const Image dpos = any_pos ? run_filter(*o, std::move(pos), albedo, normal) : Image(W, H);
-    const Image dneg = any_neg ? run_filter(*o, std::move(neg), albedo, normal) : Image(W, H);
+    const Image dpos = any_pos ? run_filter(*o, std::move(pos), albedo, normal, quality) : Image(W, H);
+    const Image dneg = any_neg ? run_filter(*o, std::move(neg), albedo, normal, quality) : Image(W, H);
 
     // Support: the raw change's non-zero pixels grown by kDenoiseSupport (separable max).
     std::vector<uint8_t> row(size_t(W) * H, 0), support(size_t(W) * H, 0);
@@ -239,7 +243,7 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
 }
 
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
-                        const Image& albedo, const Image& normal) {
+                        const Image& albedo, const Image& normal, DenoiseQuality quality) {
     check_size(photo, augmented, "the photo");
     if (!alpha.empty()) check_size(alpha, augmented, "alpha");
     // Where an object covers the photo the change is its radiance minus the photo: denoising
@@ -249,7 +253,7 @@ Image denoise_augmented(const Image& photo, const Image& augmented, const Image&
     Image signal(augmented.width(), augmented.height());
     for (size_t i = 0; i < signal.size(); ++i)
         signal[i] = augmented[i] - (1.0f - covered(i)) * photo[i];
-    Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo));
+    Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo), quality);
     for (size_t i = 0; i < out.size(); ++i) {
         const float a = covered(i);
         if (a == 0)

@@ -31,8 +31,12 @@ bool denoiser_available(std::string* why = nullptr);
 /// a mirror) is not noise: it keeps its raw value, and the filter sees it clamped so that its
 /// energy does not spread. Every value returned is finite. Throws DenoiserUnavailable, or
 /// std::invalid_argument for mismatched sizes, std::runtime_error when the library fails.
+/// How hard the filter works: Final is the library's best (renders written to disk);
+/// Interactive its balanced network, about half the time, for a viewer.
+enum class DenoiseQuality { Final, Interactive };
+
 Image denoise_change(const Image& change, const Image& albedo = {}, const Image& normal = {},
-                     float ceiling = INFINITY);
+                     float ceiling = INFINITY, DenoiseQuality quality = DenoiseQuality::Final);
 
 /// The augmented photograph with the noise of the change on real surfaces removed. `alpha` is
 /// the render's virtual coverage (red channel; empty: none). Pixels an object covers keep the
@@ -43,7 +47,8 @@ Image denoise_change(const Image& change, const Image& albedo = {}, const Image&
 /// denoised change is 0 keep the photo's bits. The ceiling is denoise_ceiling(photo). Same
 /// sizes required; throws as denoise_change.
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
-                        const Image& albedo = {}, const Image& normal = {});
+                        const Image& albedo = {}, const Image& normal = {},
+                        DenoiseQuality quality = DenoiseQuality::Final);
 
 /// kDenoiseCeilingFactor times the photo's 99.9% luminance quantile: the brightness above which
 /// a pixel is a highlight to keep (the same level the benchmarks clamp errors at).
