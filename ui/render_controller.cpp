@@ -54,8 +54,10 @@ class RenderController::Sink : public RenderSink {
         frame->refinedPasses = update.stats.passes;
         frame->scene = scene;
         // A final picture is shown as it is; so is one that has caught up with the refined one.
+        const auto composeStart = std::chrono::steady_clock::now();
         if (base && region && !finished && (preview || update.stats.passes < base->refinedPasses))
             compose(*frame, *base, *region);
+        const double composeMs = ms_since(composeStart);
         bool post = false;
         {
             std::lock_guard<std::mutex> lock(c_->mutex_);
@@ -63,8 +65,10 @@ class RenderController::Sink : public RenderSink {
             frame->preview = c_->runPreview_;
             frame->generation = c_->runGeneration_;
             c_->latest_ = std::move(frame);
-            if (c_->runFrames_++ == 0 && c_->runPreview_)
+            if (c_->runFrames_++ == 0 && c_->runPreview_) {
                 c_->timings_.firstQuick = ms_since(c_->runStart_);
+                c_->timings_.compose = composeMs;
+            }
             if (c_->runInteractive_) c_->timings_.dragFrame = ms_since(c_->dragStart_);
             post = !c_->posted_;
             c_->posted_ = true;
@@ -362,11 +366,14 @@ std::shared_ptr<const RenderController::Region> RenderController::regionFor(cons
         if (size_t(i) < p.objects.size() && scene.object_bounds(i, now.center, now.radius)) spheres.push_back(now);
     }
     auto region = std::make_shared<Region>();
-    region->width = scene.photo().width();
-    region->height = scene.photo().height();
+    // About 25,000 rays whatever the preview's size: the region's edge is widened anyway.
+    const int W = scene.photo().width(), H = scene.photo().height();
+    const int step = std::max(1, int(std::ceil(std::sqrt(double(W) * H / 25000.0))));
+    region->width = (W + step - 1) / step;
+    region->height = (H + step - 1) / step;
     region->baseGeneration = baseGeneration;
-    region->mask = change_region(scene, spheres);
-    // A pixel of the preview stands for several of the full picture: the edge of the region is
+    region->mask = change_region(scene, spheres, kChangeReach, step);
+    // A pixel of the mask stands for several of the full picture: the edge of the region is
     // widened by one, so soft shadows are not cut at it.
     dilate_mask(region->mask, region->width, region->height, 1);
     return region;

@@ -102,6 +102,7 @@ public:
         double buildQuick = 0;  ///< building the quick scene (0 when reused)
         double region = 0;      ///< finding the pixels the edit can change
         double firstQuick = 0;  ///< start of the quick run to its first pass
+        double compose = 0;     ///< of which laying it over the refined picture
         double buildFull = 0;   ///< building the full-size scene
         double dragFrame = 0;   ///< a drag request's frame: scene, region, pass and compositing
         int dragLevel = 0;      ///< the drag preview size (drag_preview_pixels)

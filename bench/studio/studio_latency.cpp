@@ -59,8 +59,10 @@ double time_edit(MainWindow& w, const Project& p, bool interactive) {
 }
 
 struct Phases {
-    std::vector<double> cancel, buildQuick, firstQuick, buildFull;
+    std::vector<double> cancel, buildQuick, firstQuick, buildFull, compose, region;
     void add(const RenderController::Timings& t) {
+        compose.push_back(t.compose);
+        region.push_back(t.region);
         cancel.push_back(t.cancel);
         buildQuick.push_back(t.buildQuick);
         firstQuick.push_back(t.firstQuick);
@@ -263,9 +265,11 @@ int main(int argc, char** argv) {
     for (auto [name, ph] : {std::pair{"move", &movePhases}, std::pair{"material", &materialPhases}})
         std::printf(
             "  %-8s phases (medians): stop run %.1f ms, build quick scene %.1f ms, quick run "
-            "to first pass %.1f ms, build full scene %.1f ms\n",
+            "to first pass %.1f ms (of which laying it over the refined picture %.1f ms), region %.1f ms, "
+            "build full scene %.1f ms\n",
             name, percentile(ph->cancel, 0.5), percentile(ph->buildQuick, 0.5),
-            percentile(ph->firstQuick, 0.5), percentile(ph->buildFull, 0.5));
+            percentile(ph->firstQuick, 0.5), percentile(ph->compose, 0.5), percentile(ph->region, 0.5),
+            percentile(ph->buildFull, 0.5));
     std::printf("%-44s p50 %7.1f ms  p99 %7.1f ms  worst %7.1f ms  (%zu ticks, target 50 ms: %s)\n",
                 "UI event-loop lateness while rendering", percentile(late, 0.5),
                 percentile(late, 0.99), percentile(late, 1.0), late.size(),

@@ -19,8 +19,10 @@ float distance_to_half_line(const vec3& c, const vec3& p, const vec3& dir) {
 }  // namespace
 
 std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<EditedBounds>& edited,
-                                   float reach) {
-    const int W = scene.photo().width(), H = scene.photo().height();
+                                   float reach, int step) {
+    step = std::max(1, step);
+    const int W = (scene.photo().width() + step - 1) / step, H = (scene.photo().height() + step - 1) / step;
+    const float half = 0.5f * float(step - 1);
     std::vector<uint8_t> mask(size_t(W) * H, 0);
     if (edited.empty()) return mask;
     // The sun's direction: the middle of its table. Its shadow and caustics of an edited
@@ -31,7 +33,7 @@ std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<E
     tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < W; ++x) {
-                const Ray ray = scene.camera_ray(float(x), float(y));
+                const Ray ray = scene.camera_ray(float(x * step) + half, float(y * step) + half);
                 const Hit hit = scene.intersect(ray);
                 bool in = false;
                 if (!hit) {

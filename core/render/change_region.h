@@ -22,8 +22,11 @@ inline constexpr float kChangeReach = 3.0f;
 /// objects), or meets a real surface within kChangeReach radii of an edited sphere or in the
 /// sun's shadow (or caustic) of one. `edited` holds each edited object's sphere before and
 /// after. A viewer that keeps a refined picture replaces only these pixels with a preview.
+/// With `step` > 1 one ray is traced per step x step block (through its centre) and the mask
+/// is (W + step - 1) / step by (H + step - 1) / step: a viewer needs the region, not its edge
+/// to the pixel.
 std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<EditedBounds>& edited,
-                                   float reach = kChangeReach);
+                                   float reach = kChangeReach, int step = 1);
 
 /// Grows a pixel mask by `pixels` in each direction (the edges of soft shadows, pixel
 /// footprints of a lower-resolution preview).

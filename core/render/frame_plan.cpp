@@ -25,7 +25,7 @@ double pixels_per_area(const Camera& camera, const vec3& p, const vec3& n) {
     return std::abs(double(u.x) * v.y - double(u.y) * v.x) / (double(delta) * delta);
 }
 
-FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
+FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std::atomic<bool>* cancel) {
     FramePlan plan;
     const int W = s.photo().width(), H = s.photo().height();
     const size_t n = size_t(W) * H;
@@ -66,7 +66,10 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
     }
     const DirectChange direct(s, real_max);
     std::vector<uint8_t> sees_virtual(n, 0);
+    // A row at a time, so that an edit arriving meanwhile (a viewer's) does not wait for it all.
+    auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
     tbb::parallel_for(0, H, [&](int y) {
+        if (cancelled()) return;
         for (int x = 0; x < W; ++x) {
             const size_t i = size_t(y) * W + x;
             const Ray ray = s.camera_ray(float(x), float(y));
@@ -88,6 +91,7 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays) {
             plan.direct_probability[i] = float(std::min(1.0, change / (double(kDirectRouletteLevel) * value)));
         }
     });
+    if (cancelled()) return FramePlan{};
     // Jittered samples may cross an object's edge within one pixel of a centre that sees it.
     tbb::parallel_for(0, H, [&](int y) {
         for (int x = 0; x < W; ++x) {

@@ -1,4 +1,5 @@
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -52,6 +53,8 @@ double pixels_per_area(const Camera& camera, const vec3& p, const vec3& n);
 /// Traces one ray through every pixel centre. With `direct_by_rays`, bounds each real pixel's
 /// direct-light change (DirectChange::bound) for the roulette; otherwise the probabilities
 /// stay 0 (the all-photon estimator has no direct term).
-FramePlan build_frame_plan(const RenderScene& scene, bool direct_by_rays);
+/// `cancel` becoming true stops it early: the plan returned is then incomplete (width 0).
+FramePlan build_frame_plan(const RenderScene& scene, bool direct_by_rays,
+                           const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace dp

@@ -61,13 +61,23 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
     }
     if (scene_->has_virtual()) direct_.emplace(*scene_);
     ceiling_ = kErrorCeilingFactor * luminance_quantile(scene_->photo(), 0.999);
-    plan_ = build_frame_plan(*scene_, split_);
+}
+
+bool ProgressiveRenderer::ensure_plan(const std::atomic<bool>* cancel) {
+    if (planned_) return true;
+    // Built with the first pass, not in the constructor: it traces a ray per pixel, and a
+    // viewer's edit must be able to stop it like any pass.
+    FramePlan plan = build_frame_plan(*scene_, split_, cancel);
+    if (plan.width == 0) return false;
+    plan_ = std::move(plan);
     sums_ = TileAccumulator(plan_.width, plan_.height, kTile);
     stats_.pixels_total = size_t(plan_.width) * plan_.height;
     stats_.tiles_total = plan_.tiles();
     size_t near = 0;
     for (FramePlan::PixelKind k : plan_.kind) near += k == FramePlan::PixelKind::NearVirtual;
     diffuse_samples_ = dp::camera_diffuse_samples(photons_per_pass_, near);
+    planned_ = true;
+    return true;
 }
 
 float ProgressiveRenderer::radius_for_pass(int pass) const {
@@ -277,6 +287,7 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
 
 bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     const auto t0 = std::chrono::steady_clock::now();
+    if (!ensure_plan(cancel)) return false;
     const int pass = stats_.passes + 1;
     RenderStats st = stats_;
     PassMaps maps;
@@ -355,6 +366,7 @@ void ProgressiveRenderer::update_convergence() {
 }
 
 void ProgressiveRenderer::render_single_pass(int pass, Image& pixel_change, Image& dL, Image& alpha) {
+    ensure_plan(nullptr);
     PassMaps maps;
     build_pass_maps(pass, maps, nullptr);
     const PassWork work = plan_pass(pass, maps, false);
@@ -387,7 +399,7 @@ Image ProgressiveRenderer::image() const {
 }
 
 Image ProgressiveRenderer::dL_layer() const {
-    Image out(plan_.width, plan_.height);
+    Image out(scene_->photo().width(), scene_->photo().height());
     for (uint32_t t = 0; t < sums_.tiles(); ++t)
         if (sums_.touched(t))
             for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) { out[i] = vec3(sums_.mean_dL(i)); });
@@ -395,7 +407,7 @@ Image ProgressiveRenderer::dL_layer() const {
 }
 
 Image ProgressiveRenderer::alpha_layer() const {
-    Image out(plan_.width, plan_.height);
+    Image out(scene_->photo().width(), scene_->photo().height());
     for (uint32_t t = 0; t < sums_.tiles(); ++t)
         if (sums_.touched(t))
             for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) { out[i] = vec3(float(sums_.mean_alpha(i))); });

@@ -62,6 +62,7 @@ public:
     double skipped_fraction() const;
     /// Estimates per camera sample on virtual diffuse surfaces (camera_gather.h).
     int camera_diffuse_samples() const { return diffuse_samples_; }
+    /// Built with the first pass (empty before it).
     const FramePlan& plan() const { return plan_; }
     const TileAccumulator& accumulator() const { return sums_; }
 
@@ -98,6 +99,8 @@ private:
                      const std::atomic<bool>* cancel, size_t& shaded, size_t& direct) const;
     /// Stops converged tiles and refreshes the error estimate.
     void update_convergence();
+    /// Builds the frame plan and what depends on it, once; false if `cancel` stopped it.
+    bool ensure_plan(const std::atomic<bool>* cancel);
 
     std::shared_ptr<const RenderScene> scene_;
     RenderSettings settings_;
@@ -108,6 +111,7 @@ private:
     bool low_discrepancy_ = true;
     std::optional<DirectChange> direct_;  ///< the direct change by rays (with virtual objects)
     FramePlan plan_;  ///< once per camera and geometry
+    bool planned_ = false;
     int diffuse_samples_ = 2;
     TileAccumulator sums_;
     float ceiling_ = 0;  ///< pixel luminance clamped here when errors are estimated
