@@ -16,6 +16,7 @@ DenoiseWorker::~DenoiseWorker() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         quit_ = true;
+        cancel_.store(true);
     }
     cv_.notify_all();
     thread_.join();
@@ -41,12 +42,21 @@ double DenoiseWorker::lastMs() const {
     return lastMs_;
 }
 
-Image DenoiseWorker::denoise_now(const RenderFrame& f, const DenoiseAovs& aovs) {
+void DenoiseWorker::setPaused(bool paused) {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        paused_ = paused;
+        cancel_.store(paused);
+    }
+    cv_.notify_all();
+}
+
+Image DenoiseWorker::denoise_now(const RenderFrame& f, const DenoiseAovs& aovs, const std::atomic<bool>* cancel) {
     if (!f.scene || f.update.image.empty() || !denoiser_available()) return {};
     const Image& photo = f.scene->photo();
     if (photo.width() != f.update.image.width() || aovs.albedo.width() != photo.width()) return {};
     return denoise_augmented(photo, f.update.image, f.update.alpha, aovs.albedo, aovs.normal,
-                             DenoiseQuality::Interactive);
+                             DenoiseQuality::Interactive, cancel);
 }
 
 void DenoiseWorker::run() {
@@ -54,9 +64,10 @@ void DenoiseWorker::run() {
         std::shared_ptr<const RenderFrame> frame;
         {
             std::unique_lock<std::mutex> lock(mutex_);
-            cv_.wait(lock, [&] { return quit_ || pending_; });
+            cv_.wait(lock, [&] { return quit_ || (pending_ && !paused_); });
             if (quit_) return;
             frame = std::move(pending_);
+            cancel_.store(false);
         }
         if (!frame->scene) continue;
         const auto t0 = std::chrono::steady_clock::now();
@@ -67,7 +78,7 @@ void DenoiseWorker::run() {
                 aovScene_ = frame->scene.get();
                 aovSceneHold_ = frame->scene;  // the address stays this scene's while held
             }
-            auto image = std::make_shared<const Image>(denoise_now(*frame, aovs_));
+            auto image = std::make_shared<const Image>(denoise_now(*frame, aovs_, &cancel_));
             if (image->empty()) continue;
             {
                 std::lock_guard<std::mutex> lock(mutex_);
@@ -76,7 +87,10 @@ void DenoiseWorker::run() {
             QMetaObject::invokeMethod(
                 this, [this, frame, image] { Q_EMIT denoised(frame, image); }, Qt::QueuedConnection);
         } catch (const std::exception&) {
-            // A denoiser that fails leaves the raw picture on screen; the render is unaffected.
+            // Stopped by a drag, or failed: the raw picture stays on screen; a stopped frame
+            // is asked for again when the drag ends.
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (cancel_.load() && !pending_) pending_ = frame;
         }
     }
 }

@@ -2,6 +2,7 @@
 // Denoises the studio's refined frames on a thread of its own, so that neither the UI nor the
 // renderer waits for it: the newest frame wins, older requests are dropped.
 #include <QObject>
+#include <atomic>
 #include <condition_variable>
 #include <map>
 #include <memory>
@@ -28,11 +29,15 @@ public:
     static bool available(QString* why = nullptr);
     /// Denoises `frame` (replacing a request not yet started).
     void request(std::shared_ptr<const RenderFrame> frame);
+    /// While paused (a drag) nothing runs and a denoise in flight is stopped: the drag's
+    /// previews need the cores. The last request runs once unpaused.
+    void setPaused(bool paused);
     /// Milliseconds the last denoise took (0 before the first).
     double lastMs() const;
     /// The denoised augmented image of `frame` at its size, at the interactive quality;
     /// empty where the denoiser is missing or the frame has no scene.
-    static Image denoise_now(const RenderFrame& frame, const DenoiseAovs& aovs);
+    static Image denoise_now(const RenderFrame& frame, const DenoiseAovs& aovs,
+                             const std::atomic<bool>* cancel = nullptr);
 
 Q_SIGNALS:
     /// The denoised augmented image of `frame`, at its size.
@@ -45,7 +50,8 @@ private:
     mutable std::mutex mutex_;
     std::condition_variable cv_;
     std::shared_ptr<const RenderFrame> pending_;
-    bool quit_ = false;
+    bool quit_ = false, paused_ = false;
+    std::atomic<bool> cancel_{false};
     double lastMs_ = 0;
     const void* aovScene_ = nullptr;  ///< worker thread: the scene `aovs_` belongs to
     std::shared_ptr<const void> aovSceneHold_;

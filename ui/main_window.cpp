@@ -462,11 +462,13 @@ void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
 
 void MainWindow::beginInteraction() {
     interactive_ = true;
+    denoiser_->setPaused(true);  // the drag's previews need both cores
     editedWhileInteractive_ = false;
 }
 
 void MainWindow::endInteraction() {
     interactive_ = false;
+    denoiser_->setPaused(false);
     // The quick passes stop; refinement of the final state starts.
     if (editedWhileInteractive_) renderer_->request(doc_->project(), false);
     editedWhileInteractive_ = false;

@@ -341,9 +341,11 @@ void RenderController::rememberBase(uint64_t generation, const Project& p, const
         keepFrom = base_ ? base_->generation : 0;
     }
     bases_[generation] = std::move(b);
-    // Only the refined picture's state and later ones can become the base of an edit.
-    while (bases_.size() > 1 && bases_.begin()->first < keepFrom) bases_.erase(bases_.begin());
-    while (bases_.size() > 8) bases_.erase(bases_.begin());
+    // The refined picture's state, and the latest few that may replace it.
+    for (auto it = bases_.begin(); it != bases_.end();) {
+        const bool recent = std::distance(it, bases_.end()) <= 8;
+        it = it->first == keepFrom || (it->first > keepFrom && recent) ? std::next(it) : bases_.erase(it);
+    }
 }
 
 std::shared_ptr<const RenderController::Region> RenderController::regionFor(const Project& p,

@@ -1,5 +1,7 @@
 #include "image/denoise.h"
 
+#include <atomic>
+
 #include <dlfcn.h>
 
 #include <algorithm>
@@ -40,6 +42,7 @@ struct Oidn {
                                  size_t, size_t);
     void (*setFilterBool)(OIDNFilter, const char*, bool);
     void (*setFilterInt)(OIDNFilter, const char*, int);
+    void (*setFilterProgressMonitorFunction)(OIDNFilter, bool (*)(void*, double), void*);
     void (*commitFilter)(OIDNFilter);
     void (*executeFilter)(OIDNFilter);
     void (*releaseFilter)(OIDNFilter);
@@ -95,6 +98,7 @@ Oidn* open_library(const std::string& path, std::string& why) {
     get(o->setSharedFilterImage, "oidnSetSharedFilterImage");
     get(o->setFilterBool, "oidnSetFilterBool");
     get(o->setFilterInt, "oidnSetFilterInt");
+    get(o->setFilterProgressMonitorFunction, "oidnSetFilterProgressMonitorFunction");
     get(o->commitFilter, "oidnCommitFilter");
     get(o->executeFilter, "oidnExecuteFilter");
     get(o->releaseFilter, "oidnReleaseFilter");
@@ -145,7 +149,8 @@ Oidn* library(std::string* why) {
 }
 
 // One run of the RT filter on a non-negative HDR image.
-Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal, DenoiseQuality quality) {
+Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal, DenoiseQuality quality,
+                 const std::atomic<bool>* cancel) {
     const size_t w = size_t(color.width()), h = size_t(color.height());
     Image out(color.width(), color.height());
     std::lock_guard<std::mutex> lock(o.run);
@@ -161,6 +166,11 @@ Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal, DenoiseQual
     o.setFilterBool(f, "hdr", true);
     // OIDNQuality: 5 balanced, 6 high (the library's default for CPUs).
     o.setFilterInt(f, "quality", quality == DenoiseQuality::Interactive ? 5 : 6);
+    if (cancel) {
+        // The library asks as it goes whether to go on: a viewer's drag stops it.
+        auto go_on = [](void* flag, double) { return !static_cast<const std::atomic<bool>*>(flag)->load(); };
+        o.setFilterProgressMonitorFunction(f, go_on, const_cast<std::atomic<bool>*>(cancel));
+    }
     o.commitFilter(f);
     o.executeFilter(f);
     o.releaseFilter(f);
@@ -186,7 +196,7 @@ float denoise_ceiling(const Image& photo) {
 }
 
 Image denoise_change(const Image& change, const Image& albedo_in, const Image& normal_in,
-                     float ceiling, DenoiseQuality quality) {
+                     float ceiling, DenoiseQuality quality, const std::atomic<bool>* cancel) {
     std::string why;
     Oidn* o = library(&why);
     if (!o) throw DenoiserUnavailable(why);
@@ -217,8 +227,8 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
         }
     Image albedo = albedo_in, normal = normal_in;  // shared with the filter, which wants non-const
     for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
-    const Image dpos = any_pos ? run_filter(*o, std::move(pos), albedo, normal, quality) : Image(W, H);
-    const Image dneg = any_neg ? run_filter(*o, std::move(neg), albedo, normal, quality) : Image(W, H);
+    const Image dpos = any_pos ? run_filter(*o, std::move(pos), albedo, normal, quality, cancel) : Image(W, H);
+    const Image dneg = any_neg ? run_filter(*o, std::move(neg), albedo, normal, quality, cancel) : Image(W, H);
 
     // Support: the raw change's non-zero pixels grown by kDenoiseSupport (separable max).
     std::vector<uint8_t> row(size_t(W) * H, 0), support(size_t(W) * H, 0);
@@ -243,7 +253,8 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
 }
 
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
-                        const Image& albedo, const Image& normal, DenoiseQuality quality) {
+                        const Image& albedo, const Image& normal, DenoiseQuality quality,
+                        const std::atomic<bool>* cancel) {
     check_size(photo, augmented, "the photo");
     if (!alpha.empty()) check_size(alpha, augmented, "alpha");
     // Where an object covers the photo the change is its radiance minus the photo: denoising
@@ -253,7 +264,7 @@ Image denoise_augmented(const Image& photo, const Image& augmented, const Image&
     Image signal(augmented.width(), augmented.height());
     for (size_t i = 0; i < signal.size(); ++i)
         signal[i] = augmented[i] - (1.0f - covered(i)) * photo[i];
-    Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo), quality);
+    Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo), quality, cancel);
     for (size_t i = 0; i < out.size(); ++i) {
         const float a = covered(i);
         if (a == 0)

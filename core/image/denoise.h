@@ -1,4 +1,5 @@
 #pragma once
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -35,8 +36,10 @@ bool denoiser_available(std::string* why = nullptr);
 /// Interactive its balanced network, about half the time, for a viewer.
 enum class DenoiseQuality { Final, Interactive };
 
+/// `cancel` becoming true stops the filter (std::runtime_error).
 Image denoise_change(const Image& change, const Image& albedo = {}, const Image& normal = {},
-                     float ceiling = INFINITY, DenoiseQuality quality = DenoiseQuality::Final);
+                     float ceiling = INFINITY, DenoiseQuality quality = DenoiseQuality::Final,
+                     const std::atomic<bool>* cancel = nullptr);
 
 /// The augmented photograph with the noise of the change on real surfaces removed. `alpha` is
 /// the render's virtual coverage (red channel; empty: none). Pixels an object covers keep the
@@ -48,7 +51,8 @@ Image denoise_change(const Image& change, const Image& albedo = {}, const Image&
 /// sizes required; throws as denoise_change.
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
                         const Image& albedo = {}, const Image& normal = {},
-                        DenoiseQuality quality = DenoiseQuality::Final);
+                        DenoiseQuality quality = DenoiseQuality::Final,
+                        const std::atomic<bool>* cancel = nullptr);
 
 /// kDenoiseCeilingFactor times the photo's 99.9% luminance quantile: the brightness above which
 /// a pixel is a highlight to keep (the same level the benchmarks clamp errors at).
