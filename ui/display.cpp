@@ -33,28 +33,36 @@ inline uint8_t encode(float v) {
     return srgb_lut()[size_t(std::sqrt(v) * kLutSize + 0.5f)];
 }
 
+/// Every how many pixels a picture at most `max_width` wide samples `image`.
+int stride(const Image& image, int max_width) {
+    if (max_width <= 0 || image.width() <= max_width) return 1;
+    return (image.width() + max_width - 1) / max_width;
+}
+
 }  // namespace
 
-QImage to_display(const Image& image, float exposure) {
-    QImage out(image.width(), image.height(), QImage::Format_RGB32);
+QImage to_display(const Image& image, float exposure, int max_width) {
+    const int step = stride(image, max_width);
+    QImage out(image.width() / step, image.height() / step, QImage::Format_RGB32);
     const float scale = std::exp2(exposure);
-    for (int y = 0; y < image.height(); ++y) {
+    for (int y = 0; y < out.height(); ++y) {
         auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
-        for (int x = 0; x < image.width(); ++x) {
-            const vec3 c = image.at(x, y) * scale;
+        for (int x = 0; x < out.width(); ++x) {
+            const vec3 c = image.at(x * step + step / 2, y * step + step / 2) * scale;
             row[x] = qRgb(encode(c.x), encode(c.y), encode(c.z));
         }
     }
     return out;
 }
 
-QImage to_false_colour(const Image& delta, float exposure) {
-    QImage out(delta.width(), delta.height(), QImage::Format_RGB32);
+QImage to_false_colour(const Image& delta, float exposure, int max_width) {
+    const int step = stride(delta, max_width);
+    QImage out(delta.width() / step, delta.height() / step, QImage::Format_RGB32);
     const float scale = std::exp2(exposure);
-    for (int y = 0; y < delta.height(); ++y) {
+    for (int y = 0; y < out.height(); ++y) {
         auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
-        for (int x = 0; x < delta.width(); ++x) {
-            const float d = luminance(delta.at(x, y)) * scale;
+        for (int x = 0; x < out.width(); ++x) {
+            const float d = luminance(delta.at(x * step + step / 2, y * step + step / 2)) * scale;
             const uint8_t m = encode(std::abs(d));
             row[x] = d >= 0 ? qRgb(m, m / 4, 0) : qRgb(0, m / 2, m);
         }

@@ -9,11 +9,16 @@ namespace dp::ui {
 
 enum class ViewMode { Photo, Augmented, Delta };
 
-/// linear * 2^exposure -> sRGB, clamped to [0, 1].
-QImage to_display(const Image& image, float exposure);
+/// The widest picture the viewport converts for the screen: a larger render (a 12 MP photo) is
+/// shown from every n-th pixel, so a frame costs the UI thread the same whatever the photo.
+inline constexpr int kDisplayMaxWidth = 2560;
+
+/// linear * 2^exposure -> sRGB, clamped to [0, 1]; at most `max_width` wide (0: any), from
+/// every n-th pixel.
+QImage to_display(const Image& image, float exposure, int max_width = 0);
 
 /// Signed false colour for dL: red where the objects add light (caustics, reflections), blue
 /// where they remove it (shadows), black where nothing changed; |dL| * 2^exposure through sRGB.
-QImage to_false_colour(const Image& delta, float exposure);
+QImage to_false_colour(const Image& delta, float exposure, int max_width = 0);
 
 }  // namespace dp::ui

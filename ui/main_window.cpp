@@ -426,7 +426,10 @@ void MainWindow::connectRenderer() {
 
 void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     viewport_->setFrame(f);
-    if (renderer_->denoise() && !f->preview && !f->composited()) {
+    // Larger frames than this are left raw: here the filter takes about 4 s a megapixel and
+    // its buffers several times the frame.
+    constexpr size_t kMaxDenoisePixels = 2500000;
+    if (renderer_->denoise() && !f->preview && !f->composited() && f->update.image.size() <= kMaxDenoisePixels) {
         // A refined frame is denoised on its own thread: at most every few seconds (it takes
         // the cores from the render), and always the last one.
         const double gap = std::max(2000.0, 3.0 * denoiser_->lastMs());

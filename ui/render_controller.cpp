@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "display.h"
 #include "render/preview.h"
 #include "scene_builder.h"
 
@@ -389,26 +390,32 @@ void RenderController::compose(RenderFrame& f, const RenderFrame& base, const Re
     const Image& pd = f.update.dL;
     if (W == 0 || bd.width() != W || pi.empty() || region.mask.empty()) return;
     const int w = pi.width(), h = pi.height();
-    auto image = std::make_shared<Image>(W, H);
-    auto dL = std::make_shared<Image>(W, H);
+    // What is shown, not what is exported: at most the display's width (a 12 MP photo is
+    // laid over at a fraction of its pixels), sampling the refined picture's pixels.
+    const int step = W > kDisplayMaxWidth ? (W + kDisplayMaxWidth - 1) / kDisplayMaxWidth : 1;
+    const int OW = W / step, OH = H / step;
+    auto image = std::make_shared<Image>(OW, OH);
+    auto dL = std::make_shared<Image>(OW, OH);
     // The mask is looked up at its own scale: a full-size pass uses its preview's region.
     const float sx = float(w) / float(W), sy = float(h) / float(H);
     const float mx = float(region.width) / float(W), my = float(region.height) / float(H);
-    tbb::parallel_for(0, H, [&](int y) {
+    tbb::parallel_for(0, OH, [&](int oy) {
+        const int y = oy * step + step / 2;
         const int ry = std::min(region.height - 1, int((float(y) + 0.5f) * my));
-        for (int x = 0; x < W; ++x) {
-            const size_t i = size_t(y) * W + x;
+        for (int ox = 0; ox < OW; ++ox) {
+            const int x = ox * step + step / 2;
+            const size_t i = size_t(y) * W + x, o = size_t(oy) * OW + ox;
             const int rx = std::min(region.width - 1, int((float(x) + 0.5f) * mx));
             if (!region.mask[size_t(ry) * region.width + rx]) {
-                (*image)[i] = bi[i];
-                (*dL)[i] = bd[i];
+                (*image)[o] = bi[i];
+                (*dL)[o] = bd[i];
             } else if (w == W && h == H) {
-                (*image)[i] = pi[i];
-                (*dL)[i] = pd[i];
+                (*image)[o] = pi[i];
+                (*dL)[o] = pd[i];
             } else {
                 const float px = (float(x) + 0.5f) * sx - 0.5f, py = (float(y) + 0.5f) * sy - 0.5f;
-                (*image)[i] = pi.bilinear(px, py);
-                (*dL)[i] = pd.bilinear(px, py);
+                (*image)[o] = pi.bilinear(px, py);
+                (*dL)[o] = pd.bilinear(px, py);
             }
         }
     });

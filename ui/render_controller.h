@@ -30,7 +30,8 @@ struct RenderFrame {
     uint64_t generation = 0;             ///< which request it answers
     /// What the viewport shows, where it differs from `update`: an edit's preview or early
     /// refinement passes laid over the last refined picture outside the region the edit can
-    /// change (change_region), at the full render size. Null: update's own images.
+    /// change (change_region), at the full render size (at most the display's width,
+    /// kDisplayMaxWidth). Null: update's own images.
     std::shared_ptr<const Image> shownImage, shownDL;
     /// Passes behind the picture outside the edited region (update's own when not composited).
     int refinedPasses = 0;

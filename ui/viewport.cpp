@@ -93,9 +93,9 @@ void Viewport::rebuildImage() {
     if (!frame_) {
         shown_ = QImage();
     } else if (mode_ == ViewMode::Photo && frame_->photo) {
-        shown_ = to_display(*frame_->photo, exposure_);
+        shown_ = to_display(*frame_->photo, exposure_, kDisplayMaxWidth);
     } else if (mode_ == ViewMode::Delta) {
-        shown_ = to_false_colour(frame_->dL(), exposure_);
+        shown_ = to_false_colour(frame_->dL(), exposure_, kDisplayMaxWidth);
     } else {
         // Denoised: a refined frame shows the denoised picture of its state, however many
         // passes behind; previews (and frames laid over the refined picture) stay raw.
@@ -105,7 +105,7 @@ void Viewport::rebuildImage() {
             image = denoised_.get();
             showingDenoised_ = true;
         }
-        shown_ = to_display(*image, exposure_);
+        shown_ = to_display(*image, exposure_, kDisplayMaxWidth);
     }
     update();
 }

@@ -167,6 +167,7 @@ int large_photo(int megapixels) {
     QTest::qWait(2000);
     std::vector<double> gaps, frameMs, levels, drops;
     const double fps = drag_fps(win, 3000, 1.0f, gaps, frameMs, levels, drops);
+    const RenderController::Timings tm = win.renderer()->timings();
     QTest::qWait(5000);
     std::printf("sample with its photo resampled to %dx%d (%.1f MP), rendered at that size, %d threads\n", w, h,
                 w * double(h) / 1e6, QThread::idealThreadCount());
@@ -174,6 +175,9 @@ int large_photo(int megapixels) {
                 "frame work %.0f ms); first full-size frame after the drop %.0f ms\n",
                 firstFull, fps, percentile(gaps, 0.5), percentile(gaps, 0.9), percentile(frameMs, 0.5),
                 drops.empty() ? -1.0 : drops[0]);
+    std::printf("  the last drag frame: stop %.1f ms, build %.1f ms, region %.1f ms, pass and laying over %.1f ms "
+                "(of which laying over %.1f ms)\n",
+                tm.cancel, tm.buildQuick, tm.region, tm.firstQuick, tm.compose);
     std::printf("  peak resident memory %.0f MB (%.0f MB before the window opened)\n", peak_rss_mb(), before);
     win.renderer()->stop();
     return 0;

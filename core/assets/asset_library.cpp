@@ -227,7 +227,7 @@ std::shared_ptr<const LitProbe> AssetLibrary::lit_probe(const Project& p) {
 
 SceneAssets AssetLibrary::load(const Project& project, int photo_width, int photo_height, bool with_probe) {
     SceneAssets a;
-    a.photo = *photo_at(project, photo_width, photo_height);
+    if (photo_width >= 0) a.photo = *photo_at(project, photo_width, photo_height);  // < 0: warnings only
     if (with_probe) a.probe_latlong = *probe(project);
     auto load_list = [&](auto const& list, const char* name, std::vector<TriangleMesh>& meshes,
                          std::vector<Image>& textures, auto albedo_of) {
@@ -271,7 +271,13 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
     return a;
 }
 
-std::vector<std::string> AssetLibrary::warnings(const Project& project) { return load(project).warnings; }
+std::vector<std::string> AssetLibrary::warnings(const Project& project) {
+    // Decoded (or found decoded) without copying the photo and the probe: a viewer asks on
+    // every edit, and a 12 MP photo's copy would cost more than the edit's preview.
+    photo(project);
+    probe(project);
+    return load(project, -1, -1, false).warnings;
+}
 
 void AssetLibrary::photo_size(const Project& p, int& width, int& height) {
     {
