@@ -1,5 +1,7 @@
 #include "calibration_panel.h"
 
+#include <cmath>
+
 #include <algorithm>
 
 #include <QCheckBox>
@@ -462,6 +464,18 @@ bool CalibrationPanel::addGroundPlane() {
     return guarded(tr("Ground plane failed"), [this] {
         const Image& img = photo();
         Project p = doc_->project();
+        // One ground: a flat plane at y = 0 already there is refitted to what the camera sees
+        // (keeping its name and albedo), not covered by a second one.
+        for (RealProxy& r : p.real) {
+            const bool flat = r.transform.rotation_deg == vec3(0) ||
+                              (std::abs(r.transform.rotation_deg.x) < 1e-3f && std::abs(r.transform.rotation_deg.z) < 1e-3f);
+            if (r.shape.kind != Shape::Kind::Plane || !flat || std::abs(r.transform.translation.y) > 1e-4f) continue;
+            const ProxyFit fit = ground_proxy(p.camera.build(img.width(), img.height()), 0, r.name);
+            r.shape = fit.proxy.shape;
+            r.transform = fit.proxy.transform;
+            doc_->edit(tr("Refit ground plane"), p);
+            return;
+        }
         ProxyFit fit = ground_proxy(p.camera.build(img.width(), img.height()), 0,
                                     unique_real_name(p, "ground"));
         p.real.push_back(fit.proxy);

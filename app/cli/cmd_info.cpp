@@ -104,7 +104,7 @@ int run_info(const std::string& project_path) {
     std::printf("probe: '%s' -> %s, %s%s, rotation %s deg, intensity %g\n",
                 p.probe.path.c_str(), p.resolve(p.probe.path).c_str(),
                 ball ? "mirrorball unwrapped to lat-long " : "latlong ",
-                size_text(a.probe_latlong).c_str(), vec(p.probe.rotation_deg).c_str(),
+                size_text(scene->probe().image()).c_str(), vec(p.probe.rotation_deg).c_str(),
                 p.probe.intensity);
     print_camera(p, scene->camera());
 

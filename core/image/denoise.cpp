@@ -1,4 +1,5 @@
 #include "image/denoise.h"
+#include "image/mask.h"
 
 #include <atomic>
 
@@ -230,19 +231,10 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
     const Image dpos = any_pos ? run_filter(*o, std::move(pos), albedo, normal, quality, cancel) : Image(W, H);
     const Image dneg = any_neg ? run_filter(*o, std::move(neg), albedo, normal, quality, cancel) : Image(W, H);
 
-    // Support: the raw change's non-zero pixels grown by kDenoiseSupport (separable max).
-    std::vector<uint8_t> row(size_t(W) * H, 0), support(size_t(W) * H, 0);
-    const int r = kDenoiseSupport;
-    for (int y = 0; y < H; ++y)
-        for (int x = 0, last = -r - 1; x < W + r; ++x) {
-            if (x < W && change.at(x, y) != vec3(0)) last = x;
-            if (x - r >= 0 && x - r - last <= r) row[size_t(y) * W + x - r] = 1;
-        }
-    for (int x = 0; x < W; ++x)
-        for (int y = 0, last = -r - 1; y < H + r; ++y) {
-            if (y < H && row[size_t(y) * W + x]) last = y;
-            if (y - r >= 0 && y - r - last <= r) support[size_t(y - r) * W + x] = 1;
-        }
+    // Support: the raw change's non-zero pixels grown by kDenoiseSupport.
+    std::vector<uint8_t> support(size_t(W) * H, 0);
+    for (size_t i = 0; i < change.size(); ++i) support[i] = change[i] != vec3(0);
+    dilate_mask(support, W, H, kDenoiseSupport);
     Image out(W, H);
     for (size_t i = 0; i < out.size(); ++i) {
         if (!support[i]) continue;

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "assets/render_scene.h"
+#include "image/mask.h"
 
 namespace dp {
 
@@ -27,9 +28,5 @@ inline constexpr float kChangeReach = 3.0f;
 /// to the pixel.
 std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<EditedBounds>& edited,
                                    float reach = kChangeReach, int step = 1);
-
-/// Grows a pixel mask by `pixels` in each direction (the edges of soft shadows, pixel
-/// footprints of a lower-resolution preview).
-void dilate_mask(std::vector<uint8_t>& mask, int width, int height, int pixels);
 
 }  // namespace dp

@@ -78,6 +78,7 @@ private Q_SLOTS:
     void clickedBoxFootprintBecomesARealProxy();
     void sunCueClickedOnThePhotoTurnsTheProbe();
     void albedoEstimateWritesTheLibrarysTextureNextToTheProject();
+    void addGroundPlaneRefitsTheGroundInsteadOfAddingASecond();
 
 private:
     /// Opens a project whose photo is `photo`.
@@ -123,6 +124,33 @@ void CalibrationTest::init() {
     p.end();
     QVERIFY(img.save(dir_->filePath("rectangle.png")));
     open(dir_->filePath("rectangle.png"));
+}
+
+void CalibrationTest::addGroundPlaneRefitsTheGroundInsteadOfAddingASecond() {
+    auto grounds = [&] {
+        int n = 0;
+        for (const RealProxy& r : w_->document()->project().real)
+            n += r.shape.kind == Shape::Kind::Plane && r.transform.translation.y == 0.0f;
+        return n;
+    };
+    QCOMPARE(grounds(), 1);  // the sample's own 30 x 30 m ground
+    const size_t proxies = w_->document()->project().real.size();
+    const vec3 before = w_->document()->project().real[0].shape.size;
+    child<QPushButton>("addGroundPlane")->click();
+    QCOMPARE(grounds(), 1);
+    QCOMPARE(w_->document()->project().real.size(), proxies);
+    const RealProxy& g = w_->document()->project().real[0];
+    QCOMPARE(QString::fromStdString(g.name), QString("ground"));
+    QVERIFY(g.shape.size != before);  // sized to what the camera sees
+    child<QPushButton>("addGroundPlane")->click();
+    QCOMPARE(grounds(), 1);
+    // Without a ground, the button adds one.
+    Project p = w_->document()->project();
+    p.real.erase(p.real.begin());
+    w_->document()->edit("no ground", p);
+    child<QPushButton>("addGroundPlane")->click();
+    QCOMPARE(grounds(), 1);
+    QCOMPARE(w_->document()->project().real.size(), proxies);
 }
 
 void CalibrationTest::cleanup() {

@@ -72,10 +72,11 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
     std::printf(
         "UI timer: %d ticks (%d while rendering), %d frames shown, worst lateness %.1f ms\n", ticks,
         busy, frames, double(worst) / 1e6);
-    // The figure only means something if the renderer worked throughout.
+    // The figure only means something if the renderer worked throughout (during the stroke
+    // each slider step renders one pass and then waits for the next step).
     QVERIFY(frames >= 1);
     QVERIFY(ticks > 100);
-    QVERIFY(busy >= ticks * 9 / 10);
+    QVERIFY2(busy >= ticks * 3 / 4, qPrintable(QString("busy %1 of %2 ticks").arg(busy).arg(ticks)));
     QVERIFY2(worst < 50 * 1000000LL, qPrintable(QString("worst %1 ms").arg(worst / 1e6)));
 }
 
