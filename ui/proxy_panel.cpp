@@ -66,6 +66,21 @@ ProxyPanel::ProxyPanel(Document* doc, Viewport* viewport, ErrorReporter* reporte
     connect(remove, &QPushButton::clicked, this, [this] { removeSelected(); });
     layout->addWidget(remove);
 
+    // The selected proxy's size, typed: a ground too small or a box a little off is fixed here.
+    auto* size = new QGroupBox(tr("Size"));
+    auto* sizeForm = new QFormLayout(size);
+    const char* sizeNames[] = {"proxySizeX", "proxySizeY", "proxySizeZ"};
+    const QString sizeLabels[] = {tr("Width (x)"), tr("Height (y)"), tr("Depth (z)")};
+    for (int k = 0; k < 3; ++k) {
+        size_[k] = metres(1.0, sizeNames[k], tr("Size of the selected proxy along its own axis"));
+        size_[k]->setRange(0.001, 1e6);
+        size_[k]->setKeyboardTracking(false);
+        connect(size_[k], &QDoubleSpinBox::valueChanged, this, [this] { applySize(); });
+        sizeForm->addRow(sizeLabels[k], size_[k]);
+    }
+    layout->addWidget(size);
+    connect(list_, &QListWidget::currentRowChanged, this, [this] { showSize(); });
+
     auto* box = new QGroupBox(tr("Box"));
     auto* boxForm = new QFormLayout(box);
     boxHeight_ = metres(0.5, "boxHeight", tr("Height of the box above the ground"));
@@ -148,6 +163,50 @@ void ProxyPanel::refresh() {
         list_->addItem(text);
     }
     list_->setCurrentRow(std::min(row, list_->count() - 1));
+    showSize();
+}
+
+void ProxyPanel::showSize() {
+    const int row = list_->currentRow();
+    const auto& real = doc_->project().real;
+    const RealProxy* r = row >= 0 && size_t(row) < real.size() ? &real[size_t(row)] : nullptr;
+    const Shape::Kind kind = r ? r->shape.kind : Shape::Kind::Mesh;
+    const bool has[3] = {kind == Shape::Kind::Box || kind == Shape::Kind::Plane || kind == Shape::Kind::Sphere,
+                         kind == Shape::Kind::Box, kind == Shape::Kind::Box || kind == Shape::Kind::Plane};
+    showingSize_ = true;
+    for (int k = 0; k < 3; ++k) {
+        size_[k]->setEnabled(has[k]);
+        if (!has[k]) continue;
+        // A sphere's one size is its radius.
+        size_[k]->setValue(kind == Shape::Kind::Sphere ? r->shape.radius : r->shape.size[k]);
+    }
+    size_[0]->setToolTip(kind == Shape::Kind::Sphere ? tr("Radius of the selected sphere")
+                                                     : tr("Size of the selected proxy along its own x"));
+    showingSize_ = false;
+}
+
+void ProxyPanel::applySize() {
+    const int row = list_->currentRow();
+    Project p = doc_->project();
+    if (showingSize_ || row < 0 || size_t(row) >= p.real.size()) return;
+    RealProxy& r = p.real[size_t(row)];
+    switch (r.shape.kind) {
+        case Shape::Kind::Sphere: r.shape.radius = float(size_[0]->value()); break;
+        case Shape::Kind::Plane:
+            r.shape.size.x = float(size_[0]->value());
+            r.shape.size.z = float(size_[2]->value());
+            break;
+        case Shape::Kind::Box: {
+            // Boxes stand on something: a new height keeps the base where it was.
+            const float old_height = r.shape.size.y * r.transform.scale.y;
+            for (int k = 0; k < 3; ++k) r.shape.size[k] = float(size_[k]->value());
+            r.transform.translation.y += 0.5f * (r.shape.size.y * r.transform.scale.y - old_height);
+            break;
+        }
+        case Shape::Kind::Mesh: return;
+    }
+    if (p.real == doc_->project().real) return;
+    doc_->tryEdit(tr("Resize %1").arg(QString::fromStdString(r.name)), p);
 }
 
 void ProxyPanel::startPicking(Target target) {

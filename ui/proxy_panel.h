@@ -40,6 +40,10 @@ public:
 private:
     enum class Target { None, Box, Wall };
     void refresh();
+    /// The size fields show the selected proxy's (enabled where its shape has that size).
+    void showSize();
+    /// Applies the size fields to the selected proxy (a box keeps its base where it was).
+    void applySize();
     void startPicking(Target target);
     void removeSelected();
     bool guarded(const QString& title, const std::function<void()>& f);
@@ -49,6 +53,8 @@ private:
     ErrorReporter* reporter_;
     QListWidget* list_;
     QDoubleSpinBox *boxHeight_, *wallHeight_, *wallThickness_;
+    QDoubleSpinBox* size_[3] = {};  ///< the selected proxy's size along its x, y, z
+    bool showingSize_ = false;
     QSpinBox *resolution_, *samples_;
     QLabel* status_;
     QPushButton* estimate_;  ///< disabled while an estimate runs

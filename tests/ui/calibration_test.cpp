@@ -8,6 +8,7 @@
 #include <QMouseEvent>
 #include <QCheckBox>
 #include <QComboBox>
+#include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QImage>
 #include <QLabel>
@@ -79,6 +80,7 @@ private Q_SLOTS:
     void sunCueClickedOnThePhotoTurnsTheProbe();
     void albedoEstimateWritesTheLibrarysTextureNextToTheProject();
     void addGroundPlaneRefitsTheGroundInsteadOfAddingASecond();
+    void typedSizesResizeTheSelectedProxyAndABoxKeepsItsBase();
 
 private:
     /// Opens a project whose photo is `photo`.
@@ -151,6 +153,41 @@ void CalibrationTest::addGroundPlaneRefitsTheGroundInsteadOfAddingASecond() {
     child<QPushButton>("addGroundPlane")->click();
     QCOMPARE(grounds(), 1);
     QCOMPARE(w_->document()->project().real.size(), proxies);
+}
+
+void CalibrationTest::typedSizesResizeTheSelectedProxyAndABoxKeepsItsBase() {
+    Document* doc = w_->document();
+    // The Real Proxies tab in front, the crate (a 0.7 m box standing on the ground) clicked.
+    w_->findChild<QDockWidget*>("proxyDock")->raise();
+    QListWidget* list = child<QListWidget>("proxyList");
+    QVERIFY(QTest::qWaitForWindowExposed(list));
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, {}, list->visualItemRect(list->item(1)).center());
+    QCOMPARE(list->currentRow(), 1);
+    QDoubleSpinBox* height = child<QDoubleSpinBox>("proxySizeY");
+    QCOMPARE(height->value(), 0.7);
+    const RealProxy before = doc->project().real[1];
+    const float base = before.transform.translation.y - 0.5f * before.shape.size.y;
+    // Type a new height and confirm it with Enter.
+    height->setFocus();
+    height->selectAll();
+    QTest::keyClicks(height, "1.2");
+    QTest::keyClick(height, Qt::Key_Return);
+    const RealProxy& after = doc->project().real[1];
+    QCOMPARE(after.shape.size.y, 1.2f);
+    QCOMPARE(after.shape.size.x, before.shape.size.x);
+    QVERIFY(std::abs(after.transform.translation.y - 0.5f * after.shape.size.y - base) < 1e-5f);
+    // The ground is a plane: it has no height, and its width is typed the same way.
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, {}, list->visualItemRect(list->item(0)).center());
+    QVERIFY(!height->isEnabled());
+    QDoubleSpinBox* width = child<QDoubleSpinBox>("proxySizeX");
+    width->setFocus();
+    width->selectAll();
+    QTest::keyClicks(width, "12");
+    QTest::keyClick(width, Qt::Key_Return);
+    QCOMPARE(doc->project().real[0].shape.size.x, 12.0f);
+    w_->action("undo")->trigger();
+    w_->action("undo")->trigger();
+    QVERIFY(doc->project().real[1] == before);
 }
 
 void CalibrationTest::cleanup() {
