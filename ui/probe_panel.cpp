@@ -40,6 +40,11 @@ ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     };
     rotation_ = slider(tr("Rotation"), tr("Turn the probe about the vertical axis (degrees)"), -180,
                        180, &rotationValue_);
+    // A probe shot with the camera not quite level, or a map with another horizon: tilt it.
+    tiltX_ = slider(tr("Tilt (x)"), tr("Tilt the probe about the x axis (degrees)"), -90, 90, &tiltXValue_);
+    tiltZ_ = slider(tr("Tilt (z)"), tr("Tilt the probe about the z axis (degrees)"), -90, 90, &tiltZValue_);
+    tiltX_->setObjectName("probeTiltX");
+    tiltZ_->setObjectName("probeTiltZ");
     exposure_ = slider(tr("Exposure"), tr("Probe brightness in stops (intensity 2^stops)"), -60, 60,
                        &exposureValue_);
     connect(doc_, &Document::changed, this, [this] { refresh(); });
@@ -75,6 +80,10 @@ void ProbePanel::refresh() {
     loadPreview();
     const ProbeSpec& probe = doc_->project().probe;
     rotation_->setValue(int(std::lround(probe.rotation_deg.y)));
+    tiltX_->setValue(int(std::lround(probe.rotation_deg.x)));
+    tiltZ_->setValue(int(std::lround(probe.rotation_deg.z)));
+    tiltXValue_->setText(QString::fromUtf8("%1\u00b0").arg(tiltX_->value()));
+    tiltZValue_->setText(QString::fromUtf8("%1\u00b0").arg(tiltZ_->value()));
     const float stops = probe.intensity > 0 ? std::log2(probe.intensity) : -6.0f;
     exposure_->setValue(int(std::lround(stops * 10)));
     rotationValue_->setText(QString::fromUtf8("%1\u00b0").arg(rotation_->value()));
@@ -101,7 +110,11 @@ void ProbePanel::refresh() {
 void ProbePanel::applySliders() {
     if (refreshing_) return;
     Project p = doc_->project();
-    p.probe.rotation_deg.y = float(rotation_->value());
+    // Only what a slider changed: a fractional angle from a tool stays unless its slider moved.
+    vec3& r = p.probe.rotation_deg;
+    const QSlider* sliders[3] = {tiltX_, rotation_, tiltZ_};
+    for (int k = 0; k < 3; ++k)
+        if (sliders[k]->value() != int(std::lround(r[k]))) r[k] = float(sliders[k]->value());
     p.probe.intensity = std::exp2(float(exposure_->value()) / 10.0f);
     doc_->edit(tr("Adjust probe"), p, strokeKey_);
 }

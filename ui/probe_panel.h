@@ -32,8 +32,8 @@ private:
 
     Document* doc_;
     QLabel* preview_;
-    QSlider *rotation_, *exposure_;
-    QLabel *rotationValue_, *exposureValue_;
+    QSlider *rotation_, *tiltX_, *tiltZ_, *exposure_;
+    QLabel *rotationValue_, *tiltXValue_, *tiltZValue_, *exposureValue_;
     QString previewKey_;
     QImage previewImage_;
     QPointF sun_;  ///< brightest point of the probe, as fractions of its width and height

@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QFileInfo>
 #include <QListWidget>
+#include <QSlider>
 #include <QSpinBox>
 #include <QApplication>
 #include <QMouseEvent>
@@ -81,6 +82,7 @@ private Q_SLOTS:
     void albedoEstimateWritesTheLibrarysTextureNextToTheProject();
     void addGroundPlaneRefitsTheGroundInsteadOfAddingASecond();
     void typedSizesResizeTheSelectedProxyAndABoxKeepsItsBase();
+    void probeTiltSlidersTurnTheProbeAboutXAndZ();
 
 private:
     /// Opens a project whose photo is `photo`.
@@ -188,6 +190,28 @@ void CalibrationTest::typedSizesResizeTheSelectedProxyAndABoxKeepsItsBase() {
     w_->action("undo")->trigger();
     w_->action("undo")->trigger();
     QVERIFY(doc->project().real[1] == before);
+}
+
+void CalibrationTest::probeTiltSlidersTurnTheProbeAboutXAndZ() {
+    Document* doc = w_->document();
+    Project p = doc->project();
+    p.probe.rotation_deg = vec3(0, 35.4f, 0);  // a turn from the sun tool: not a whole degree
+    doc->edit("turn", p);
+    w_->findChild<QDockWidget*>("probeDock")->raise();
+    QSlider* x = child<QSlider>("probeTiltX");
+    QSlider* z = child<QSlider>("probeTiltZ");
+    QVERIFY(QTest::qWaitForWindowExposed(x));
+    x->setFocus();
+    for (int i = 0; i < 3; ++i) QTest::keyClick(x, Qt::Key_Right);
+    z->setFocus();
+    QTest::keyClick(z, Qt::Key_Left);
+    const vec3 r = doc->project().probe.rotation_deg;
+    QCOMPARE(r.x, 3.0f);
+    QCOMPARE(r.z, -1.0f);
+    QCOMPARE(r.y, 35.4f);  // untouched by the tilt sliders
+    w_->action("undo")->trigger();  // each key is a step: the z tilt goes back
+    QCOMPARE(doc->project().probe.rotation_deg.z, 0.0f);
+    QCOMPARE(doc->project().probe.rotation_deg.x, 3.0f);
 }
 
 void CalibrationTest::cleanup() {
