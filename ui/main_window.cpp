@@ -448,6 +448,7 @@ void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     const RenderStats& s = f->update.stats;
     lastError_ = s.estimated_rel_error;
     QString text = f->preview ? tr("Preview pass %1").arg(s.passes)
+                   : options_.endless ? tr("Pass %1").arg(s.passes)
                    : f->update.target_passes > 0
                        ? tr("Pass %1 / %2").arg(s.passes).arg(f->update.target_passes)
                        : tr("Pass %1 (%2 s budget)").arg(s.passes).arg(f->update.time_budget_s);

@@ -118,7 +118,8 @@ void MainWindow::showDisplaySettings() {
 }
 
 void MainWindow::setOverlaysVisible(bool on) {
-    action("overlays")->setChecked(on);
+    action("overlays")->setChecked(on);  // setChecked does not trigger the action
+    viewport_->setOverlaysVisible(on);
 }
 
 void MainWindow::setDenoise(bool on) {
