@@ -206,6 +206,28 @@ std::string file_prefix(const std::string& path, size_t n) {
 
 }  // namespace
 
+/// Keeps only the vertices the triangles use: the corners of dropped triangles (non-finite
+/// ones among them) would otherwise still count in the mesh's bounds.
+void drop_unused_vertices(TriangleMesh& m) {
+    constexpr uint32_t kUnused = ~uint32_t(0);
+    std::vector<uint32_t> remap(m.positions.size(), kUnused);
+    for (const glm::uvec3& t : m.triangles)
+        for (int k = 0; k < 3; ++k) remap[t[k]] = 0;
+    if (std::find(remap.begin(), remap.end(), kUnused) == remap.end()) return;
+    const bool normals = m.normals.size() == m.positions.size(), uvs = m.uvs.size() == m.positions.size();
+    TriangleMesh out;
+    for (size_t i = 0; i < m.positions.size(); ++i) {
+        if (remap[i] == kUnused) continue;
+        remap[i] = uint32_t(out.positions.size());
+        out.positions.push_back(m.positions[i]);
+        if (normals) out.normals.push_back(m.normals[i]);
+        if (uvs) out.uvs.push_back(m.uvs[i]);
+    }
+    out.triangles = std::move(m.triangles);
+    for (glm::uvec3& t : out.triangles) t = glm::uvec3(remap[t.x], remap[t.y], remap[t.z]);
+    m = std::move(out);
+}
+
 LoadedMesh load_mesh(const std::string& path, const std::string& field) {
     check_input_file(path, field, "a mesh file");
     std::string ext = std::filesystem::path(path).extension().string();
@@ -245,6 +267,7 @@ LoadedMesh load_mesh(const std::string& path, const std::string& field) {
                              " triangles have zero area");
     }
     if (!c.any_uvs) c.out.uvs.clear();
+    drop_unused_vertices(c.out);
     fill_missing_normals(c.out);
 
     LoadedMesh result;
