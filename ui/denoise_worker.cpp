@@ -73,10 +73,9 @@ void DenoiseWorker::run() {
         const auto t0 = std::chrono::steady_clock::now();
         try {
             // The guides are one ray per pixel: once per scene, not per pass.
-            if (aovScene_ != frame->scene.get()) {
+            if (aovScene_ != frame->scene) {
                 aovs_ = denoise_aovs(*frame->scene);
-                aovScene_ = frame->scene.get();
-                aovSceneHold_ = frame->scene;  // the address stays this scene's while held
+                aovScene_ = frame->scene;
             }
             auto image = std::make_shared<const Image>(denoise_now(*frame, aovs_, &cancel_));
             if (image->empty()) continue;

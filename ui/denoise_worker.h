@@ -4,7 +4,6 @@
 #include <QObject>
 #include <atomic>
 #include <condition_variable>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -53,8 +52,7 @@ private:
     bool quit_ = false, paused_ = false;
     std::atomic<bool> cancel_{false};
     double lastMs_ = 0;
-    const void* aovScene_ = nullptr;  ///< worker thread: the scene `aovs_` belongs to
-    std::shared_ptr<const void> aovSceneHold_;
+    std::shared_ptr<const RenderScene> aovScene_;  ///< worker thread: the scene `aovs_` belongs to
     DenoiseAovs aovs_;
 };
 
