@@ -46,6 +46,8 @@ public:
 
     Document* document() const { return doc_; }
     RenderController* renderer() const { return renderer_; }
+    /// The refined frames' denoiser; null where the library is not installed.
+    DenoiseWorker* denoiser() const { return denoiser_; }
     Viewport* viewport() const { return viewport_; }
     MaterialPanel* materialPanel() const { return materialPanel_; }
     CameraPanel* cameraPanel() const { return cameraPanel_; }

@@ -1,21 +1,25 @@
 // `diffphoton bench`: run time against error for differential photon mapping and standard
 // differential rendering on benchmark scenes with converged ground truths.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "bench_cycles.h"
 #include "commands.h"
 #include "common.h"
+#include "image/denoise.h"
 #include "image/image_io.h"
 #include "image/image_metrics.h"
 #include "reference/standard_differential.h"
+#include "render/denoise_aovs.h"
 #include "render/progressive.h"
 
 namespace dp::cli {
@@ -31,6 +35,7 @@ struct BenchOptions {
     std::string output, images, blender;
     double max_seconds_differential = 30, max_seconds_standard = 120;
     int threads = 0;
+    bool denoise = false;  ///< also measure the denoised image of our methods at each snapshot
 };
 
 /// A scene folder: scene.json (what both methods render) and two independent halves of the
@@ -43,6 +48,7 @@ struct BenchScene {
     std::vector<bool> changed, on_objects, on_real;  ///< changed pixels; split by what they see
     float ceiling = 0;  ///< errors are measured on values clamped here
     nlohmann::json info;
+    std::optional<DenoiseAovs> aovs;  ///< the denoiser's guides, made on first use
 };
 
 BenchScene load_bench_scene(const std::string& dir) {
@@ -110,6 +116,26 @@ std::unique_ptr<PassRenderer> make_renderer(const std::string& method, BenchScen
 }
 
 
+/// Error of the denoised image (render --denoise's, at final quality) against the truth, and
+/// the filter's time (not counted in the render's time).
+struct DenoisedError {
+    ImageError changed, objects, real;
+    double seconds = 0;
+};
+
+DenoisedError denoised_error(BenchScene& b, const PassRenderer& r, const Image& img) {
+    if (!b.aovs) b.aovs = denoise_aovs(*b.scene);
+    const auto t0 = std::chrono::steady_clock::now();
+    const Image d = denoise_augmented(b.scene->photo(), img, r.alpha_layer(), b.aovs->albedo,
+                                      b.aovs->normal, DenoiseQuality::Final);
+    DenoisedError e;
+    e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    e.changed = image_error(d, b.truth, b.changed, b.ceiling);
+    e.objects = image_error(d, b.truth, b.on_objects, b.ceiling);
+    e.real = image_error(d, b.truth, b.on_real, b.ceiling);
+    return e;
+}
+
 /// Runs one method on one scene until its time budget is spent, measuring the error at pass
 /// counts spaced by sqrt(2). Only render_pass() is timed; measuring the error is not.
 nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::string& method,
@@ -147,9 +173,18 @@ nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::strin
                         {"estimated_rel_error", st.estimated_rel_error},
                         {"tiles_stopped", st.tiles_stopped}});
         std::printf("%-14s %-12s %8.2fs  passes %5d  rel. RMSE %.4f  changed %.4f (objects %.4f, real %.4f, "
-                    "estimated %.4f)\n",
+                    "estimated %.4f)",
                     b.name.c_str(), method.c_str(), st.seconds, st.passes, whole.rel_rmse,
                     changed.rel_rmse, objects.rel_rmse, real.rel_rmse, st.estimated_rel_error);
+        if (o.denoise && is_differential(method)) {
+            const DenoisedError d = denoised_error(b, *r, img);
+            rows.back().update({{"denoise_seconds", d.seconds},
+                                {"rel_rmse_changed_denoised", d.changed.rel_rmse},
+                                {"rel_rmse_objects_denoised", d.objects.rel_rmse},
+                                {"rel_rmse_real_changed_denoised", d.real.rel_rmse}});
+            std::printf("  denoised %.4f (%.2f s)", d.changed.rel_rmse, d.seconds);
+        }
+        std::printf("\n");
         std::fflush(stdout);
         if (last || interrupted()) {
             if (!o.images.empty()) {
@@ -174,6 +209,10 @@ int run_bench(BenchOptions o) {
                              "unknown method '" + m +
                                  "' (differential, differential-photons, differential-random, "
                                  "differential-uniform, standard, standard-correlated or cycles)");
+    if (o.denoise) {
+        std::string why;
+        if (!denoiser_available(&why)) throw InputError("", "--denoise", why);
+    }
     check_output_folder(o.output, "--output");
     o.blender = prepare_cycles_method(o.methods, o.blender);
     if (!o.images.empty()) fs::create_directories(o.images);
@@ -222,6 +261,9 @@ Command add_bench_command(CLI::App& app) {
                     "Blender for the cycles method (default: $DP_BLENDER, else blender on PATH)");
     sub->add_option("--images", o->images, "Folder for each run's last image (PNG)");
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(kNonNegative);
+    sub->add_flag("--denoise", o->denoise,
+                  "Also measure our methods' images denoised (Open Image Denoise, final quality) at "
+                  "each measurement; the filter's time is reported apart from the render's");
     return {sub, [o] { return run_bench(*o); }};
 }
 

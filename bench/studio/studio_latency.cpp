@@ -1,7 +1,8 @@
 // dp_studio_bench [REPEATS] [QUICK_SCALE]: how fast the studio answers an edit and a drag, and
 // how responsive its UI thread stays, on the sample project rendered at 1280x720 (the photo
 // resampled; the look-at camera follows). dp_studio_bench --large [MEGAPIXELS]: the same
-// drag on the sample with a 12 MP photo, and the peak memory.
+// drag on the sample with a 12 MP photo, and the peak memory. dp_studio_bench --converge [RUNS
+// [TRUTH_PASSES]]: time to 5 % error after an edit, raw and denoised (studio_convergence.cpp).
 //   first frame after an edit: edit() on the UI thread -> the first frame of that edit shown
 //   event-loop latency: lateness of a 5 ms timer on the UI thread while rendering and editing
 #include <QApplication>
@@ -25,17 +26,18 @@
 #include "render/preview.h"
 #include "render_controller.h"
 #include "scene/project_io.h"
+#include "studio_bench.h"
 #include "viewport.h"
 
 using namespace dp;
 using namespace dp::ui;
 
-namespace {
-
 double percentile(std::vector<double> v, double q) {
     std::sort(v.begin(), v.end());
     return v.empty() ? 0 : v[std::min(v.size() - 1, size_t(q * double(v.size() - 1) + 0.5))];
 }
+
+namespace {
 
 /// Milliseconds from an edit to the first frame answering it.
 double time_edit(MainWindow& w, const Project& p, bool interactive) {
@@ -186,6 +188,8 @@ int large_photo(int megapixels) {
 int main(int argc, char** argv) {
     if (qgetenv("QT_QPA_PLATFORM").isEmpty()) qputenv("QT_QPA_PLATFORM", "offscreen");
     QApplication app(argc, argv);
+    if (argc > 1 && std::string(argv[1]) == "--converge")
+        return convergence(argc > 2 ? std::max(2, std::atoi(argv[2])) : 4, argc > 3 ? std::atoi(argv[3]) : 128);
     if (argc > 1 && std::string(argv[1]) == "--large") return large_photo(argc > 2 ? std::atoi(argv[2]) : 12);
     const int repeats = argc > 1 ? std::max(1, std::atoi(argv[1])) : 10;
     RecordingReporter reporter(false);
