@@ -15,9 +15,7 @@
 #include <QVBoxLayout>
 
 #include "base/error.h"
-#include "calibration/chessboard.h"
 #include "calibration/correspondences.h"
-#include "calibration/exif.h"
 #include "calibration/vanishing.h"
 #include "camera_panel.h"
 #include "document.h"
@@ -95,49 +93,15 @@ CalibrationPanel::CalibrationPanel(Document* doc, Viewport* viewport, CameraPane
         target_ = Target::None;
         refreshMarks();
     });
-    connect(doc_, &Document::reloaded, this, [this] { clearPicks(); });
+    connect(doc_, &Document::reloaded, this, [this] {
+        boardOrigin_.reset();
+        clearPicks();
+    });
     setMethod(Method::Rectangle);
 }
 
 void CalibrationPanel::setMethod(Method m) {
     method_->setCurrentIndex(int(m));
-}
-
-QWidget* CalibrationPanel::makeChessboardPage() {
-    auto* page = new QWidget;
-    auto* form = new QFormLayout(page);
-    cols_ = new QSpinBox;
-    rows_ = new QSpinBox;
-    for (QSpinBox* s : {cols_, rows_}) s->setRange(2, 50);
-    cols_->setValue(9);
-    rows_->setValue(6);
-    cols_->setObjectName("boardCols");
-    rows_->setObjectName("boardRows");
-    cols_->setToolTip(tr("Inner corners along a row (squares - 1)"));
-    rows_->setToolTip(tr("Inner corners along a column (squares - 1)"));
-    auto* size = new QHBoxLayout;
-    size->addWidget(cols_);
-    size->addWidget(new QLabel(QStringLiteral("x")));
-    size->addWidget(rows_);
-    form->addRow(tr("Inner corners"), size);
-    square_ = spin(0.001, 10, 0.025, 4, tr(" m"), tr("Side of one square in metres"));
-    square_->setObjectName("boardSquare");
-    form->addRow(tr("Square size"), square_);
-    focalSource_ = new QComboBox;
-    focalSource_->setObjectName("boardFocalSource");
-    focalSource_->addItems(
-        {tr("From EXIF"), tr("Given focal length"), tr("Estimate from the board")});
-    focalSource_->setToolTip(tr("Where the focal length comes from: the photo's EXIF data, the "
-                                "field below, or the board's perspective (a tilted board)"));
-    form->addRow(tr("Focal length"), focalSource_);
-    boardFocal_ = spin(0, 1e5, 1000, 1, tr(" px"), tr("Focal length in pixels of the photo"));
-    boardFocal_->setObjectName("boardFocal");
-    form->addRow(QString(), boardFocal_);
-    QPushButton* go = button("chessboardApply", tr("Detect and apply"),
-                             tr("Find the board in the photo and match the camera to it"));
-    connect(go, &QPushButton::clicked, this, [this] { applyChessboard(); });
-    form->addRow(go);
-    return page;
 }
 
 QWidget* CalibrationPanel::makeRectanglePage() {
@@ -270,6 +234,11 @@ void CalibrationPanel::startPicking(Target target) {
             pick->start(PickTool::Kind::Point, 2,
                         tr("Click the vertical length's foot on the ground, then its top"));
             break;
+        case Target::Horizon:
+            horizon_.clear();
+            pick->start(PickTool::Kind::Segment, 1,
+                        tr("Drag along the horizon, as far across the photo as it shows"));
+            break;
         case Target::X:
         case Target::Y:
         case Target::Z:
@@ -297,6 +266,7 @@ void CalibrationPanel::onPoint(QPointF px) {
 void CalibrationPanel::onSegment(QPointF a, QPointF b) {
     const int axis = target_ == Target::X ? 0 : target_ == Target::Y ? 1 : target_ == Target::Z ? 2 : -1;
     if (axis >= 0) lines_[axis].push_back({a, b});
+    if (target_ == Target::Horizon) horizon_ = {a, b};
     refreshMarks();
 }
 
@@ -306,6 +276,7 @@ void CalibrationPanel::clearPicks() {
     origin_.clear();
     distanceEnds_.clear();
     verticalEnds_.clear();
+    horizon_.clear();
     for (auto& l : lines_) l.clear();
     refreshMarks();
 }
@@ -313,7 +284,14 @@ void CalibrationPanel::clearPicks() {
 void CalibrationPanel::refreshMarks() {
     QVector<PickTool::Mark> marks;
     const int page = method_->currentIndex();
-    if (page == int(Method::Rectangle)) {
+    if (page == int(Method::Chessboard)) {
+        if (horizon_.size() == 2)
+            marks.push_back({horizon_[0], horizon_[1], true, QColor(120, 200, 255), tr("horizon")});
+        if (boardOrigin_ && viewport_->renderSize().isValid() && !boardPhoto_.isEmpty()) {
+            const QPointF o = toRender(*boardOrigin_, boardPhoto_);
+            marks.push_back({o, o, false, QColor(255, 255, 255), "O"});
+        }
+    } else if (page == int(Method::Rectangle)) {
         for (int i = 0; i < corners_.size(); ++i)
             marks.push_back({corners_[i], corners_[i], false, QColor(255, 200, 0),
                              QString::number(i + 1)});
@@ -360,49 +338,29 @@ ImagePoint CalibrationPanel::toPhoto(QPointF r) {
     return ImagePoint((r.x() + 0.5) * sx - 0.5, (r.y() + 0.5) * sy - 0.5);
 }
 
+QPointF CalibrationPanel::toRender(ImagePoint p, QSize photo) const {
+    const QSize rs = viewport_->renderSize();
+    const double sx = double(rs.width()) / photo.width(), sy = double(rs.height()) / photo.height();
+    return QPointF((p.x + 0.5) * sx - 0.5, (p.y + 0.5) * sy - 0.5);
+}
+
 double CalibrationPanel::clickSigma() {
     const QSize rs = viewport_->renderSize();
     const double scale = rs.isValid() ? double(photo().width()) / rs.width() : 1.0;
     return 0.5 * std::max(1.0, scale);
 }
 
-void CalibrationPanel::apply(const QString& method, const CalibrationResult& r) {
+void CalibrationPanel::apply(const QString& method, const CalibrationResult& r,
+                             const QString& more) {
     camera_->applyCalibration(method, r.camera_spec(), r.rms_px);
     QString text = tr("Matched (%1): horizontal field of view %2°\nUncertainty (1 sigma): %3")
                        .arg(method)
                        .arg(r.intrinsics.hfov_deg(), 0, 'f', 1)
                        .arg(QString::fromStdString(uncertainty_text(r)));
+    if (!more.isEmpty()) text += "\n" + more;
     for (const std::string& w : r.warnings)
         text += "\n" + tr("Warning: ") + QString::fromStdString(w);
     status_->setText(text);
-}
-
-bool CalibrationPanel::applyChessboard() {
-    if (target_ != Target::None) viewport_->pickTool()->stop();
-    return guarded(tr("Chessboard calibration failed"), [this] {
-        std::string path;
-        const Image& img = photo(&path);
-        const ChessboardSpec spec{cols_->value(), rows_->value(), square_->value()};
-        const ChessboardView view = detect_chessboard(img, spec, path);
-        CalibrationResult r;
-        switch (focalSource_->currentIndex()) {
-            case 0: {
-                const ExifFocal e = read_exif_focal(path);
-                const double f = e.focal_px * double(img.width()) / e.width;
-                r = chessboard_pose(view, spec, Intrinsics::centred(img.width(), img.height(), f));
-                break;
-            }
-            case 1:
-                check_focal(boardFocal_->value(), path, "focal length");
-                r = chessboard_pose(view, spec,
-                                    Intrinsics::centred(img.width(), img.height(),
-                                                        boardFocal_->value()));
-                break;
-            default:
-                r = chessboard_single(view, spec);
-        }
-        apply(tr("chessboard"), r);
-    });
 }
 
 bool CalibrationPanel::applyRectangle() {

@@ -169,6 +169,9 @@ void MainWindow::createActions() {
         ->setShortcuts(keys(QKeySequence::SaveAs, tr("Ctrl+Shift+S")));
     make("export", tr("&Export Image..."), QKeySequence(tr("Ctrl+E")),
          tr("Write the render as PNG, or EXR with layers"), [this] { exportDialog(); });
+    make("exportUndistorted", tr("Export &Undistorted Photo..."), {},
+         tr("Write the photo with the camera's lens distortion taken out"),
+         [this] { calibrationPanel_->exportUndistortedDialog(); });
     make("quit", tr("&Quit"), {}, tr("Close the studio"), [this] { close(); })
         ->setShortcuts(keys(QKeySequence::Quit, tr("Ctrl+Q")));
     QAction* undo = doc_->undoStack()->createUndoAction(this, tr("&Undo"));
@@ -266,7 +269,7 @@ void MainWindow::createMenus() {
     recentMenu_->setToolTipsVisible(true);
     file->addActions({action("save"), action("saveAs")});
     file->addSeparator();
-    file->addActions({action("export"), action("exportExposure")});
+    file->addActions({action("export"), action("exportExposure"), action("exportUndistorted")});
     file->addSeparator();
     file->addAction(action("quit"));
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
