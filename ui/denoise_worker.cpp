@@ -55,7 +55,7 @@ Image DenoiseWorker::denoise_now(const RenderFrame& f, const DenoiseAovs& aovs, 
     if (!f.scene || f.update.image.empty() || !denoiser_available()) return {};
     const Image& photo = f.scene->photo();
     if (photo.width() != f.update.image.width() || aovs.albedo.width() != photo.width()) return {};
-    return denoise_augmented(photo, f.update.image, f.update.alpha, aovs.albedo, aovs.normal,
+    return denoise_augmented(photo, f.update.image, f.update.alpha, f.update.dL, aovs.albedo, aovs.normal,
                              DenoiseQuality::Interactive, cancel);
 }
 

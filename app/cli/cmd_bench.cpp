@@ -126,7 +126,7 @@ struct DenoisedError {
 DenoisedError denoised_error(BenchScene& b, const PassRenderer& r, const Image& img) {
     if (!b.aovs) b.aovs = denoise_aovs(*b.scene);
     const auto t0 = std::chrono::steady_clock::now();
-    const Image d = denoise_augmented(b.scene->photo(), img, r.alpha_layer(), b.aovs->albedo,
+    const Image d = denoise_augmented(b.scene->photo(), img, r.alpha_layer(), r.dL_layer(), b.aovs->albedo,
                                       b.aovs->normal, DenoiseQuality::Final);
     DenoisedError e;
     e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

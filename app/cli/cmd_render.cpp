@@ -61,7 +61,7 @@ Denoised denoise_result(const RenderScene& scene, const RenderUpdate& u, bool wi
     const bool same = photo.width() == w && photo.height() == h;
     if (!same) aovs = {resample(aovs.albedo, w, h), resample(aovs.normal, w, h)};
     Denoised d;
-    d.image = denoise_augmented(same ? photo : resample(photo, w, h), u.image, u.alpha, aovs.albedo,
+    d.image = denoise_augmented(same ? photo : resample(photo, w, h), u.image, u.alpha, u.dL, aovs.albedo,
                                 aovs.normal);
     if (with_dL) d.dL = denoise_change(u.dL, aovs.albedo, aovs.normal, denoise_ceiling(photo));
     return d;

@@ -86,6 +86,13 @@ int main(int argc, char** argv) {
     window.document()->select(cli.value(select).toInt());
     if (auto* dock = window.findChild<QDockWidget*>(cli.value(raise))) dock->raise();
     wait_for_render(window, cli.value(wait).toInt());
+    // With the denoised view on (the default), the picture an artist sees once the render
+    // settles is the denoised one: wait for it too.
+    QElapsedTimer denoiseWait;
+    denoiseWait.start();
+    while (mode != "photo" && mode != "dl" && window.viewport()->denoise() && !window.viewport()->showingDenoised() &&
+           denoiseWait.elapsed() < cli.value(wait).toInt())
+        QApplication::processEvents(QEventLoop::AllEvents, 50);
     QApplication::processEvents();
     const bool ok = window.grab().save(cli.value(shot));
     for (const QString& e : quiet.errors) std::fprintf(stderr, "error: %s\n", qPrintable(e));

@@ -244,25 +244,79 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
     return out;
 }
 
-Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha,
+namespace {
+
+/// Pixels an object covers (almost) fully: the real surface behind them is not seen.
+constexpr float kCovered = 0.98f;
+
+/// Fills the pixels where `known` is 0 with the mean of their already filled 4-neighbours, in
+/// order of distance from the known ones: a hole where an object stands continues the shadow
+/// around it instead of a step to 0 that the filter would blur into the shadow.
+void fill_holes(Image& img, std::vector<uint8_t> known) {
+    const int w = img.width(), h = img.height();
+    std::vector<size_t> queue;
+    std::vector<uint8_t> queued = known;
+    auto push_neighbours = [&](size_t i) {
+        const int x = int(i % size_t(w)), y = int(i / size_t(w));
+        const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+        for (int k = 0; k < 4; ++k)
+            if (nx[k] >= 0 && ny[k] >= 0 && nx[k] < w && ny[k] < h) {
+                const size_t j = size_t(ny[k]) * size_t(w) + size_t(nx[k]);
+                if (!queued[j]) queued[j] = 1, queue.push_back(j);
+            }
+    };
+    for (size_t i = 0; i < img.size(); ++i)
+        if (known[i]) push_neighbours(i);
+    for (size_t q = 0; q < queue.size(); ++q) {
+        const size_t i = queue[q];
+        const int x = int(i % size_t(w)), y = int(i / size_t(w));
+        vec3 sum(0.0f);
+        int n = 0;
+        const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+        for (int k = 0; k < 4; ++k)
+            if (nx[k] >= 0 && ny[k] >= 0 && nx[k] < w && ny[k] < h) {
+                const size_t j = size_t(ny[k]) * size_t(w) + size_t(nx[k]);
+                if (known[j]) sum += img[j], ++n;
+            }
+        img[i] = n ? sum / float(n) : vec3(0.0f);
+        known[i] = 1;
+        push_neighbours(i);
+    }
+}
+
+}  // namespace
+
+Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
                         const Image& albedo, const Image& normal, DenoiseQuality quality,
                         const std::atomic<bool>* cancel) {
     check_size(photo, augmented, "the photo");
     if (!alpha.empty()) check_size(alpha, augmented, "alpha");
-    // Where an object covers the photo the change is its radiance minus the photo: denoising
-    // that would smear the photo's own detail, so the covered part of the photo is left out of
-    // what the filter sees.
+    if (!dL.empty()) check_size(dL, augmented, "dL");
+    // Only the real surfaces' change is filtered, per unit of the pixel they fill. An object's
+    // radiance in the filter's input would spread into the shadow beside it, and the photo
+    // behind it would be smeared.
     auto covered = [&](size_t i) { return alpha.empty() ? 0.0f : std::clamp(alpha[i].x, 0.0f, 1.0f); };
     Image signal(augmented.width(), augmented.height());
-    for (size_t i = 0; i < signal.size(); ++i)
-        signal[i] = augmented[i] - (1.0f - covered(i)) * photo[i];
+    std::vector<uint8_t> known(signal.size(), 0);
+    bool holes = false;
+    for (size_t i = 0; i < signal.size(); ++i) {
+        const float a = covered(i);
+        if (a == 0) signal[i] = dL.empty() ? augmented[i] - photo[i] : dL[i];
+        else if (a < kCovered && !dL.empty()) signal[i] = dL[i] / (1.0f - a);
+        else continue;
+        known[i] = 1;
+    }
+    for (uint8_t k : known) holes |= !k;
+    if (holes) fill_holes(signal, std::move(known));
     Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo), quality, cancel);
     for (size_t i = 0; i < out.size(); ++i) {
         const float a = covered(i);
         if (a == 0)
             out[i] = out[i] == vec3(0) ? photo[i] : photo[i] + out[i];
+        else if (a >= kCovered || dL.empty())
+            out[i] = augmented[i];  // without dL the real share of a partly covered pixel is unknown
         else
-            out[i] = a * augmented[i] + (1.0f - a) * (photo[i] + out[i]);
+            out[i] = augmented[i] + (1.0f - a) * out[i] - dL[i];  // the real share's change, denoised
     }
     return out;
 }

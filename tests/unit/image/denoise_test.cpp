@@ -79,7 +79,7 @@ TEST(Denoise, ThePhotoStaysBitExactFarFromTheChange) {
     const Synthetic s = make_scene(11);
     Image augmented = s.photo;
     for (size_t i = 0; i < augmented.size(); ++i) augmented[i] += s.noisy[i];
-    const Image out = denoise_augmented(s.photo, augmented, Image(), s.albedo, s.normal);
+    const Image out = denoise_augmented(s.photo, augmented, Image(), Image(), s.albedo, s.normal);
     const Image change = denoise_change(s.noisy, s.albedo, s.normal);
     size_t far = 0;
     for (int y = 0; y < kH; ++y)
@@ -116,7 +116,7 @@ TEST(Denoise, PixelsAnObjectCoversKeepTheRawRender) {
                 alpha.at(x, y) = vec3(1);
                 albedo.at(x, y) = vec3(0.6f, 0.5f, 0.4f);
             }
-    const Image out = denoise_augmented(s.photo, augmented, alpha, albedo, s.normal);
+    const Image out = denoise_augmented(s.photo, augmented, alpha, Image(), albedo, s.normal);
     Image clean = s.photo;
     for (size_t i = 0; i < clean.size(); ++i) clean[i] += s.clean[i];
     for (int y = 0; y < kH; ++y)
@@ -128,6 +128,43 @@ TEST(Denoise, PixelsAnObjectCoversKeepTheRawRender) {
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) floor[size_t(y) * kW + x] = !on_object(x, y);
     EXPECT_LT(image_error(out, clean, floor).rmse, image_error(augmented, clean, floor).rmse / 2);
+}
+
+// A bright object standing in the shadow: given dL, only the floor's change is filtered, so the
+// object's radiance does not spread into the shadow around it, and the floor is still cleaned.
+TEST(Denoise, ABrightObjectDoesNotBleedIntoTheShadowBesideIt) {
+    std::string why;
+    if (!denoiser_available(&why)) GTEST_SKIP() << why;
+    const Synthetic s = make_scene(5);
+    auto on_object = [](int x, int y) { return std::hypot(x - 62.0f, y - 60.0f) < 10; };
+    Image augmented = s.photo, alpha(kW, kH), dL = s.noisy, albedo = s.albedo, clean = s.photo;
+    for (size_t i = 0; i < augmented.size(); ++i) {
+        augmented[i] += s.noisy[i];
+        clean[i] += s.clean[i];
+    }
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            if (on_object(x, y)) {
+                augmented.at(x, y) = clean.at(x, y) = vec3(4.0f);
+                alpha.at(x, y) = vec3(1);
+                dL.at(x, y) = vec3(0);
+                albedo.at(x, y) = vec3(0.8f);
+            }
+    const Image out = denoise_augmented(s.photo, augmented, alpha, dL, albedo, s.normal);
+    std::vector<bool> ring(out.size()), floor(out.size());
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            const float r = std::hypot(x - 62.0f, y - 60.0f);
+            ring[size_t(y) * kW + x] = r >= 10 && r < 14;
+            floor[size_t(y) * kW + x] = r >= 10;
+        }
+    EXPECT_LT(image_error(out, clean, ring).rmse, image_error(augmented, clean, ring).rmse);
+    EXPECT_LT(image_error(out, clean, floor).rmse, image_error(augmented, clean, floor).rmse / 2);
+    // The shadow around the object stays as dark as it truly is (no light spread into it).
+    double out_sum = 0, clean_sum = 0;
+    for (size_t i = 0; i < out.size(); ++i)
+        if (ring[i]) out_sum += luminance(out[i]), clean_sum += luminance(clean[i]);
+    EXPECT_NEAR(out_sum, clean_sum, 0.05 * std::abs(clean_sum));
 }
 
 TEST(Denoise, AMissingLibrarySaysHowToGetIt) {
