@@ -168,6 +168,10 @@ void save_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
             throw std::invalid_argument("save_exr '" + shorten_path(path) + "': layer \"" + layer.name +
                                         "\" differs in size from layer \"" + layers[0].name +
                                         "\"");
+        if (layer.alpha && (layer.alpha->width() != layer.image->width() ||
+                            layer.alpha->height() != layer.image->height()))
+            throw std::invalid_argument("save_exr '" + shorten_path(path) + "': the alpha of layer \"" +
+                                        layer.name + "\" differs in size from it");
         if (!names.insert(layer.name).second)
             throw std::invalid_argument("save_exr '" + shorten_path(path) + "': layer \"" + layer.name +
                                         "\" given twice");
@@ -187,6 +191,12 @@ void save_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
             header.channels().insert(name, Imf::Channel(Imf::FLOAT));
             frame.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(vec3),
                                           sizeof(vec3) * size_t(width)));
+        }
+        if (layer.alpha) {
+            const std::string name = channel_name(layer.name, "A");
+            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+            frame.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(layer.alpha->data())),
+                                          sizeof(vec3), sizeof(vec3) * size_t(width)));
         }
     }
     // Into a temporary file renamed over `path`: a killed render never leaves a broken EXR.

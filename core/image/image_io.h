@@ -27,6 +27,8 @@ Image load_image(const std::string& path, const std::string& field = "",
 struct ExrLayer {
     std::string name;
     const Image* image;
+    /// An alpha channel ("A", or "<name>.A") from this image's red channel; null for none.
+    const Image* alpha = nullptr;
 };
 
 /// Reads an image's size from its header (EXR, PNG, JPEG) without decoding it; false for other
