@@ -1,8 +1,10 @@
 // `diffphoton info`: loads and validates a project and prints what it holds.
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "render/render_limits.h"
+#include "scene/project_io.h"
 #include "commands.h"
 #include "common.h"
 
@@ -90,12 +92,53 @@ void print_render_settings(const RenderSettings& r) {
                 r.max_depth, static_cast<unsigned long long>(r.seed), r.threads);
 }
 
-int run_info(const std::string& project_path) {
+nlohmann::json xyz(const vec3& v) { return {v.x, v.y, v.z}; }
+
+/// What `info` prints, for scripts: the project as written (`project`, paths as stored) and what
+/// loading it found (sizes, resolved paths, the camera's intrinsics, triangles, warnings).
+nlohmann::json info_json(const std::string& project_path, const Project& p, const RenderScene& scene) {
+    const SceneAssets& a = scene.assets();
+    const Camera& cam = scene.camera();
+    nlohmann::json real = nlohmann::json::array(), objects = nlohmann::json::array();
+    for (size_t i = 0; i < p.real.size(); ++i)
+        real.push_back({{"name", p.real[i].name},
+                        {"triangles", i < a.real_meshes.size() ? a.real_meshes[i].triangle_count() : 0},
+                        {"albedo", xyz(scene.real_surfaces()[i].albedo)}});
+    for (size_t i = 0; i < p.objects.size(); ++i)
+        objects.push_back({{"name", p.objects[i].name},
+                           {"visible", p.objects[i].visible},
+                           {"triangles", i < a.object_meshes.size() ? a.object_meshes[i].triangle_count() : 0}});
+    nlohmann::json clusters = nlohmann::json::array();
+    for (const EmissionCluster& c : scene.clusters())
+        clusters.push_back({{"center", xyz(c.center)}, {"radius", c.radius}, {"objects", c.objects}});
+    return {{"file", project_path},
+            {"project", to_json(p)},
+            {"photo", {{"resolved", p.resolve(p.photo.path).string()},
+                       {"width", scene.photo().width()},
+                       {"height", scene.photo().height()}}},
+            {"probe", {{"resolved", p.resolve(p.probe.path).string()},
+                       {"width", scene.probe().image().width()},
+                       {"height", scene.probe().image().height()}}},
+            {"camera", {{"fx", cam.fx()}, {"fy", cam.fy()}, {"cx", cam.cx()}, {"cy", cam.cy()},
+                        {"position", xyz(cam.position())}, {"forward", xyz(cam.forward())}}},
+            {"real", real},
+            {"objects", objects},
+            {"scene_scale", scene.scale()},
+            {"emission_clusters", clusters},
+            {"warnings", a.warnings},
+            {"non_finite_replaced", a.non_finite_replaced}};
+}
+
+int run_info(const std::string& project_path, bool json) {
     LoadedScene loaded = load_scene(project_path);
     check_render_limits(*loaded.scene, loaded.settings);  // what render would refuse, info refuses too
     auto scene = loaded.scene;
     const Project& p = loaded.project;
     const SceneAssets& a = scene->assets();
+    if (json) {
+        std::printf("%s\n", info_json(project_path, p, *scene).dump(1).c_str());
+        return 0;
+    }
     std::printf("project: %s\n", project_path.c_str());
     std::printf("photo: '%s' -> %s, %s, exposure %g stops\n", p.photo.path.c_str(),
                 p.resolve(p.photo.path).c_str(), size_text(scene->photo()).c_str(),
@@ -148,9 +191,11 @@ int run_info(const std::string& project_path) {
 
 Command add_info_command(CLI::App& app) {
     auto project = std::make_shared<std::string>();
+    auto json = std::make_shared<bool>(false);
     CLI::App* sub = app.add_subcommand("info", "Validate a project and print what it holds");
     sub->add_option("project", *project, "Project file (JSON)")->required();
-    return {sub, [project] { return run_info(*project); }};
+    sub->add_flag("--json", *json, "Print it as one JSON object (for scripts)");
+    return {sub, [project, json] { return run_info(*project, *json); }};
 }
 
 }  // namespace dp::cli

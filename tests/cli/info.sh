@@ -30,6 +30,20 @@ expect_stdout "emission clusters: 2" "clusters"
 grep -qE "radius [0-9.]+: 'ball', 'cube'|radius [0-9.]+: 'cube', 'ball'" stdout.txt ||
     fail "ball and cube should share a cluster"
 
+# The same facts as one JSON object for scripts.
+run info scene.json --json
+expect_rc 0 "info --json"
+/usr/bin/python3 - stdout.txt <<'PY' || fail "info --json"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["photo"]["width"] == 64 and d["photo"]["height"] == 48, d["photo"]
+assert d["probe"]["width"] == 64, d["probe"]
+assert [o["name"] for o in d["objects"]] == ["ball", "cube", "far glass"], d["objects"]
+assert d["project"]["render"]["photons_per_pass"] == 20000, d["project"]["render"]
+assert d["camera"]["fx"] > 0 and len(d["camera"]["position"]) == 3, d["camera"]
+assert len(d["emission_clusters"]) == 2 and d["warnings"] == [], d
+PY
+
 run info
 expect_rc 2 "info without a project"
 echo "PASS"
