@@ -177,6 +177,14 @@ def fspy():
         state["calibrationSettingsBase"]["referenceDistanceUnit"] = unit
         text = json.dumps(state).encode()
         put("fspy", name, b"fspy" + struct.pack("<III", 1, len(text), len(image)) + text + image)
+    # A portrait image (its focal length across the height) and fSpy's exported camera
+    # parameters JSON (no header, no image: read by content).
+    camera = dict(state["cameraParameters"], imageWidth=3, imageHeight=4, horizontalFieldOfView=1.1195)
+    state = dict(state, cameraParameters=camera)
+    text = json.dumps(state).encode()
+    image = png(3, 4)
+    put("fspy", "portrait", b"fspy" + struct.pack("<III", 1, len(text), len(image)) + text + image)
+    put("fspy", "camera_parameters_json", json.dumps(camera, indent=2))
 
 
 if __name__ == "__main__":
