@@ -146,24 +146,10 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
         std::error_code ec;
         if (fs::is_regular_file(own, ec) && r.intrinsics.width > 0) {
             const Image img = load_image(own.string(), "photo.path");
-            Intrinsics& k = r.intrinsics;
-            if (img.width() != k.width || img.height() != k.height) {
-                const double sx = double(img.width()) / k.width;
-                const double sy = double(img.height()) / k.height;
-                if (std::abs(sx / sy - 1) > 0.01)
-                    throw InputError(project_path, "photo.path",
-                                     "the project's photo is " + std::to_string(img.width()) +
-                                         "x" + std::to_string(img.height()) +
-                                         " but the camera was matched on a " +
-                                         std::to_string(k.width) + "x" +
-                                         std::to_string(k.height) +
-                                         " image: the aspect ratios differ");
-                // Pixel edges scale, so centres map as (c + 0.5) * s - 0.5.
-                k.fx *= sx, k.fy *= sy;
-                k.cx = (k.cx + 0.5) * sx - 0.5, k.cy = (k.cy + 0.5) * sy - 0.5;
-                k.width = img.width(), k.height = img.height();
-                std::printf("note: intrinsics scaled to the project's %dx%d photo\n", k.width,
-                            k.height);
+            if (img.width() != r.intrinsics.width || img.height() != r.intrinsics.height) {
+                r = scaled_to(r, img.width(), img.height(), project_path, "photo.path");
+                std::printf("note: intrinsics scaled to the project's %dx%d photo\n",
+                            img.width(), img.height());
             }
         }
     } else if (photo.empty()) {

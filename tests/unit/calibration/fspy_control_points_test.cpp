@@ -12,7 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "calibration/fspy.h"
-#include "fspy_files.h"
+#include "common/fspy_files.h"
 
 using namespace dp;
 using namespace dp::test;

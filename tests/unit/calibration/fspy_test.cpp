@@ -10,7 +10,7 @@
 #include "base/error.h"
 #include "calibration/fspy.h"
 #include "common/input_error.h"
-#include "fspy_files.h"
+#include "common/fspy_files.h"
 
 using namespace dp;
 using dp::test::input_error_message;
