@@ -78,12 +78,13 @@ void FocalOptions::add_to(CLI::App* sub) {
     sub->add_option("--focal-mm", focal_mm, "Focal length in millimetres (with --sensor-width)")
         ->check(kFinite);
     sub->add_option("--sensor-width", sensor_width_mm,
-                    "Sensor width in millimetres (with --focal-mm or --exif)")
+                    "Sensor width in millimetres, across its rows (with --focal-mm or --exif)")
         ->check(kFinite);
     sub->add_flag("--exif", exif, "Focal length from the photo's EXIF data");
 }
 
-std::optional<double> FocalOptions::resolve(const std::string& photo, int width) const {
+std::optional<double> FocalOptions::resolve(const std::string& photo, int width,
+                                            int height) const {
     if (int(bool(focal_px)) + int(bool(focal_mm)) + int(exif) > 1)
         throw InputError("", "--focal", "give only one of --focal, --focal-mm and --exif");
     if (focal_px) {
@@ -95,7 +96,8 @@ std::optional<double> FocalOptions::resolve(const std::string& photo, int width)
             throw InputError("", "--focal-mm", "needs --sensor-width (millimetres)");
         if (!(*sensor_width_mm > 0))
             throw InputError("", "--sensor-width", "the sensor width must be > 0 mm");
-        const double f = *focal_mm * width / *sensor_width_mm;
+        const bool turned = !photo.empty() && exif_orientation(photo) >= 5;
+        const double f = *focal_mm * (turned ? height : width) / *sensor_width_mm;
         check_focal(f, "", "--focal-mm");
         return f;
     }

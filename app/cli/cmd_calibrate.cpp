@@ -92,7 +92,7 @@ int run_chessboard(const ChessboardOptions& o) {
                              "writes the poses of several photos; with one photo the project "
                              "gets its pose");
         const ChessboardView& v = views[0];
-        if (auto f = o.focal.resolve(o.photos[0], v.width)) {
+        if (auto f = o.focal.resolve(o.photos[0], v.width, v.height)) {
             r = chessboard_pose(v, spec, Intrinsics::centred(v.width, v.height, *f));
             method = "chessboard, one photo, given focal length";
         } else {
@@ -195,7 +195,8 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
             "exif", "Focal length from the photo's EXIF data (keeps the camera's pose)");
         sub->add_option("project", o->project, "Project file to write or update")->required();
         sub->add_option("photo", o->photo, "Photo with EXIF data (JPEG, TIFF, raw...)")->required();
-        sub->add_option("--sensor-width", o->sensor_width, "Sensor width in millimetres")
+        sub->add_option("--sensor-width", o->sensor_width,
+                        "Sensor width in millimetres, across its rows (the stored image's)")
             ->check(kFinite);
         out.push_back({sub, [o] { return run_exif(*o); }});
     }

@@ -79,7 +79,12 @@ def images(cli):
             subprocess.run([cli, "convert", src, out], check=True, stdout=subprocess.DEVNULL)
             if prefix:
                 with open(out, "rb") as f:
-                    put("image", "jpg_8x6", prefix + f.read())
+                    jpeg = f.read()
+                put("image", "jpg_8x6", prefix + jpeg)
+                # EXIF orientation 6 (a phone's portrait photo): the header size turns with it.
+                tiff = b"II*\x00" + struct.pack("<IHHHIHHI", 8, 1, 0x0112, 3, 1, 6, 0, 0)
+                app1 = b"\xff\xe1" + struct.pack(">H", 8 + len(tiff)) + b"Exif\x00\x00" + tiff
+                put("image", "jpg_8x6_orientation6", prefix + jpeg[:2] + app1 + jpeg[2:])
             os.remove(out)
         os.remove(src)
 
