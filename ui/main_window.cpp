@@ -169,6 +169,9 @@ void MainWindow::createActions() {
         ->setShortcuts(keys(QKeySequence::SaveAs, tr("Ctrl+Shift+S")));
     make("export", tr("&Export Image..."), QKeySequence(tr("Ctrl+E")),
          tr("Write the render as PNG, or EXR with layers"), [this] { exportDialog(); });
+    make("importFspy", tr("Import &fSpy..."), {},
+         tr("Take the camera from an fSpy project (.fspy) or fSpy's exported camera parameters"),
+         [this] { importFspyDialog(); });
     make("exportUndistorted", tr("Export &Undistorted Photo..."), {},
          tr("Write the photo with the camera's lens distortion taken out"),
          [this] { calibrationPanel_->exportUndistortedDialog(); });
@@ -268,6 +271,8 @@ void MainWindow::createMenus() {
     recentMenu_->setObjectName("recentMenu");
     recentMenu_->setToolTipsVisible(true);
     file->addActions({action("save"), action("saveAs")});
+    file->addSeparator();
+    file->addAction(action("importFspy"));
     file->addSeparator();
     file->addActions({action("export"), action("exportExposure"), action("exportUndistorted")});
     file->addSeparator();

@@ -97,6 +97,15 @@ public:
     bool exportPending() const { return !pendingExport_.isEmpty(); }
     /// Adds a mesh object (the unsaved work is checkpointed to the recovery file first).
     bool importMesh(const QString& path);
+    /// Makes fSpy's camera the project's (File > Import fSpy..., a .fspy dropped on the
+    /// window): from an fSpy project or fSpy's exported camera parameters JSON (read_fspy), as
+    /// one undoable edit. The camera is scaled to the project's photo where that is the same
+    /// picture at another size, and refused where the aspect ratios differ. A project whose
+    /// photo file is missing gets the .fspy's embedded photo, written next to the project. With
+    /// no project open, the embedded photo is written next to the .fspy and starts a new
+    /// project with the light probe `probe` (none given: the New Project dialog asks, the photo
+    /// filled in). Errors are reported; returns whether the camera was applied.
+    bool importFspy(const QString& path, const QString& probe = {});
     /// Asks Save / Discard / Cancel if the document has unsaved changes; true when the caller
     /// may go on (saved, discarded, or nothing to save). Cancel and Esc keep everything.
     bool maybeSave();
@@ -150,6 +159,7 @@ private:
     void newDialog(const QString& photo = {}, const QString& probe = {});
     void exportDialog();
     void importDialog();
+    void importFspyDialog();
 
     StudioOptions options_;
     std::unique_ptr<ErrorReporter> ownReporter_;

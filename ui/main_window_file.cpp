@@ -1,4 +1,5 @@
 // MainWindow: files (new, open, save, export, import), recent files, settings, drops, close.
+// The fSpy import is in main_window_fspy.cpp.
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDragEnterEvent>
@@ -311,6 +312,8 @@ void MainWindow::dropEvent(QDropEvent* e) {
         if (suffix == "json") {
             if (maybeSave()) openProject(f);
         }
+        else if (suffix == "fspy")
+            importFspy(f);
         else if (kMeshSuffixes.contains(suffix))
             importMesh(f);
         else if (kImageSuffixes.contains(suffix))

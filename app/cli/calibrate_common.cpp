@@ -78,12 +78,13 @@ void FocalOptions::add_to(CLI::App* sub) {
     sub->add_option("--focal-mm", focal_mm, "Focal length in millimetres (with --sensor-width)")
         ->check(kFinite);
     sub->add_option("--sensor-width", sensor_width_mm,
-                    "Sensor width in millimetres (with --focal-mm or --exif)")
+                    "Sensor width in millimetres, across its rows (with --focal-mm or --exif)")
         ->check(kFinite);
     sub->add_flag("--exif", exif, "Focal length from the photo's EXIF data");
 }
 
-std::optional<double> FocalOptions::resolve(const std::string& photo, int width) const {
+std::optional<double> FocalOptions::resolve(const std::string& photo, int width,
+                                            int height) const {
     if (int(bool(focal_px)) + int(bool(focal_mm)) + int(exif) > 1)
         throw InputError("", "--focal", "give only one of --focal, --focal-mm and --exif");
     if (focal_px) {
@@ -95,7 +96,8 @@ std::optional<double> FocalOptions::resolve(const std::string& photo, int width)
             throw InputError("", "--focal-mm", "needs --sensor-width (millimetres)");
         if (!(*sensor_width_mm > 0))
             throw InputError("", "--sensor-width", "the sensor width must be > 0 mm");
-        const double f = *focal_mm * width / *sensor_width_mm;
+        const bool turned = !photo.empty() && exif_orientation(photo) >= 5;
+        const double f = *focal_mm * (turned ? height : width) / *sensor_width_mm;
         check_focal(f, "", "--focal-mm");
         return f;
     }
@@ -146,24 +148,10 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
         std::error_code ec;
         if (fs::is_regular_file(own, ec) && r.intrinsics.width > 0) {
             const Image img = load_image(own.string(), "photo.path");
-            Intrinsics& k = r.intrinsics;
-            if (img.width() != k.width || img.height() != k.height) {
-                const double sx = double(img.width()) / k.width;
-                const double sy = double(img.height()) / k.height;
-                if (std::abs(sx / sy - 1) > 0.01)
-                    throw InputError(project_path, "photo.path",
-                                     "the project's photo is " + std::to_string(img.width()) +
-                                         "x" + std::to_string(img.height()) +
-                                         " but the camera was matched on a " +
-                                         std::to_string(k.width) + "x" +
-                                         std::to_string(k.height) +
-                                         " image: the aspect ratios differ");
-                // Pixel edges scale, so centres map as (c + 0.5) * s - 0.5.
-                k.fx *= sx, k.fy *= sy;
-                k.cx = (k.cx + 0.5) * sx - 0.5, k.cy = (k.cy + 0.5) * sy - 0.5;
-                k.width = img.width(), k.height = img.height();
-                std::printf("note: intrinsics scaled to the project's %dx%d photo\n", k.width,
-                            k.height);
+            if (img.width() != r.intrinsics.width || img.height() != r.intrinsics.height) {
+                r = scaled_to(r, img.width(), img.height(), project_path, "photo.path");
+                std::printf("note: intrinsics scaled to the project's %dx%d photo\n",
+                            img.width(), img.height());
             }
         }
     } else if (photo.empty()) {

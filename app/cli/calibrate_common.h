@@ -33,10 +33,12 @@ struct FocalOptions {
     /// Adds --focal, --focal-mm, --sensor-width and --exif to `sub`.
     void add_to(CLI::App* sub);
     bool given() const { return focal_px || focal_mm || exif; }
-    /// The focal length in pixels for a W-pixel wide photo, or nullopt if none was given.
-    /// Throws InputError for a focal length <= 0, --focal-mm without --sensor-width, or
-    /// --exif with a photo whose EXIF data cannot give it.
-    std::optional<double> resolve(const std::string& photo, int width) const;
+    /// The focal length in pixels for a `width` x `height` photo (as it loads: upright), or
+    /// nullopt if none was given. The sensor width is across the sensor's rows: the photo's
+    /// width, or its height where the photo's EXIF orientation turns it a quarter (a phone's
+    /// portrait photo). Throws InputError for a focal length <= 0, --focal-mm without
+    /// --sensor-width, or --exif with a photo whose EXIF data cannot give it.
+    std::optional<double> resolve(const std::string& photo, int width, int height) const;
 };
 
 /// The photograph's size: from --size WxH or by loading `photo`. Throws InputError.

@@ -92,7 +92,7 @@ int run_chessboard(const ChessboardOptions& o) {
                              "writes the poses of several photos; with one photo the project "
                              "gets its pose");
         const ChessboardView& v = views[0];
-        if (auto f = o.focal.resolve(o.photos[0], v.width)) {
+        if (auto f = o.focal.resolve(o.photos[0], v.width, v.height)) {
             r = chessboard_pose(v, spec, Intrinsics::centred(v.width, v.height, *f));
             method = "chessboard, one photo, given focal length";
         } else {
@@ -145,6 +145,10 @@ int run_fspy(const FspyOptions& o) {
     FspyImport f = read_fspy(o.file);
     std::string photo;
     if (!o.extract.empty()) {
+        if (f.from_json_export)
+            throw InputError(o.file, "--extract-photo",
+                             "fSpy's exported camera parameters hold no photo (the .fspy "
+                             "project does)");
         try {
             write_file_atomically(o.extract, std::string(f.image.begin(), f.image.end()));
         } catch (const std::runtime_error& e) {
@@ -155,8 +159,12 @@ int run_fspy(const FspyOptions& o) {
                     o.extract.c_str());
         photo = o.extract;
     }
-    std::printf("fspy: distance unit %s\n", f.unit.c_str());
-    print_result(f.result, "fSpy project " + o.file);
+    if (f.from_json_export)
+        std::printf("fspy: exported camera parameters (no distance unit)\n");
+    else
+        std::printf("fspy: distance unit %s\n", f.unit.c_str());
+    const char* what = f.from_json_export ? "fSpy camera parameters " : "fSpy project ";
+    print_result(f.result, what + o.file);
     write_camera(o.project, f.result, photo);
     return 0;
 }
@@ -187,15 +195,20 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
             "exif", "Focal length from the photo's EXIF data (keeps the camera's pose)");
         sub->add_option("project", o->project, "Project file to write or update")->required();
         sub->add_option("photo", o->photo, "Photo with EXIF data (JPEG, TIFF, raw...)")->required();
-        sub->add_option("--sensor-width", o->sensor_width, "Sensor width in millimetres")
+        sub->add_option("--sensor-width", o->sensor_width,
+                        "Sensor width in millimetres, across its rows (the stored image's)")
             ->check(kFinite);
         out.push_back({sub, [o] { return run_exif(*o); }});
     }
     {
         auto o = std::make_shared<FspyOptions>();
-        CLI::App* sub = calibrate.add_subcommand("fspy", "Camera from an fSpy project file");
+        CLI::App* sub = calibrate.add_subcommand(
+            "fspy", "Camera from an fSpy project file or fSpy's exported camera parameters");
         sub->add_option("project", o->project, "Project file to write or update")->required();
-        sub->add_option("file", o->file, "fSpy project (.fspy)")->required();
+        sub->add_option("file", o->file,
+                        "fSpy project (.fspy) or its camera parameters exported as JSON "
+                        "(told apart by content)")
+            ->required();
         sub->add_option("--extract-photo", o->extract,
                         "Write the embedded photo to this file (and use it for a new project)");
         out.push_back({sub, [o] { return run_fspy(*o); }});

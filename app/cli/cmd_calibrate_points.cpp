@@ -77,7 +77,7 @@ int run_rectangle(const RectangleOptions& o) {
         throw InputError(o.file, "--width", "give the rectangle's --width and --height in metres (> 0)");
     const ImageSize s = image_size(o.photo, o.size);
     std::optional<Intrinsics> k;
-    if (auto f = o.focal.resolve(o.photo, s.width))
+    if (auto f = o.focal.resolve(o.photo, s.width, s.height))
         k = Intrinsics::centred(s.width, s.height, *f);
     CalibrationResult r = calibrate_rectangle(corners, width, height, s.width, s.height, k, o.file,
                                               o.click_sigma_px());
@@ -114,7 +114,7 @@ int run_points(const PointsOptions& o) {
     }
     const ImageSize s = image_size(o.photo, o.size);
     std::optional<Intrinsics> k;
-    if (auto f = o.focal.resolve(o.photo, s.width))
+    if (auto f = o.focal.resolve(o.photo, s.width, s.height))
         k = Intrinsics::centred(s.width, s.height, *f);
     CalibrationResult r = calibrate_points(pts, s.width, s.height, k, o.file, o.click_sigma_px());
     print_result(r, k ? "points, given focal length" : "points, focal length from the points");
@@ -191,7 +191,7 @@ int run_vanishing(const VanishingOptions& o) {
     if (o.free_principal_point) in.free_principal_point = true;
     in.click_sigma_px = o.click_sigma_px();
     const ImageSize s = image_size(o.photo, o.size);
-    in.focal_px = o.focal.resolve(o.photo, s.width);
+    in.focal_px = o.focal.resolve(o.photo, s.width, s.height);
     CalibrationResult r = calibrate_vanishing(in, s.width, s.height, o.file);
     print_result(r, "vanishing points");
     write_camera(o.project, r, o.photo);

@@ -36,6 +36,25 @@ CameraSpec CalibrationResult::camera_spec() const {
     return c;
 }
 
+CalibrationResult scaled_to(const CalibrationResult& r, int width, int height,
+                            const std::string& file, const std::string& field) {
+    const Intrinsics& k = r.intrinsics;
+    if (k.width == width && k.height == height) return r;
+    const double sx = double(width) / k.width, sy = double(height) / k.height;
+    if (!(std::abs(sx / sy - 1) <= 0.01))
+        throw InputError(file, field,
+                         "the photo is " + std::to_string(width) + "x" + std::to_string(height) +
+                             " but the camera was matched on a " + std::to_string(k.width) +
+                             "x" + std::to_string(k.height) +
+                             " image: the aspect ratios differ");
+    CalibrationResult out = r;
+    Intrinsics& s = out.intrinsics;
+    s.fx *= sx, s.fy *= sy;
+    s.cx = (k.cx + 0.5) * sx - 0.5, s.cy = (k.cy + 0.5) * sy - 0.5;
+    s.width = width, s.height = height;
+    return out;
+}
+
 Camera CalibrationResult::camera() const {
     return camera_spec().build(intrinsics.width, intrinsics.height);
 }

@@ -75,6 +75,13 @@ struct CalibrationResult {
     Camera camera() const;
 };
 
+/// `r` for the same picture at `width` x `height` pixels (pixel edges scale, so centres map
+/// as (c + 0.5) s - 0.5); `r` itself where the size is the same. Throws InputError naming
+/// `file` and `field` (the photo's) when the aspect ratios differ by more than 1 %: another
+/// picture, or the same one cropped or turned.
+CalibrationResult scaled_to(const CalibrationResult& r, int width, int height,
+                            const std::string& file, const std::string& field);
+
 /// The checks every method's result gets, added to its warnings: an estimated focal length
 /// uncertain by more than 5 % or wider than 120° across, a principal point outside the middle
 /// half of the image, and an RMS error above `rms_limit_px` (pass infinity where the method

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include <exiv2/exiv2.hpp>
 
@@ -27,6 +28,14 @@ double number(const Exiv2::ExifData& exif, const char* key) {
     if (it == exif.end() || it->count() == 0) return 0;
     const double v = double(it->toFloat());
     return std::isfinite(v) ? v : 0;
+}
+
+/// The orientation the loader applies: Exif.Image.Orientation, 1 to 8 (1 where absent or out
+/// of range). It leaves a PNG as stored whatever its tag says, so the tag does not count there.
+int applied_orientation(const Exiv2::Image& image) {
+    if (image.mimeType() == "image/png") return 1;
+    const double v = number(image.exifData(), "Exif.Image.Orientation");
+    return v >= 1 && v <= 8 && v == std::floor(v) ? int(v) : 1;
 }
 
 }  // namespace
@@ -93,7 +102,24 @@ ExifFocal read_exif_focal(const std::string& path, std::optional<double> sensor_
                              " mm) but no sensor size or 35 mm equivalent; give the sensor "
                              "width");
     }
+    // The sensor's axes were the stored image's; the photo loads upright.
+    r.orientation = applied_orientation(*image);
+    if (r.orientation >= 5) {
+        std::swap(r.width, r.height);
+        r.method += ", turned upright (EXIF orientation " + std::to_string(r.orientation) + ")";
+    }
     return r;
+}
+
+int exif_orientation(const std::string& path) {
+    try {
+        Exiv2::Image::AutoPtr image = Exiv2::ImageFactory::open(path);
+        if (!image.get()) return 1;
+        image->readMetadata();
+        return applied_orientation(*image);
+    } catch (const Exiv2::AnyError&) {
+        return 1;  // no metadata to read: the loader turns nothing either
+    }
 }
 
 }  // namespace dp

@@ -93,7 +93,9 @@ Image load_with_opencv(const std::string& path, const std::string& field,
                        ImageLoadReport& report) {
     cv::Mat bgr;
     try {
-        // ANYDEPTH keeps 16-bit and float data; COLOR expands grey and drops alpha.
+        // ANYDEPTH keeps 16-bit and float data; COLOR expands grey and drops alpha. Without
+        // IMREAD_IGNORE_ORIENTATION a JPEG's EXIF orientation is applied (the TIFF decoder
+        // applies its own always): the picture comes upright, and read_image_size agrees.
         bgr = cv::imread(path, cv::IMREAD_ANYDEPTH | cv::IMREAD_COLOR);
     } catch (const std::bad_alloc&) {
         throw;  // out of memory is said as such, not as a corrupt file

@@ -16,6 +16,9 @@ struct ImageLoadReport {
 };
 
 /// Loads EXR or Radiance HDR as linear float, PNG/JPEG/TIFF/BMP as sRGB decoded to linear.
+/// JPEG and TIFF come upright by their EXIF Orientation tag, as viewers show them (a phone's
+/// portrait photo, stored landscape with orientation 6 or 8, loads portrait); a PNG's tag is
+/// not applied (OpenCV does not), so a PNG loads as stored.
 /// Throws InputError naming `path` and `field` when the file is missing, unreadable, corrupt,
 /// empty or over check_image_size (measured from the header for EXR, PNG, JPEG, HDR and BMP: a
 /// tiny file declaring a huge size allocates nothing). NaN/Inf become 0, counted in `report`.
@@ -31,8 +34,9 @@ struct ExrLayer {
     const Image* alpha = nullptr;
 };
 
-/// Reads an image's size from its header (EXR, PNG, JPEG) without decoding it; false for other
-/// formats or an unreadable header (decode the image then).
+/// Reads an image's size from its header (EXR, PNG, JPEG, HDR, BMP) without decoding it, as
+/// load_image returns the picture (a JPEG's EXIF orientation 5 to 8 swaps width and height);
+/// false for other formats or an unreadable header (decode the image then).
 bool read_image_size(const std::string& path, int& width, int& height);
 
 /// The most pixels load_image decodes: 2^28 (16384 x 16384, 3.2 GB as linear float), fewer

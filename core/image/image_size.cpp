@@ -10,10 +10,12 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "base/memory.h"
 #include "base/text.h"
@@ -39,9 +41,42 @@ bool png_size(std::ifstream& f, int64_t& w, int64_t& h) {
     return w > 0 && h > 0;
 }
 
+/// The Orientation tag (0x0112, 1 to 8) of the first IFD of the TIFF structure at `base` in
+/// `f`, reading no further than `limit` bytes from `base`; 1 where it is absent or unreadable.
+int tiff_orientation(std::istream& f, std::streamoff base, std::streamoff limit) {
+    unsigned char h[8];
+    f.clear();
+    f.seekg(base);
+    if (!f.read(reinterpret_cast<char*>(h), 8)) return 1;
+    const bool little = h[0] == 'I' && h[1] == 'I' && h[2] == 42 && h[3] == 0;
+    if (!little && !(h[0] == 'M' && h[1] == 'M' && h[2] == 0 && h[3] == 42)) return 1;
+    auto u16 = [&](const unsigned char* b) { return little ? uint16_t(b[0] | b[1] << 8) : be16(b); };
+    auto u32 = [&](const unsigned char* b) { return little ? le32(b) : be32(b); };
+    const uint32_t ifd = u32(h + 4);
+    unsigned char n[2];
+    if (ifd < 8 || std::streamoff(ifd) + 2 > limit) return 1;
+    f.seekg(base + std::streamoff(ifd));
+    if (!f.read(reinterpret_cast<char*>(n), 2)) return 1;
+    const int entries = std::min<int>(u16(n), int((limit - std::streamoff(ifd) - 2) / 12));
+    for (int i = 0; i < entries; ++i) {
+        unsigned char e[12];
+        if (!f.read(reinterpret_cast<char*>(e), 12)) return 1;
+        // A SHORT value sits in the first two bytes of the entry's value field.
+        if (u16(e) == 0x0112 && u16(e + 2) == 3 && u32(e + 4) >= 1) {
+            const int v = u16(e + 8);
+            return v >= 1 && v <= 8 ? v : 1;
+        }
+    }
+    return 1;
+}
+
+/// The size as the decoder shows the picture: a JPEG's EXIF orientation 5 to 8 turns it a
+/// quarter (OpenCV applies the tag as it decodes, as viewers do), so width and height swap.
 bool jpeg_size(std::ifstream& f, int64_t& w, int64_t& h) {
     unsigned char b[2];
     if (!f.read(reinterpret_cast<char*>(b), 2) || b[0] != 0xFF || b[1] != 0xD8) return false;
+    int orientation = 1;
+    bool exif_seen = false;
     for (int guard = 0; guard < 4096; ++guard) {
         unsigned char m[4];
         if (!f.read(reinterpret_cast<char*>(m), 2) || m[0] != 0xFF) return false;
@@ -57,10 +92,20 @@ bool jpeg_size(std::ifstream& f, int64_t& w, int64_t& h) {
             if (!f.read(reinterpret_cast<char*>(s), 5)) return false;
             h = be16(s + 1);
             w = be16(s + 3);
+            if (orientation >= 5) std::swap(w, h);
             return w > 0 && h > 0;
         }
         if (length < 2) return false;
-        f.seekg(length - 2, std::ios::cur);
+        const std::streamoff next = std::streamoff(f.tellg()) + length - 2;
+        // The first APP1 "Exif" segment holds the tags, as the decoder reads them.
+        unsigned char id[6];
+        if (marker == 0xE1 && !exif_seen && length >= 16 && f.read(reinterpret_cast<char*>(id), 6) &&
+            std::memcmp(id, "Exif\0\0", 6) == 0) {
+            exif_seen = true;
+            orientation = tiff_orientation(f, next - (length - 8), length - 8);
+        }
+        f.clear();
+        f.seekg(next);
     }
     return false;
 }

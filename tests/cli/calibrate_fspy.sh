@@ -1,6 +1,7 @@
 # `calibrate fspy`: an fSpy project written here (a Blender camera 5 m in front of the origin,
 # 1 m up, looking along +Y) becomes a camera at (0, 1, 5) looking along -Z, in a new project
-# whose photo is the extracted image.
+# whose photo is the extracted image. A portrait project's focal length is across its height;
+# the camera parameters fSpy exports as JSON import too.
 source "$(dirname "$0")/testlib.bash" "$@"
 
 le32() {  # little-endian uint32
@@ -15,14 +16,15 @@ STATE='{"calibrationSettingsBase": {"referenceDistanceAxis": "xPositive", "refer
  "cameraParameters": {"principalPoint": {"x": 0, "y": 0},
   "cameraTransform": {"rows": [[1, 0, 0, 0], [0, 0, -1, -500], [0, 1, 0, 100], [0, 0, 0, 1]]},
   "horizontalFieldOfView": 1.0, "imageWidth": 800, "imageHeight": 600}}'
-{
+write_fspy() {  # write_fspy STATE IMAGE
     printf 'fspy'
     le32 1
-    le32 ${#STATE}
-    le32 "$(stat -c %s embedded.png)"
-    printf '%s' "$STATE"
-    cat embedded.png
-} >scene.fspy
+    le32 ${#1}
+    le32 "$(stat -c %s "$2")"
+    printf '%s' "$1"
+    cat "$2"
+}
+write_fspy "$STATE" embedded.png >scene.fspy
 
 run calibrate fspy new.json scene.fspy --extract-photo photo.png
 expect_rc 0 "import"
@@ -32,6 +34,33 @@ expect_stdout "forward: 0.0000 0.0000 -1.0000" "viewing direction"
 expect_stdout "rms_px n/a" "fSpy stores no residual"
 expect_stdout "cx 399.500 cy 299.500" "centred principal point"
 grep -q '"path": "photo.png"' new.json || fail "the new project does not name the extracted photo"
+
+# Portrait, 600x900: fSpy's relative focal length 2 is two half heights, 900 px; its
+# "horizontal" field of view, 2 atan(1/2), is across the height too. No unit: no unknown unit.
+CAMERA='{"principalPoint": {"x": 0, "y": 0},
+  "cameraTransform": {"rows": [[1, 0, 0, 0], [0, 0, -1, -5], [0, 1, 0, 1], [0, 0, 0, 1]]},
+  "horizontalFieldOfView": 0.9272952180016122, "relativeFocalLength": 2,
+  "imageWidth": 600, "imageHeight": 900}'
+PORTRAIT='{"calibrationSettingsBase": {"referenceDistanceAxis": "xPositive", "referenceDistance": 1,
+ "referenceDistanceUnit": "No unit"}, "cameraParameters": '"$CAMERA"'}'
+write_fspy "$PORTRAIT" embedded.png >portrait.fspy
+run calibrate fspy portrait.json portrait.fspy
+expect_rc 0 "import a portrait project"
+expect_stdout "fx 900.000 fy 900.000 cx 299.500 cy 449.500" "focal length across the height"
+expect_stderr "has no unit" "a reference distance without a unit"
+grep -qF "unknown distance unit" stderr.txt && fail "'No unit' is read as an unknown unit"
+
+# The same camera exported as JSON (File > Export > Camera parameters as JSON).
+printf '%s\n' "$CAMERA" >camera-parameters.json
+run calibrate fspy exported.json camera-parameters.json
+expect_rc 0 "import the exported camera parameters"
+expect_stdout "fspy: exported camera parameters" "told apart by content"
+expect_stdout "fx 900.000 fy 900.000 cx 299.500 cy 449.500" "the same camera as the project's"
+expect_stdout "position: 0.0000 1.0000 5.0000" "position in the file's lengths"
+expect_stderr "no distance unit" "the export has no unit"
+run calibrate fspy exported.json camera-parameters.json --extract-photo p.png
+expect_rc 2 "no photo to extract from the JSON"
+expect_stderr "hold no photo" "no photo to extract from the JSON"
 
 head -c 40 scene.fspy >truncated.fspy
 run calibrate fspy new.json truncated.fspy

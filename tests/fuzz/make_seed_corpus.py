@@ -79,7 +79,12 @@ def images(cli):
             subprocess.run([cli, "convert", src, out], check=True, stdout=subprocess.DEVNULL)
             if prefix:
                 with open(out, "rb") as f:
-                    put("image", "jpg_8x6", prefix + f.read())
+                    jpeg = f.read()
+                put("image", "jpg_8x6", prefix + jpeg)
+                # EXIF orientation 6 (a phone's portrait photo): the header size turns with it.
+                tiff = b"II*\x00" + struct.pack("<IHHHIHHI", 8, 1, 0x0112, 3, 1, 6, 0, 0)
+                app1 = b"\xff\xe1" + struct.pack(">H", 8 + len(tiff)) + b"Exif\x00\x00" + tiff
+                put("image", "jpg_8x6_orientation6", prefix + jpeg[:2] + app1 + jpeg[2:])
             os.remove(out)
         os.remove(src)
 
@@ -177,6 +182,14 @@ def fspy():
         state["calibrationSettingsBase"]["referenceDistanceUnit"] = unit
         text = json.dumps(state).encode()
         put("fspy", name, b"fspy" + struct.pack("<III", 1, len(text), len(image)) + text + image)
+    # A portrait image (its focal length across the height) and fSpy's exported camera
+    # parameters JSON (no header, no image: read by content).
+    camera = dict(state["cameraParameters"], imageWidth=3, imageHeight=4, horizontalFieldOfView=1.1195)
+    state = dict(state, cameraParameters=camera)
+    text = json.dumps(state).encode()
+    image = png(3, 4)
+    put("fspy", "portrait", b"fspy" + struct.pack("<III", 1, len(text), len(image)) + text + image)
+    put("fspy", "camera_parameters_json", json.dumps(camera, indent=2))
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@
 #include "base/error.h"
 #include "calibration/exif.h"
 #include "common/input_error.h"
+#include "image/image_io.h"
 
 using namespace dp;
 using dp::test::input_error_message;
@@ -32,7 +33,8 @@ protected:
         cv::imwrite(path, cv::Mat(480, 640, CV_8UC3, cv::Scalar(90, 120, 150)));
         return path;
     }
-    /// The same with the given EXIF tags written by exiv2.
+    /// The same with the given EXIF tags written by exiv2 (the name's extension chooses the
+    /// format: .jpg, .tif, .png).
     std::string jpeg_with(const std::string& name,
                           const std::vector<std::pair<std::string, std::string>>& tags) {
         std::string path = plain_jpeg(name);
@@ -93,4 +95,74 @@ TEST_F(Exif, MissingOrUnusableExifIsAnInputError) {
     auto no_sensor = jpeg_with("nosensor.jpg", {{"Exif.Photo.FocalLength", "50/1"}});
     EXPECT_NE(input_error_message([&] { read_exif_focal(no_sensor); }).find("give the sensor width"),
               std::string::npos);
+}
+
+namespace {
+
+/// A phone's tags: 4.25 mm, 26 mm in 35 mm terms.
+const std::vector<std::pair<std::string, std::string>> kPhone = {
+    {"Exif.Photo.FocalLength", "425/100"}, {"Exif.Photo.FocalLengthIn35mmFilm", "26"}};
+
+std::vector<std::pair<std::string, std::string>> turned(
+    std::vector<std::pair<std::string, std::string>> tags, int orientation) {
+    tags.push_back({"Exif.Image.Orientation", std::to_string(orientation)});
+    return tags;
+}
+
+}  // namespace
+
+TEST_F(Exif, APortraitPhotoTurnedBySixOrEightIsUprightWithTheLandscapesFocalLength) {
+    // A phone stores its portrait photos landscape, tagged to be turned a quarter.
+    const ExifFocal landscape = read_exif_focal(jpeg_with("landscape.jpg", kPhone));
+    for (int o : {6, 8}) {
+        const std::string path = jpeg_with("portrait" + std::to_string(o) + ".jpg", turned(kPhone, o));
+        const ExifFocal f = read_exif_focal(path);
+        EXPECT_EQ(f.orientation, o);
+        EXPECT_EQ(f.width, 480);
+        EXPECT_EQ(f.height, 640);
+        EXPECT_DOUBLE_EQ(f.focal_px, landscape.focal_px);
+        EXPECT_NE(f.method.find("EXIF orientation " + std::to_string(o)), std::string::npos);
+        // The loader turns the picture the same way.
+        const Image image = load_image(path);
+        EXPECT_EQ(image.width(), f.width);
+        EXPECT_EQ(image.height(), f.height);
+    }
+}
+
+TEST_F(Exif, TheFocalPlaneResolutionIsAlongTheStoredRowsWhateverTheOrientation) {
+    // As FocalPlaneResolutionGivesTheSensorWidth, turned: the sensor is still 16 mm wide
+    // across the stored 640 px.
+    auto path = jpeg_with("dslr8.jpg", turned({{"Exif.Photo.FocalLength", "50/1"},
+                                               {"Exif.Photo.FocalPlaneXResolution", "1016/1"},
+                                               {"Exif.Photo.FocalPlaneResolutionUnit", "2"}},
+                                              8));
+    const ExifFocal f = read_exif_focal(path);
+    EXPECT_NEAR(f.sensor_width_mm, 16.0, 1e-9);
+    EXPECT_NEAR(f.focal_px, 50.0 * 640.0 / 16.0, 1e-9);
+    EXPECT_EQ(f.width, 480);
+    // So is a sensor width given by hand.
+    EXPECT_NEAR(read_exif_focal(path, 23.5).focal_px, 50.0 * 640.0 / 23.5, 1e-9);
+}
+
+TEST_F(Exif, OrientationsOneToFourKeepTheSize) {
+    for (int o : {1, 2, 3, 4}) {
+        const ExifFocal f = read_exif_focal(jpeg_with("o" + std::to_string(o) + ".jpg", turned(kPhone, o)));
+        EXPECT_EQ(f.width, 640) << o;
+        EXPECT_EQ(f.height, 480) << o;
+    }
+}
+
+TEST_F(Exif, ATiffIsTurnedUprightAsItLoads) {
+    const std::string path = jpeg_with("portrait.tif", turned(kPhone, 6));
+    const ExifFocal f = read_exif_focal(path);
+    EXPECT_EQ(f.width, 480);
+    EXPECT_EQ(load_image(path).width(), 480);
+}
+
+TEST_F(Exif, APngLoadsAsStoredSoItsOrientationIsNotApplied) {
+    const std::string path = jpeg_with("portrait.png", turned(kPhone, 6));
+    const ExifFocal f = read_exif_focal(path);
+    EXPECT_EQ(f.orientation, 1);
+    EXPECT_EQ(f.width, 640);
+    EXPECT_EQ(load_image(path).width(), 640);
 }

@@ -10,28 +10,14 @@
 #include "base/error.h"
 #include "calibration/fspy.h"
 #include "common/input_error.h"
+#include "common/fspy_files.h"
 
 using namespace dp;
 using dp::test::input_error_message;
+using dp::test::write_fspy;
 using json = nlohmann::json;
 
 namespace {
-
-/// Writes an .fspy file: header (magic, version 1, state size, image size), state, image.
-void write_fspy(const std::string& path, const json& state, const std::vector<uint8_t>& image,
-                uint32_t version = 1) {
-    const std::string text = state.dump();
-    std::ofstream out(path, std::ios::binary);
-    auto u32 = [&](uint32_t v) {
-        for (int i = 0; i < 4; ++i) out.put(char((v >> (8 * i)) & 0xFF));
-    };
-    out.write("fspy", 4);
-    u32(version);
-    u32(uint32_t(text.size()));
-    u32(uint32_t(image.size()));
-    out.write(text.data(), std::streamsize(text.size()));
-    out.write(reinterpret_cast<const char*>(image.data()), std::streamsize(image.size()));
-}
 
 std::vector<uint8_t> small_png() {
     std::vector<uint8_t> bytes;
@@ -112,17 +98,20 @@ TEST_F(Fspy, AKnownCameraRoundTripsExactly) {
         M[size_t(r)][3] = Cb[r];
     }
     M[3][3] = 1;
-    const int W = 600, H = 900;  // portrait: the height spans [-1, 1]
+    // Portrait: the height spans [-1, 1] in fSpy's image plane, and its "horizontal" field
+    // of view is across the height, the longer side.
+    const int W = 600, H = 900;
     const double hfov = 0.9, ppx = 0.1, ppy = -0.2;
     write_fspy(file("b.fspy"), state_for(M, hfov, ppx, ppy, W, H, "Centimeters"), small_png());
     FspyImport f = read_fspy(file("b.fspy"));
     const Intrinsics& k = f.result.intrinsics;
     EXPECT_EQ(k.width, W);
     EXPECT_EQ(k.height, H);
-    EXPECT_NEAR(2 * std::atan(0.5 * W / k.fx), hfov, 1e-12);
-    const double aspect = double(W) / H;
-    EXPECT_NEAR(k.cx, 0.5 * (ppx / aspect + 1) * W - 0.5, 1e-9);
-    EXPECT_NEAR(k.cy, 0.5 * (1 - ppy) * H - 0.5, 1e-9);
+    EXPECT_NEAR(2 * std::atan(0.5 * H / k.fx), hfov, 1e-12);
+    EXPECT_NEAR(k.fy, k.fx, 1e-12);
+    // One unit of the image plane is half the height: x in [-2/3, 2/3], y in [-1, 1] (up).
+    EXPECT_NEAR(k.cx, 0.5 * W + ppx * 0.5 * H - 0.5, 1e-9);
+    EXPECT_NEAR(k.cy, 0.5 * H - ppy * 0.5 * H - 0.5, 1e-9);
     // Position: Blender (x, y, z) cm -> ours (x, z, -y) m.
     const glm::dvec3 c = f.result.pose.position();
     EXPECT_NEAR(c.x, 1.20, 1e-12);
@@ -156,4 +145,119 @@ TEST_F(Fspy, BrokenFilesAreInputErrors) {
     write_fspy(file("full.fspy"), state_for(I, 1.0, 0, 0, 8, 6), small_png());
     std::filesystem::resize_file(file("full.fspy"), std::filesystem::file_size(file("full.fspy")) - 10);
     EXPECT_NE(input_error_message([&] { read_fspy(file("full.fspy")); }).find("truncated"), std::string::npos);
+}
+
+namespace {
+
+const std::vector<std::vector<double>> kLookingAlongPlusY = {
+    {1, 0, 0, 0}, {0, 0, -1, -5}, {0, 1, 0, 1}, {0, 0, 0, 1}};
+
+bool has_warning(const FspyImport& f, const std::string& text) {
+    for (const std::string& w : f.result.warnings)
+        if (w.find(text) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_F(Fspy, NoUnitIsNotAnUnknownUnitButSaysTheLengthsAreTakenAsMetres) {
+    write_fspy(file("n.fspy"), state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600, "No unit"),
+               small_png());
+    const FspyImport f = read_fspy(file("n.fspy"));
+    EXPECT_EQ(f.unit, "No unit");
+    EXPECT_FALSE(has_warning(f, "unknown distance unit"));
+    EXPECT_TRUE(has_warning(f, "has no unit"));
+    EXPECT_NEAR(f.result.pose.position().z, 5.0, 1e-12);
+}
+
+TEST_F(Fspy, YardsOfEarlyFspyVersionsBecomeMetresAsThreeFeetEach) {
+    write_fspy(file("y.fspy"), state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600, "Yards"),
+               small_png());
+    const FspyImport f = read_fspy(file("y.fspy"));
+    EXPECT_TRUE(f.result.warnings.empty()) << f.result.warnings.front();
+    EXPECT_NEAR(f.result.pose.position().z, 5 * 3 * 0.3048, 1e-12);
+    EXPECT_NEAR(f.result.pose.position().y, 1 * 3 * 0.3048, 1e-12);
+}
+
+TEST_F(Fspy, AnUnknownUnitAndAMissingReferenceDistanceAreWarnedAbout) {
+    json s = state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600, "Furlongs");
+    write_fspy(file("u.fspy"), s, small_png());
+    EXPECT_TRUE(has_warning(read_fspy(file("u.fspy")), "unknown distance unit 'Furlongs'"));
+    s = state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600);
+    s["calibrationSettingsBase"]["referenceDistanceAxis"] = nullptr;
+    write_fspy(file("r.fspy"), s, small_png());
+    EXPECT_TRUE(has_warning(read_fspy(file("r.fspy")), "sets no reference distance"));
+}
+
+TEST_F(Fspy, TheExportedCameraParametersJsonIsReadByItsContent) {
+    // File > Export > Camera parameters as JSON: the cameraParameters object alone, whatever
+    // the file's name.
+    const json state = state_for(kLookingAlongPlusY, 1.0, 0.1, -0.05, 800, 600, "Meters");
+    write_fspy(file("p.fspy"), state, small_png());
+    std::ofstream(file("camera.txt")) << state["cameraParameters"].dump(2);
+    const FspyImport project = read_fspy(file("p.fspy"));
+    const FspyImport exported = read_fspy(file("camera.txt"));
+    EXPECT_FALSE(project.from_json_export);
+    EXPECT_TRUE(exported.from_json_export);
+    EXPECT_TRUE(exported.image.empty());
+    EXPECT_EQ(exported.unit, "");
+    EXPECT_TRUE(has_warning(exported, "no distance unit"));
+    const Intrinsics &a = project.result.intrinsics, &b = exported.result.intrinsics;
+    EXPECT_EQ(b.width, 800);
+    EXPECT_DOUBLE_EQ(b.fx, a.fx);
+    EXPECT_DOUBLE_EQ(b.cx, a.cx);
+    EXPECT_DOUBLE_EQ(b.cy, a.cy);
+    EXPECT_NEAR(glm::length(exported.result.pose.position() - project.result.pose.position()),
+                0.0, 1e-12);
+}
+
+TEST_F(Fspy, AFieldOfViewAloneGivesTheFocalLengthAcrossTheLongerSide) {
+    json s = state_for(kLookingAlongPlusY, 0.8, 0, 0, 600, 800);
+    s["cameraParameters"].erase("relativeFocalLength");
+    write_fspy(file("h.fspy"), s, small_png());
+    EXPECT_NEAR(read_fspy(file("h.fspy")).result.intrinsics.fx, 400 / std::tan(0.4), 1e-9);
+}
+
+TEST_F(Fspy, AFieldOfViewThatContradictsTheRelativeFocalLengthIsWarnedAbout) {
+    json s = state_for(kLookingAlongPlusY, 0.8, 0, 0, 600, 800);
+    // Across the width, as fSpy versions before 1.0 wrote it: no warning.
+    s["cameraParameters"]["horizontalFieldOfView"] = 2 * std::atan(0.75 * std::tan(0.4));
+    write_fspy(file("w.fspy"), s, small_png());
+    const FspyImport f = read_fspy(file("w.fspy"));
+    EXPECT_TRUE(f.result.warnings.empty()) << f.result.warnings.front();
+    EXPECT_NEAR(f.result.intrinsics.fx, 400 / std::tan(0.4), 1e-9);
+    s["cameraParameters"]["horizontalFieldOfView"] = 1.3;
+    write_fspy(file("x.fspy"), s, small_png());
+    EXPECT_TRUE(has_warning(read_fspy(file("x.fspy")), "does not match relativeFocalLength"));
+}
+
+TEST_F(Fspy, MalformedCameraFieldsAreInputErrorsNamingTheField) {
+    auto message = [&](const std::string& name, const json& state) {
+        write_fspy(file(name), state, small_png());
+        return input_error_message([&] { read_fspy(file(name)); });
+    };
+    json s = state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600);
+    s["cameraParameters"]["imageWidth"] = 0;
+    EXPECT_NE(message("w.fspy", s).find("cameraParameters.imageWidth"), std::string::npos);
+    s = state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600);
+    s["cameraParameters"]["cameraTransform"]["rows"][1] = json::array({0, 1});
+    EXPECT_NE(message("t.fspy", s).find("cameraParameters.cameraTransform"), std::string::npos);
+    s = state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600);
+    s["cameraParameters"]["principalPoint"] = "centre";
+    EXPECT_NE(message("p.fspy", s).find("cameraParameters.principalPoint"), std::string::npos);
+    s = state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600);
+    s["cameraParameters"].erase("relativeFocalLength");
+    s["cameraParameters"].erase("horizontalFieldOfView");
+    EXPECT_NE(message("f.fspy", s).find("cameraParameters.horizontalFieldOfView"),
+              std::string::npos);
+    s = state_for(kLookingAlongPlusY, 1.0, 0, 0, 800, 600);
+    s["calibrationSettingsBase"]["referenceDistanceUnit"] = 3;
+    EXPECT_NE(message("u.fspy", s).find("referenceDistanceUnit"), std::string::npos);
+    // A JSON file that is not fSpy's export names what it lacks.
+    std::ofstream(file("project.json")) << R"({"photo": {"path": "a.jpg"}})";
+    EXPECT_NE(input_error_message([&] { read_fspy(file("project.json")); }).find("no cameraTransform"),
+              std::string::npos);
+    std::ofstream(file("cut.json")) << R"({"cameraTransform": {"rows": [[1, 0)";
+    EXPECT_NE(input_error_message([&] { read_fspy(file("cut.json")); }).find("invalid JSON"),
+              std::string::npos);
 }
