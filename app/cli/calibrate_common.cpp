@@ -175,7 +175,45 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
     std::printf("wrote the camera to %s\n", project_path.c_str());
 }
 
+nlohmann::json& last_result_json() {
+    static nlohmann::json result;
+    return result;
+}
+
+namespace {
+
+nlohmann::json result_json(const CalibrationResult& r, const std::string& method) {
+    const Intrinsics& k = r.intrinsics;
+    const Distortion& d = k.distortion;
+    const Uncertainty& u = r.uncertainty;
+    auto v3 = [](const glm::dvec3& v) { return nlohmann::json{v.x, v.y, v.z}; };
+    nlohmann::json rows = nlohmann::json::array();
+    for (int i = 0; i < 3; ++i) rows.push_back({r.pose.R[0][i], r.pose.R[1][i], r.pose.R[2][i]});
+    nlohmann::json doc = {
+        {"method", method},
+        {"image", {{"width", k.width}, {"height", k.height}}},
+        {"intrinsics", {{"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy}, {"hfov_deg", k.hfov_deg()}}},
+        {"distortion", {{"k1", d.k1}, {"k2", d.k2}, {"p1", d.p1}, {"p2", d.p2}, {"k3", d.k3}}},
+        {"rotation", rows},  // world to camera, rows
+        {"translation", v3(r.pose.t)},
+        {"position", v3(r.pose.position())},
+        {"forward", v3(glm::transpose(r.pose.R) * glm::dvec3(0, 0, 1))},
+        {"rms_px", std::isnan(r.rms_px) ? nlohmann::json(nullptr) : nlohmann::json(r.rms_px)},
+        {"warnings", r.warnings}};
+    if (u.known)
+        doc["uncertainty"] = {{"fx", u.fx}, {"fy", u.fy}, {"cx", u.cx}, {"cy", u.cy},
+                              {"rotation_deg", u.rotation_deg}, {"position_m", u.position_m},
+                              {"point_sigma_px", u.point_sigma_px}, {"focal_free", u.focal_free},
+                              {"principal_free", u.principal_free}};
+    else
+        doc["uncertainty"] = nullptr;
+    return doc;
+}
+
+}  // namespace
+
 void print_result(const CalibrationResult& r, const std::string& method) {
+    last_result_json() = result_json(r, method);
     const Intrinsics& k = r.intrinsics;
     const Distortion& d = k.distortion;
     // Below the printed precision, 0 (not "-0.0000" from rounding noise).

@@ -59,6 +59,10 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
 /// uncertainty ("uncertainty: fx 495 ± 12 px ..."), and the result's warnings on stderr.
 void print_result(const CalibrationResult& r, const std::string& method);
 
+/// The last result print_result saw, as JSON (`calibrate ... --json` prints it on stdout, every
+/// other line going to stderr); null before any.
+nlohmann::json& last_result_json();
+
 /// `calibrate rectangle`, `points` and `vanishing` (cmd_calibrate_points.cpp).
 std::vector<Command> add_calibrate_point_commands(CLI::App& calibrate);
 

@@ -1,6 +1,7 @@
 // `diffphoton calibrate`: the parent command, and its camera subcommands from a chessboard,
 // EXIF data and fSpy projects (the ones from clicked points are in cmd_calibrate_points.cpp).
 #include <cstdio>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -230,9 +231,33 @@ Command add_calibrate_command(CLI::App& app) {
     add_calibrate_proxy_command(*sub);
     add_calibrate_albedo_command(*sub);
     add_calibrate_probe_command(*sub);
-    return {sub, [commands] {
-                for (const Command& c : *commands)
-                    if (c.app->parsed()) return c.run();
+    auto json = std::make_shared<bool>(false);
+    for (Command& c : *commands)
+        c.app->add_flag("--json", *json,
+                        "Print the result as one JSON object on stdout (the other lines go to stderr)");
+    return {sub, [commands, json] {
+                for (const Command& c : *commands) {
+                    if (!c.app->parsed()) continue;
+                    if (!*json) return c.run();
+                    // The human-readable lines go to stderr, so that stdout is only the JSON.
+                    std::fflush(stdout);
+                    const int out = dup(STDOUT_FILENO);
+                    dup2(STDERR_FILENO, STDOUT_FILENO);
+                    int rc;
+                    try {
+                        rc = c.run();
+                    } catch (...) {
+                        std::fflush(stdout);
+                        dup2(out, STDOUT_FILENO);
+                        close(out);
+                        throw;
+                    }
+                    std::fflush(stdout);
+                    dup2(out, STDOUT_FILENO);
+                    close(out);
+                    std::printf("%s\n", last_result_json().dump(1).c_str());
+                    return rc;
+                }
                 return 0;  // a scene subcommand, already run by its callback
             }};
 }

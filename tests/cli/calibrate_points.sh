@@ -22,6 +22,22 @@ expect_stdout "uncertainty: focal length given, principal point held, rotation Â
 grep -q '"path": "photo.jpg"' rect.json || fail "the new project names no photo to replace"
 expect_camera "rectangle on a new project"
 
+# --json: stdout is one JSON object with the same camera; the human lines go to stderr.
+run calibrate rectangle rect_json.json --size 1000x750 --focal 800 --width 0.6 --height 0.4 \
+    --corners 413.518,381.519 549.410,412.026 508.295,466.634 360.722,428.922 --json
+expect_rc 0 "rectangle --json"
+expect_stderr "set photo.path to the 1000x750 photograph" "rectangle --json: notes on stderr"
+/usr/bin/python3 - stdout.txt <<'PY' || fail "rectangle --json"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+assert d["method"].startswith("rectangle"), d["method"]
+assert abs(d["intrinsics"]["fx"] - 800) < 1e-6, d["intrinsics"]
+p = d["position"]
+assert math.dist(p, [1.5, 1.6, 2.5]) < 0.034, p
+assert d["uncertainty"]["rotation_deg"] > 0 and not d["uncertainty"]["focal_free"], d["uncertainty"]
+assert d["image"] == {"width": 1000, "height": 750}, d["image"]
+PY
+
 make_inputs
 run make-test-image photo1000.png --size 1000 750 --value 0.5 0.5 0.5
 write_project scene.json "$BALL" "$FLOOR" photo1000.png
