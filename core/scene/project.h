@@ -1,5 +1,6 @@
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -160,6 +161,20 @@ struct Project {
     std::filesystem::path resolve(const std::string& path) const;
     bool operator==(const Project& o) const;
 };
+
+/// One file path a project holds, as for_each_input hands it out.
+struct InputRef {
+    std::string field;  ///< where the file names it: "photo.path", "objects[2].shape.path", ...
+    std::string what;   ///< what it is, for people: "photo", "light probe", "mesh of \"teapot\""
+};
+
+/// Calls `visit` with every non-empty path `project` reads a file from (the photo, the probe,
+/// the meshes of mesh shapes and the textures of textured albedos), in file order, as written:
+/// `visit` may change it (a file relinked).
+void for_each_input(Project& project,
+                    const std::function<void(const InputRef&, std::string& path)>& visit);
+void for_each_input(const Project& project,
+                    const std::function<void(const InputRef&, const std::string& path)>& visit);
 
 /// Every file `project` reads (photo, probe, meshes, textures), resolved, each with the field
 /// that names it ("photo.path", "objects[2].shape.path", ...).
