@@ -25,7 +25,8 @@ QStringList MainWindow::missingFiles() const {
 
 void MainWindow::relinkFiles() {
     if (!doc_->isOpen()) return;
-    if (relinkDialog_) {
+    // One at a time; one closed a moment ago may still wait for its deletion.
+    if (relinkDialog_ && relinkDialog_->isVisible()) {
         relinkDialog_->raise();
         relinkDialog_->activateWindow();
         return;

@@ -32,6 +32,7 @@ class RelinkTest : public QObject {
     void filesMovedIntoASubfolderAreFoundWithoutAsking();
     void aProbeDeletedWhileOpenStopsTheRenderAndOffersTheDialog();
     void aChosenPathThatIsNoFileChangesNothing();
+    void anotherProjectOpenedReplacesTheDialogWithItsOwnFiles();
 
   private:
     /// Opens `project` in a new window (it lives until cleanup).
@@ -280,6 +281,22 @@ void RelinkTest::aChosenPathThatIsNoFileChangesNothing() {
     QTest::mouseClick(button(d, QDialogButtonBox::Ok), Qt::LeftButton);
     QCOMPARE(w->document()->undoStack()->count(), 0);  // nothing to relink: no step
     QCOMPARE(w->missingFiles().size(), 2);
+}
+
+void RelinkTest::anotherProjectOpenedReplacesTheDialogWithItsOwnFiles() {
+    const QString first = write_moved_sample(dir_->path(), dir_->filePath("p/q/r"));
+    MainWindow* w = open(first);
+    MissingFilesDialog* d = w->relinkDialog();
+    QVERIFY(d && d->isVisible());
+    QDir().mkpath(dir_->filePath("second"));
+    const QString second = write_moved_sample(dir_->filePath("second"), dir_->filePath("s/t/u"));
+    Project p = load_project(second.toStdString());
+    p.photo.path = "other.exr";
+    save_project(p, second.toStdString());
+    QVERIFY(w->openProject(second));
+    QVERIFY(!d->isVisible());  // it listed the first project's files
+    QVERIFY(w->relinkDialog() && w->relinkDialog() != d && w->relinkDialog()->isVisible());
+    QCOMPARE(w->relinkDialog()->storedPath(0), QString("other.exr"));
 }
 
 QTEST_MAIN(RelinkTest)
