@@ -89,9 +89,15 @@ struct ProbeSpec {
     Format format = Format::LatLong;
     vec3 rotation_deg{0.0f};  ///< Euler XYZ applied to the probe in world space
     float intensity = 1.0f;   ///< linear scale on the probe's radiance
+    /// Per-channel scale on the probe's radiance, with `intensity`: the probe's white balance
+    /// brought to the photo's. The grey-card match keeps its luminance at 1, so `intensity`
+    /// alone still says how bright the probe is.
+    vec3 white_balance{1.0f};
     /// Mirror ball only: vertical field of view (degrees) of the camera that photographed the
     /// ball, cropped so the ball fills the image; 0 reads it as an orthographic view.
     float mirror_ball_fov_deg = 0.0f;
+    /// What the probe's radiance is multiplied by, per channel: intensity * white_balance.
+    vec3 gain() const { return intensity * white_balance; }
     bool operator==(const ProbeSpec&) const = default;
 };
 
