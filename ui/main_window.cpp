@@ -84,6 +84,13 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     warnings_->setAutoRaise(true);
     warnings_->setVisible(false);
     statusBar()->addPermanentWidget(warnings_);
+    // Likewise the files the project cannot find, until they are relinked.
+    missing_ = new QToolButton;
+    missing_->setObjectName("missingFiles");
+    missing_->setAutoRaise(true);
+    missing_->setVisible(false);
+    statusBar()->addPermanentWidget(missing_);
+    connect(missing_, &QToolButton::clicked, this, [this] { relinkFiles(); });
     exportProgress_ = new QProgressBar;
     exportProgress_->setObjectName("exportProgress");
     exportProgress_->setRange(0, 0);  // busy: the pass takes as long as it takes
@@ -167,6 +174,9 @@ void MainWindow::createActions() {
     make("saveAs", tr("Save &As..."), {}, tr("Save the project under a new name"),
          [this] { saveAsDialog(); })
         ->setShortcuts(keys(QKeySequence::SaveAs, tr("Ctrl+Shift+S")));
+    make("relink", tr("Relin&k Files..."), {},
+         tr("Point the project at its photo, probe, meshes or textures where they are now"),
+         [this] { relinkFiles(); });
     make("export", tr("&Export Image..."), QKeySequence(tr("Ctrl+E")),
          tr("Write the render as PNG, or EXR with layers"), [this] { exportDialog(); });
     make("importFspy", tr("Import &fSpy..."), {},
@@ -270,7 +280,7 @@ void MainWindow::createMenus() {
     recentMenu_ = file->addMenu(tr("Open &Recent"));
     recentMenu_->setObjectName("recentMenu");
     recentMenu_->setToolTipsVisible(true);
-    file->addActions({action("save"), action("saveAs")});
+    file->addActions({action("save"), action("saveAs"), action("relink")});
     file->addSeparator();
     file->addAction(action("importFspy"));
     file->addSeparator();
@@ -331,7 +341,7 @@ void MainWindow::createDocks() {
         renderer_->setNoiseTarget(target);
         if (options_.useSettings) QSettings().setValue("noiseTarget", target);
         // A lower target goes on refining the picture already there.
-        if (renderer_->finished() && doc_->isOpen()) renderer_->request(doc_->project(), false);
+        if (renderer_->finished() && doc_->isOpen()) requestRender(false);
     });
     probePanel_ = new ProbePanel(doc_);
     cameraPanel_ = new CameraPanel(doc_);
@@ -406,7 +416,7 @@ void MainWindow::connectRenderer() {
     connect(doc_, &Document::changed, this, [this](Change change) {
         if (change == Change::None || !doc_->isOpen()) return;
         if (interactive_) editedWhileInteractive_ = true;
-        renderer_->request(doc_->project(), interactive_);
+        requestRender(interactive_);
     });
     connect(doc_, &Document::reloaded, this, [this] {
         failPendingExport(tr("another project was opened before its render was ready"));
@@ -419,6 +429,13 @@ void MainWindow::connectRenderer() {
             [this](std::shared_ptr<const RenderFrame> f) { onFrame(f); });
     connect(renderer_, &RenderController::failed, this, [this](const QString& message) {
         failedGeneration_ = renderer_->generation();
+        if (showMissingFiles()) {
+            // A file moved or deleted behind the studio's back: relinking is the way on.
+            waiting_ = true;
+            failPendingExport(tr("files the project reads are missing"));
+            relinkFiles();
+            return;
+        }
         failPendingExport(message);
         status_->setText(tr("Render failed"));
         error(tr("Render failed"), message);
@@ -482,7 +499,7 @@ void MainWindow::endInteraction() {
     interactive_ = false;
     denoiser_->setPaused(false);
     // The quick passes stop; refinement of the final state starts.
-    if (editedWhileInteractive_) renderer_->request(doc_->project(), false);
+    if (editedWhileInteractive_) requestRender(false);
     editedWhileInteractive_ = false;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 #include <QElapsedTimer>
 #include <QMainWindow>
+#include <QPointer>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "display.h"
 #include "gizmo.h"
@@ -24,6 +27,7 @@ class CameraPanel;
 class Document;
 class ErrorReporter;
 class MaterialPanel;
+class MissingFilesDialog;
 class ProbeAlignPanel;
 class ProbePanel;
 class ProxyPanel;
@@ -82,7 +86,9 @@ public:
     // ask Save / Discard / Cancel first (maybeSave).
 
     /// Opens a project once the core would render it (its files readable, its scene valid:
-    /// scene_problem); otherwise the document and its undo history stay as they were.
+    /// scene_problem); otherwise the document and its undo history stay as they were. A project
+    /// whose files have moved is opened as it is, with the render waiting, and the Missing Files
+    /// dialog is offered (relinkFiles).
     bool openProject(const QString& path);
     bool saveProject();
     bool saveProjectAs(const QString& path);
@@ -106,6 +112,14 @@ public:
     /// project with the light probe `probe` (none given: the New Project dialog asks, the photo
     /// filled in). Errors are reported; returns whether the camera was applied.
     bool importFspy(const QString& path, const QString& probe = {});
+    /// Opens the dialog that relinks the project's files (File > Relink Files..., and by itself
+    /// when a project opens or a render fails with files missing). It is window-modal but does
+    /// not block: relinkDialog() is it while it shows. OK relinks as one undoable edit.
+    void relinkFiles();
+    MissingFilesDialog* relinkDialog() const;
+    /// The fields of the project's files that are missing ("photo.path", ...): while there are
+    /// any, nothing is rendered and the status bar says so.
+    QStringList missingFiles() const;
     /// Asks Save / Discard / Cancel if the document has unsaved changes; true when the caller
     /// may go on (saved, discarded, or nothing to save). Cancel and Esc keep everything.
     bool maybeSave();
@@ -134,6 +148,12 @@ private:
     void createDocks();
     void createToolbar();
     void connectRenderer();
+    /// Asks the renderer for the document as it is, unless files are missing (then the render
+    /// stops and waits, and the status bar says for what). Returns whether it asked.
+    bool requestRender(bool interactive);
+    /// Shows the missing files in the status bar (hidden when there are none); returns whether
+    /// there are any.
+    bool showMissingFiles();
     void onFrame(const std::shared_ptr<const RenderFrame>& frame);
     void beginInteraction();
     void endInteraction();
@@ -180,6 +200,10 @@ private:
     Autosave* autosave_ = nullptr;
     QLabel* status_;
     QToolButton* warnings_;  ///< "n asset warnings", hidden while there are none
+    QToolButton* missing_;   ///< "n missing files", hidden while there are none
+    QPointer<MissingFilesDialog> relinkDialog_;
+    bool waiting_ = false;                    ///< the render waits for missing files
+    std::vector<std::string> renderedPaths_;  ///< the file paths of the last render asked for
     QSlider* exposure_ = nullptr;
     QLabel* exposureLabel_ = nullptr;
     int exposureKey_ = -1;  ///< merge key of the slider stroke under way (-1: none)

@@ -29,6 +29,7 @@
 #include "render_controller.h"
 #include "settings_panel.h"
 #include "scene/project_io.h"
+#include "scene/relink.h"
 #include "scene_builder.h"
 #include "scene_check.h"
 #include "viewport.h"
@@ -52,17 +53,22 @@ bool MainWindow::openProject(const QString& path) {
     }
     // What the renderer would refuse (a file that cannot be read, a scene too large for ray
     // arithmetic) is refused here, before the open document is replaced. The files decoded
-    // here are the ones the renderer then uses.
-    QApplication::setOverrideCursor(Qt::WaitCursor);
-    const QString problem = scene_problem(doc_->assets(), p);
-    QApplication::restoreOverrideCursor();
-    if (!problem.isEmpty()) {
-        error(tr("Cannot open project"), QFileInfo(path).fileName() + ": " + problem);
-        return false;
+    // here are the ones the renderer then uses. Files that have moved are no reason to refuse:
+    // the project opens, the render waits, and the Missing Files dialog offers to relink them.
+    const bool moved = !missing_inputs(p).empty();
+    if (!moved) {
+        QApplication::setOverrideCursor(Qt::WaitCursor);
+        const QString problem = scene_problem(doc_->assets(), p);
+        QApplication::restoreOverrideCursor();
+        if (!problem.isEmpty()) {
+            error(tr("Cannot open project"), QFileInfo(path).fileName() + ": " + problem);
+            return false;
+        }
     }
     doc_->reset(p, QFileInfo(path).absoluteFilePath());
     autosave_->clear();  // the previous document was saved, discarded or unmodified
     addRecent(QFileInfo(path).absoluteFilePath());
+    if (moved) relinkFiles();
     return true;
 }
 
@@ -138,6 +144,14 @@ bool MainWindow::exportImage(const QString& path) {
     }
     std::shared_ptr<const RenderFrame> f = renderer_->lastFullFrame();
     if (f && f->generation == renderer_->generation()) return writeExport(path, *f);
+    if (const QStringList missing = missingFiles(); !missing.isEmpty()) {
+        error(tr("Cannot export"),
+              tr("The project's files are missing (%1): relink them first (File > Relink "
+                 "Files...).")
+                  .arg(missing.join(", ")));
+        Q_EMIT exportFinished(path, false);
+        return false;
+    }
     if (failedGeneration_ != 0 && failedGeneration_ == renderer_->generation()) {
         error(tr("Cannot export"), tr("The render of the project as it is now failed."));
         Q_EMIT exportFinished(path, false);
@@ -149,7 +163,7 @@ bool MainWindow::exportImage(const QString& path) {
     exportProgress_->setVisible(true);
     statusBar()->showMessage(
         tr("Exporting %1 once the current state has rendered...").arg(QFileInfo(path).fileName()));
-    if (renderer_->idle()) renderer_->request(doc_->project(), false);
+    if (renderer_->idle()) requestRender(false);
     return true;
 }
 
@@ -365,6 +379,7 @@ void MainWindow::checkRecovery() {
             this, tr("Recover unsaved work?"),
             tr("The studio did not close cleanly. Recover the autosaved copy of %1?").arg(where))) {
         doc_->reset(r->project, r->originalPath, true);
+        if (!missingFiles().isEmpty()) relinkFiles();
     } else {
         autosave_->clear();
     }

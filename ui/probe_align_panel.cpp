@@ -47,7 +47,7 @@ ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporte
     sunForm->addRow(pickSun);
     layout->addWidget(sun);
 
-    auto* card = new QGroupBox(tr("Exposure from a grey card"));
+    auto* card = new QGroupBox(tr("Exposure and colour from a grey card"));
     auto* cardForm = new QFormLayout(card);
     reflectance_ = new NumberField;
     reflectance_->setRange(0.01, 1);
@@ -56,6 +56,11 @@ ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporte
     reflectance_->setObjectName("cardReflectance");
     reflectance_->setToolTip(tr("The card's reflectance (0.18 for a standard grey card)"));
     cardForm->addRow(tr("Reflectance"), reflectance_);
+    colour_ = new QCheckBox(tr("Match colour too"));
+    colour_->setObjectName("cardColour");
+    colour_->setToolTip(tr("Also set the probe's white balance so the card comes out as grey as "
+                           "in the photo (for a probe shot with another camera or setting)"));
+    cardForm->addRow(colour_);
     auto* pickCard = new QPushButton(tr("Drag over the card"));
     pickCard->setObjectName("greyCard");
     pickCard->setToolTip(tr("Drag a rectangle inside the card (it must lie on a real proxy)"));
@@ -146,14 +151,30 @@ bool ProbeAlignPanel::matchGreyCard(QPointF a, QPointF b) {
         card.reflectance = float(reflectance_->value());
         const float clip = doc_->assets().photo_clip_level(p);
         QApplication::setOverrideCursor(Qt::WaitCursor);
-        const ExposureMatch m = match_exposure_grey_card(*build_scene(doc_->assets(), p), card, clip);
+        const std::shared_ptr<RenderScene> scene = build_scene(doc_->assets(), p);
+        const bool colour = colour_->isChecked();
+        ExposureMatch m;
+        WhiteBalanceMatch wb;
+        if (colour)
+            m = wb = match_white_balance_grey_card(*scene, card, clip);
+        else
+            m = match_exposure_grey_card(*scene, card, clip);
         QApplication::restoreOverrideCursor();
         p.probe.intensity = m.intensity;
-        doc_->tryEdit(tr("Probe exposure from the grey card"), p);
-        status_->setText(tr("Probe intensity x%1 (from %2 card pixels, spread %3)")
-                             .arg(m.scale, 0, 'f', 3)
-                             .arg(m.pixels)
-                             .arg(m.spread, 0, 'f', 3));
+        QString text = tr("Probe intensity x%1").arg(m.scale, 0, 'f', 3);
+        if (colour) {
+            p.probe.white_balance = wb.white_balance;
+            text += tr(", white balance %1, %2, %3")
+                        .arg(wb.white_balance.x, 0, 'f', 3)
+                        .arg(wb.white_balance.y, 0, 'f', 3)
+                        .arg(wb.white_balance.z, 0, 'f', 3);
+        }
+        doc_->tryEdit(colour ? tr("Probe exposure and colour from the grey card")
+                             : tr("Probe exposure from the grey card"),
+                      p);
+        status_->setText(text + tr(" (from %1 card pixels, spread %2)")
+                                    .arg(m.pixels)
+                                    .arg(m.spread, 0, 'f', 3));
     });
 }
 

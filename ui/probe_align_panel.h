@@ -17,7 +17,8 @@ class Viewport;
 /// Aligns the light probe with the photo: the sun cue (click a point of an object and the tip
 /// of its shadow: the probe turns about the vertical so its brightest region lies where the
 /// shadow says the sun is) and the grey card (drag over a card of known reflectance: the probe
-/// intensity is scaled so the card's shading matches the photo). Each is one undo step.
+/// intensity is scaled so the card's shading matches the photo, and with "Match colour too" its
+/// white balance so the card's colour does). Each is one undo step.
 class ProbeAlignPanel : public QWidget {
     Q_OBJECT
 public:
@@ -26,8 +27,10 @@ public:
 
     /// Turns the probe from a cue: object point and shadow tip in render pixels.
     bool alignSun(QPointF object, QPointF shadowTip);
-    /// Scales the probe intensity from a grey card: opposite corners in render pixels.
+    /// Scales the probe intensity from a grey card: opposite corners in render pixels. With
+    /// colourBox() ticked, the white balance is matched in the same edit.
     bool matchGreyCard(QPointF a, QPointF b);
+    QCheckBox* colourBox() const { return colour_; }
 
 private:
     enum class Target { None, Sun, Card };
@@ -38,7 +41,7 @@ private:
     Viewport* viewport_;
     ErrorReporter* reporter_;
     QDoubleSpinBox *height_, *reflectance_;
-    QCheckBox* base_;
+    QCheckBox *base_, *colour_;
     QLabel* status_;
     Target target_ = Target::None;
     QVector<QPointF> points_;

@@ -1,10 +1,13 @@
 #include "probe_panel.h"
 
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QLabel>
 #include <QMouseEvent>
 #include <QPainter>
+#include <QPushButton>
 #include <QSlider>
+#include <algorithm>
 #include <cmath>
 
 #include "display.h"
@@ -14,6 +17,16 @@
 #include "stroke_slider.h"
 
 namespace dp::ui {
+
+namespace {
+
+/// The exposure slider's position for `intensity`: tenths of a stop.
+int exposure_ticks(float intensity) {
+    const float stops = intensity > 0 ? std::log2(intensity) : -6.0f;
+    return int(std::lround(stops * 10));
+}
+
+}  // namespace
 
 ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
     auto* form = new QFormLayout(this);
@@ -47,6 +60,20 @@ ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     tiltZ_->setObjectName("probeTiltZ");
     exposure_ = slider(tr("Exposure"), tr("Probe brightness in stops (intensity 2^stops)"), -60, 60,
                        &exposureValue_);
+    auto* balanceRow = new QWidget;
+    auto* balance = new QHBoxLayout(balanceRow);
+    balance->setContentsMargins(0, 0, 0, 0);
+    whiteBalance_ = new QLabel;
+    whiteBalance_->setObjectName("probeWhiteBalance");
+    whiteBalance_->setToolTip(tr("Red, green and blue scale on the probe's light, matched to the "
+                                 "photo by the grey card's \"Match colour too\""));
+    balance->addWidget(whiteBalance_, 1);
+    resetWhiteBalance_ = new QPushButton(tr("Reset"));
+    resetWhiteBalance_->setObjectName("resetWhiteBalance");
+    resetWhiteBalance_->setToolTip(tr("Light with the probe's own colours again"));
+    connect(resetWhiteBalance_, &QPushButton::clicked, this, [this] { resetWhiteBalance(); });
+    balance->addWidget(resetWhiteBalance_);
+    form->addRow(tr("White balance"), balanceRow);
     connect(doc_, &Document::changed, this, [this] { refresh(); });
     refresh();
 }
@@ -84,10 +111,17 @@ void ProbePanel::refresh() {
     tiltZ_->setValue(int(std::lround(probe.rotation_deg.z)));
     tiltXValue_->setText(QString::fromUtf8("%1\u00b0").arg(tiltX_->value()));
     tiltZValue_->setText(QString::fromUtf8("%1\u00b0").arg(tiltZ_->value()));
-    const float stops = probe.intensity > 0 ? std::log2(probe.intensity) : -6.0f;
-    exposure_->setValue(int(std::lround(stops * 10)));
+    exposure_->setValue(exposure_ticks(probe.intensity));
     rotationValue_->setText(QString::fromUtf8("%1\u00b0").arg(rotation_->value()));
     exposureValue_->setText(QString::number(exposure_->value() / 10.0, 'f', 1));
+    const vec3 wb = probe.white_balance;
+    const bool neutral = wb == vec3(1.0f);
+    whiteBalance_->setText(neutral ? tr("neutral")
+                                   : QStringLiteral("%1, %2, %3")
+                                         .arg(double(wb.x), 0, 'f', 3)
+                                         .arg(double(wb.y), 0, 'f', 3)
+                                         .arg(double(wb.z), 0, 'f', 3));
+    resetWhiteBalance_->setEnabled(!neutral);
     if (!previewImage_.isNull()) {
         // The probe's rotation turns the map: show it shifted by the same angle.
         QImage shown(previewImage_.size(), previewImage_.format());
@@ -115,8 +149,18 @@ void ProbePanel::applySliders() {
     const QSlider* sliders[3] = {tiltX_, rotation_, tiltZ_};
     for (int k = 0; k < 3; ++k)
         if (sliders[k]->value() != int(std::lround(r[k]))) r[k] = float(sliders[k]->value());
-    p.probe.intensity = std::exp2(float(exposure_->value()) / 10.0f);
+    // Likewise the intensity: a grey card's exact figure stays while the probe is only turned.
+    const int shown = std::clamp(exposure_ticks(p.probe.intensity), exposure_->minimum(),
+                                 exposure_->maximum());
+    if (exposure_->value() != shown)
+        p.probe.intensity = std::exp2(float(exposure_->value()) / 10.0f);
     doc_->edit(tr("Adjust probe"), p, strokeKey_);
+}
+
+void ProbePanel::resetWhiteBalance() {
+    Project p = doc_->project();
+    p.probe.white_balance = vec3(1.0f);
+    doc_->edit(tr("Reset probe white balance"), p);
 }
 
 bool ProbePanel::eventFilter(QObject* watched, QEvent* event) {

@@ -4,6 +4,7 @@
 #include <QWidget>
 
 class QLabel;
+class QPushButton;
 class QSlider;
 
 namespace dp::ui {
@@ -11,12 +12,15 @@ namespace dp::ui {
 class Document;
 
 /// The light probe: a preview of the lat-long map (drag across it to turn the probe), rotation
-/// about the vertical axis and exposure (the probe's intensity in stops).
+/// about the vertical axis, exposure (the probe's intensity in stops) and its white balance
+/// (set by the grey card's "Match colour too", shown here with a reset).
 class ProbePanel : public QWidget {
     Q_OBJECT
 public:
     explicit ProbePanel(Document* doc, QWidget* parent = nullptr);
 
+    /// Sets the probe's white balance back to neutral (one undo step).
+    void resetWhiteBalance();
 
 Q_SIGNALS:
     void strokeStarted();
@@ -34,6 +38,8 @@ private:
     QLabel* preview_;
     QSlider *rotation_, *tiltX_, *tiltZ_, *exposure_;
     QLabel *rotationValue_, *tiltXValue_, *tiltZValue_, *exposureValue_;
+    QLabel* whiteBalance_;
+    QPushButton* resetWhiteBalance_;
     QString previewKey_;
     QImage previewImage_;
     QPointF sun_;  ///< brightest point of the probe, as fractions of its width and height

@@ -142,6 +142,9 @@ void RenderController::request(const Project& project, bool interactive) {
 }
 
 void RenderController::stop() {
+    // Frames of what ran are no longer the latest request's: none of them is shown.
+    acceptFrom_ = ++requested_;
+    finished_ = false;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         pending_.reset();

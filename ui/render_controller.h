@@ -88,7 +88,8 @@ public:
 
     /// Renders `project` (cancelling what runs). `interactive`: quick passes only.
     void request(const Project& project, bool interactive = false);
-    /// Stops rendering (e.g. before closing); returns at once.
+    /// Stops rendering (before closing, or while the project's files are missing); returns at
+    /// once, and no frame of what ran is delivered after it.
     void stop();
     bool idle() const;
 

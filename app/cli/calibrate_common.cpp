@@ -11,6 +11,7 @@
 #include "common.h"
 #include "image/image_io.h"
 #include "scene/project_io.h"
+#include "scene/relink.h"
 
 namespace dp::cli {
 
@@ -162,11 +163,8 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
                     "camera was matched on and probe.path to the light probe\n",
                     r.intrinsics.width, r.intrinsics.height);
     } else {
-        const fs::path folder = fs::absolute(project_path).parent_path();
-        const fs::path rel = fs::absolute(photo).lexically_relative(folder);
         // Inside the project's folder: relative, so the folder can move; elsewhere: absolute.
-        p.photo.path = !rel.empty() && *rel.begin() != ".." ? rel.string()
-                                                            : fs::absolute(photo).string();
+        p.photo.path = path_for_project(fs::absolute(project_path).parent_path(), photo);
         p.probe.path = "probe.exr";
         std::printf("note: created a new project; set probe.path to the light probe\n");
     }

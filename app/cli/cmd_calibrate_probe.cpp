@@ -1,6 +1,7 @@
 // `diffphoton calibrate probe`: the light probe's mirror-ball field of view, its rotation from a
-// shadow cue and its exposure from a grey card. Reads a project, updates the probe, writes the
-// project back (or to --output) and prints each change with an error figure where one exists.
+// shadow cue and its exposure (and white balance) from a grey card. Reads a project, updates the
+// probe, writes the project back (or to --output) and prints each change with an error figure
+// where one exists.
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -26,6 +27,7 @@ struct ProbeOptions {
     std::vector<float> shadow, card;
     float object_height = 0, reflectance = 0.18f;
     bool object_base = false;
+    bool white_balance = false;
     int samples = 256;
 };
 
@@ -70,7 +72,8 @@ void align_to_shadow(Project& p, const ProbeOptions& o) {
     p.probe.rotation_deg = yaw.rotation_deg;
 }
 
-/// Scales the probe's intensity so that the grey card's photographed radiance matches.
+/// Scales the probe's intensity (and with --white-balance each channel) so that the grey card's
+/// photographed radiance matches.
 void match_grey_card(Project& p, const ProbeOptions& o) {
     if (!(o.reflectance > 0 && o.reflectance <= 1))
         throw InputError(o.project, "--reflectance", "the card's reflectance must be in (0, 1]");
@@ -84,13 +87,26 @@ void match_grey_card(Project& p, const ProbeOptions& o) {
     card.y1 = int(std::lround(o.card[3]));
     card.reflectance = o.reflectance;
     ExposureMatch m;
+    WhiteBalanceMatch wb;
     try {
-        m = match_exposure_grey_card(scene, card, clip_level(p, o.clip), o.samples);
+        if (o.white_balance)
+            m = wb = match_white_balance_grey_card(scene, card, clip_level(p, o.clip), o.samples);
+        else
+            m = match_exposure_grey_card(scene, card, clip_level(p, o.clip), o.samples);
     } catch (const InputError& e) {
         rethrow_for(e, o.project);
     }
     std::printf("probe intensity %g -> %g (x%.4g from %d card pixels)\n", p.probe.intensity,
                 m.intensity, m.scale, m.pixels);
+    if (o.white_balance) {
+        std::printf("probe white_balance %s -> %s\n", vec(p.probe.white_balance).c_str(),
+                    vec(wb.white_balance).c_str());
+        // The card's colour as r, g, b summing to 1: how far the probe's light was off.
+        std::printf("card chromaticity: photo %s, probe before %s, after %s\n",
+                    vec(wb.photo_chromaticity).c_str(), vec(wb.before_chromaticity).c_str(),
+                    vec(wb.after_chromaticity).c_str());
+        p.probe.white_balance = wb.white_balance;
+    }
     std::printf("card_spread %.3g\n", m.spread);
     p.probe.intensity = m.intensity;
 }
@@ -119,7 +135,7 @@ void add_calibrate_probe_command(CLI::App& calibrate) {
     CLI::App* sub = calibrate.add_subcommand(
         "probe",
         "Set the mirror ball's field of view, align the probe's rotation to a shadow, match its "
-        "exposure");
+        "exposure and white balance");
     sub->add_option("project", o->project, "Project file (JSON)")->required();
     sub->add_option("--fov", o->fov,
                     "Vertical field of view (deg) of the camera that shot the mirror ball")
@@ -141,6 +157,10 @@ void add_calibrate_probe_command(CLI::App& calibrate) {
         ->check(kFinite);
     sub->add_option("--reflectance", o->reflectance, "The card's reflectance (default 0.18)")
         ->check(kFinite);
+    sub->add_flag("--white-balance", o->white_balance,
+                  "With --grey-card: match the probe's colour too (probe.white_balance, of "
+                  "luminance 1), the card being neutral grey")
+        ->needs(sub->get_option("--grey-card"));
     auto* intensity =
         sub->add_option("--intensity", o->intensity, "Set the probe intensity by hand")
             ->check(kNonNegative);

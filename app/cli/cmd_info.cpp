@@ -144,11 +144,14 @@ int run_info(const std::string& project_path, bool json) {
                 p.resolve(p.photo.path).c_str(), size_text(scene->photo()).c_str(),
                 p.photo.exposure);
     const bool ball = p.probe.format == ProbeSpec::Format::MirrorBall;
-    std::printf("probe: '%s' -> %s, %s%s, rotation %s deg, intensity %g\n",
+    const std::string balance = p.probe.white_balance == vec3(1.0f)
+                                    ? ""
+                                    : ", white balance " + vec(p.probe.white_balance);
+    std::printf("probe: '%s' -> %s, %s%s, rotation %s deg, intensity %g%s\n",
                 p.probe.path.c_str(), p.resolve(p.probe.path).c_str(),
                 ball ? "mirrorball unwrapped to lat-long " : "latlong ",
                 size_text(scene->probe().image()).c_str(), vec(p.probe.rotation_deg).c_str(),
-                p.probe.intensity);
+                p.probe.intensity, balance.c_str());
     print_camera(p, scene->camera());
 
     std::printf("real proxies: %zu\n", p.real.size());

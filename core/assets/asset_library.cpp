@@ -206,18 +206,20 @@ void limit_probe_size(Image& probe, int max_width, std::vector<std::string>& war
 
 std::shared_ptr<const LitProbe> AssetLibrary::lit_probe(const Project& p) {
     const std::shared_ptr<const Image> latlong = probe(p);
-    char settings[160];
-    // The file's time in the key: a probe file rewritten is a new probe.
-    std::snprintf(settings, sizeof(settings), "|%.9g,%.9g,%.9g|%.9g|%lld", double(p.probe.rotation_deg.x),
-                  double(p.probe.rotation_deg.y), double(p.probe.rotation_deg.z), double(p.probe.intensity),
-                  static_cast<long long>(modified(p.resolve(p.probe.path)).time_since_epoch().count()));
+    char settings[224];
+    // The file's time in the key: a probe file rewritten is a new probe. The gain per channel
+    // (intensity times white balance) is what the tables are built from.
+    const vec3 gain = p.probe.gain();
+    std::snprintf(settings, sizeof(settings), "|%.9g,%.9g,%.9g|%.9g,%.9g,%.9g|%lld", double(p.probe.rotation_deg.x),
+                  double(p.probe.rotation_deg.y), double(p.probe.rotation_deg.z), double(gain.x), double(gain.y),
+                  double(gain.z), static_cast<long long>(modified(p.resolve(p.probe.path)).time_since_epoch().count()));
     const std::string key = probe_key(p) + settings;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         for (auto& [k, lit] : lit_probes_)
             if (k == key) return lit;
     }
-    auto lit = std::make_shared<const LitProbe>(*latlong, euler_xyz_deg(p.probe.rotation_deg), p.probe.intensity);
+    auto lit = std::make_shared<const LitProbe>(*latlong, euler_xyz_deg(p.probe.rotation_deg), gain);
     std::lock_guard<std::mutex> lock(mutex_);
     constexpr size_t kKept = 4;
     if (lit_probes_.size() >= kKept) lit_probes_.erase(lit_probes_.begin());

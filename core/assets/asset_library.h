@@ -24,8 +24,8 @@ public:
     /// photo_height when given (0: as decoded), the lat-long probe unless `with_probe` is false
     /// (a scene given its lit_probe). Throws InputError naming the file and field.
     SceneAssets load(const Project& project, int photo_width = 0, int photo_height = 0, bool with_probe = true);
-    /// The probe with its lights for the project's probe file, rotation and intensity (the
-    /// last few are kept: a rotation slider asks for many in turn).
+    /// The probe with its lights for the project's probe file, rotation, intensity and white
+    /// balance (the last few are kept: a rotation slider asks for many in turn).
     std::shared_ptr<const LitProbe> lit_probe(const Project& project);
     /// The photo after the project's exposure; the probe as a lat-long map.
     std::shared_ptr<const Image> photo(const Project& project);

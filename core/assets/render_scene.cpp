@@ -74,7 +74,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets, std::shared
     camera_ = project_.camera.build(assets_.photo.width(), assets_.photo.height());
     if (!lit_)
         lit_ = std::make_shared<const LitProbe>(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg),
-                                                project_.probe.intensity);
+                                                project_.probe.gain());
     place_surfaces();
     check_extent();
     check_camera();

@@ -30,11 +30,12 @@ struct SceneAssets {
 /// Loads every file a project names. Throws InputError naming the file and field.
 SceneAssets load_assets(const Project& project);
 
-/// The probe with its sun and sky split, built once per probe file, rotation and intensity and
-/// shared by the scenes that use it: building them takes far longer than a preview's BVH.
+/// The probe with its sun and sky split, built once per probe file, rotation and gain
+/// (intensity times white balance) and shared by the scenes that use it: building them takes far
+/// longer than a preview's BVH.
 struct LitProbe {
-    LitProbe(Image latlong, const glm::mat3& rotation, float intensity)
-        : probe(std::move(latlong), rotation, intensity), lights(probe) {}
+    LitProbe(Image latlong, const glm::mat3& rotation, const vec3& gain)
+        : probe(std::move(latlong), rotation, gain), lights(probe) {}
     LitProbe(const LitProbe&) = delete;
     LitProbe& operator=(const LitProbe&) = delete;
     Probe probe;

@@ -54,11 +54,11 @@ size_t latlong_pixel(const vec3& dir, int width, int height) {
     return size_t(j) * size_t(width) + size_t(i);
 }
 
-Probe::Probe(Image latlong, const glm::mat3& rotation, float intensity)
+Probe::Probe(Image latlong, const glm::mat3& rotation, const vec3& gain)
     : image_(std::move(latlong)),
       rotation_(rotation),
       inverse_rotation_(glm::inverse(rotation)),
-      intensity_(intensity) {
+      gain_(gain) {
     for (size_t k = 0; k < image_.size(); ++k)
         if (!is_finite(image_[k])) image_[k] = vec3(0);
 
@@ -93,7 +93,7 @@ Probe::Probe(Image latlong, const glm::mat3& rotation, float intensity)
 }
 
 double Probe::pixel_weight(size_t pixel) const {
-    const double lum = luminance(dvec3(image_[pixel]) * double(intensity_));
+    const double lum = luminance(dvec3(image_[pixel]) * dvec3(gain_));
     return lum > 0 ? lum * rows_[pixel / size_t(width())].solid_angle : 0.0;
 }
 
@@ -106,7 +106,7 @@ double Probe::pixel_solid_angle(int row) const {
     return row_solid_angle(row, width(), height());
 }
 
-vec3 Probe::pixel_radiance(size_t pixel) const { return image_[pixel] * intensity_; }
+vec3 Probe::pixel_radiance(size_t pixel) const { return image_[pixel] * gain_; }
 
 vec3 Probe::radiance(const vec3& dir) const {
     if (image_.empty()) return vec3(0);

@@ -57,15 +57,19 @@ struct ProbeSample {
     size_t pixel = 0;
 };
 
-/// The distant light: a lat-long HDR map with a world rotation and an intensity scale.
+/// The distant light: a lat-long HDR map with a world rotation and a per-channel scale (the
+/// project's intensity times its white balance).
 /// Sampling is proportional to the luminance of each pixel's flux L_j * Omega_j, uniform in
 /// solid angle within the pixel.
 class Probe {
 public:
     Probe() = default;
-    /// `rotation` maps probe space to world space; `intensity` scales radiance. Pixels with a
-    /// non-finite channel are set to 0; pixels of negative luminance are never sampled.
-    Probe(Image latlong, const glm::mat3& rotation, float intensity);
+    /// `rotation` maps probe space to world space; `gain` scales radiance per channel. Pixels
+    /// with a non-finite channel are set to 0; pixels of negative luminance are never sampled.
+    Probe(Image latlong, const glm::mat3& rotation, const vec3& gain);
+    /// The same scale on every channel.
+    Probe(Image latlong, const glm::mat3& rotation, float intensity)
+        : Probe(std::move(latlong), rotation, vec3(intensity)) {}
 
     const Image& image() const { return image_; }
     int width() const { return image_.width(); }
@@ -107,9 +111,7 @@ public:
 private:
     Image image_;
     glm::mat3 rotation_{1.0f}, inverse_rotation_{1.0f};
-    float intensity_ = 1.0f;
-
-
+    vec3 gain_{1.0f};
 
     /// One column of the alias table: the coin that sample() flips once it has picked the
     /// column. Only the coin decides the direction, so it is kept apart from the per-pixel data
@@ -121,7 +123,7 @@ private:
     };
     /// What sample() returns for a pixel besides the direction, in one 16-byte entry.
     struct alignas(16) PixelData {
-        float radiance[3] = {0, 0, 0};  ///< image * intensity
+        float radiance[3] = {0, 0, 0};  ///< image * gain
         float pdf = 0;                  ///< solid-angle pdf, as pdf() returns it
     };
     /// Per-row constants, so that no call evaluates trigonometry for the band.

@@ -16,8 +16,8 @@ public:
     /// `columns` x `rows` cells over the lat-long map (each a block of probe pixels).
     explicit ProbeMaxGrid(const Probe& probe, int columns = 64, int rows = 32);
 
-    /// Largest pixel luminance (radiance times intensity) within `half_angle` radians of the
-    /// world direction `axis` (unit length).
+    /// Largest pixel luminance (radiance times the probe's gain) within `half_angle` radians of
+    /// the world direction `axis` (unit length).
     float max_in_cone(const vec3& axis, float half_angle) const;
     float global_max() const { return global_max_; }
 

@@ -111,8 +111,17 @@ ProbeYaw align_probe_yaw(const vec3& bright_probe, const vec3& rotation_deg,
     return out;
 }
 
-ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard& card,
-                                       float clip_level, int probe_samples, uint64_t seed) {
+namespace {
+
+/// What tracing a grey card's pixels gives: the photographed radiance and the irradiance the
+/// probe delivers there, summed per channel over the card.
+struct CardSums {
+    dvec3 L{0.0}, E{0.0};
+    std::vector<double> ratios;  ///< per pixel, pi L / (rho E) in luminance, where E > 0
+};
+
+CardSums trace_card(const RenderScene& scene, const GreyCard& card, float clip_level,
+                    int probe_samples, uint64_t seed) {
     const Image& photo = scene.photo();
     if (!(card.reflectance > 0 && card.reflectance <= 1))
         throw InputError("", "reflectance", "the card's reflectance must be in (0, 1]");
@@ -125,8 +134,7 @@ ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard&
                              ") is not inside the photo (" + std::to_string(photo.width()) + "x" +
                              std::to_string(photo.height()) + ")");
     const Camera& camera = scene.camera();
-    double sum_L = 0, sum_E = 0;
-    std::vector<double> ratios;
+    CardSums sums;
     for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
             Hit hit = scene.intersect_real(camera.generate_ray(float(x), float(y)));
@@ -141,24 +149,77 @@ ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard&
                                      ") of the card is clipped in the photo");
             vec3 n = glm::dot(hit.ng, camera.position() - hit.p) >= 0 ? hit.ng : -hit.ng;
             Rng rng = rng_stream::probe_alignment(seed, size_t(y) * photo.width() + x);
-            double E = luminance(real_irradiance(scene, hit.p, n, rng, probe_samples).E);
-            sum_L += luminance(L);
-            sum_E += E;
-            if (E > 0) ratios.push_back(double(kPi) * luminance(L) / (card.reflectance * E));
+            const dvec3 E(real_irradiance(scene, hit.p, n, rng, probe_samples).E);
+            sums.L += dvec3(L);
+            sums.E += E;
+            if (luminance(E) > 0)
+                sums.ratios.push_back(double(kPi) * luminance(L) /
+                                      (card.reflectance * luminance(E)));
         }
-    if (!(sum_E > 0))
+    if (!(luminance(sums.E) > 0))
         throw InputError(
             "", "card",
             "the probe gives the card no light (probe intensity 0, or the card in full shadow)");
-    if (!(sum_L > 0)) throw InputError("", "card", "the card is black in the photo");
-    ExposureMatch out;
-    out.pixels = int(ratios.size());
-    out.scale = float(double(kPi) * sum_L / (card.reflectance * sum_E));
-    out.intensity = scene.project().probe.intensity * out.scale;
+    if (!(luminance(sums.L) > 0)) throw InputError("", "card", "the card is black in the photo");
+    return sums;
+}
+
+/// The coefficient of variation of `ratios`.
+float spread_of(const std::vector<double>& ratios) {
     double mean = 0, var = 0;
     for (double r : ratios) mean += r / ratios.size();
     for (double r : ratios) var += (r - mean) * (r - mean) / ratios.size();
-    out.spread = mean > 0 ? float(std::sqrt(var) / mean) : 0.0f;
+    return mean > 0 ? float(std::sqrt(var) / mean) : 0.0f;
+}
+
+vec3 chromaticity(const dvec3& c) {
+    const double sum = c.x + c.y + c.z;
+    return sum > 0 ? vec3(c / sum) : vec3(1.0f / 3.0f);
+}
+
+}  // namespace
+
+ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard& card,
+                                       float clip_level, int probe_samples, uint64_t seed) {
+    const CardSums sums = trace_card(scene, card, clip_level, probe_samples, seed);
+    ExposureMatch out;
+    out.pixels = int(sums.ratios.size());
+    out.scale = float(double(kPi) * luminance(sums.L) / (card.reflectance * luminance(sums.E)));
+    out.intensity = scene.project().probe.intensity * out.scale;
+    out.spread = spread_of(sums.ratios);
+    return out;
+}
+
+WhiteBalanceMatch match_white_balance_grey_card(const RenderScene& scene, const GreyCard& card,
+                                                float clip_level, int probe_samples,
+                                                uint64_t seed) {
+    const CardSums sums = trace_card(scene, card, clip_level, probe_samples, seed);
+    const char* channel[] = {"red", "green", "blue"};
+    for (int c = 0; c < 3; ++c) {
+        if (!(sums.E[c] > 0))
+            throw InputError("", "card",
+                             std::string("the probe gives the card no ") + channel[c] +
+                                 " light: its white balance cannot be matched");
+        if (!(sums.L[c] > 0))
+            throw InputError("", "card",
+                             std::string("the card is black in the photo's ") + channel[c] +
+                                 " channel: its white balance cannot be matched");
+    }
+    const ProbeSpec& probe = scene.project().probe;
+    WhiteBalanceMatch out;
+    out.pixels = int(sums.ratios.size());
+    out.spread = spread_of(sums.ratios);
+    const dvec3 gain = double(kPi) * sums.L / (double(card.reflectance) * sums.E);
+    out.channel_scale = vec3(gain);
+    // The new gain per channel, split into a brightness and a colour of luminance 1.
+    const dvec3 total = dvec3(probe.gain()) * gain;
+    const double lum = luminance(total);
+    out.intensity = float(lum);
+    out.white_balance = vec3(total / lum);
+    out.scale = probe.intensity > 0 ? float(lum / probe.intensity) : 0.0f;
+    out.photo_chromaticity = chromaticity(sums.L);
+    out.before_chromaticity = chromaticity(sums.E);
+    out.after_chromaticity = chromaticity(sums.E * gain);
     return out;
 }
 

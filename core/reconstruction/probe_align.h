@@ -79,4 +79,27 @@ ExposureMatch match_exposure_grey_card(const RenderScene& scene, const GreyCard&
                                        float clip_level = INFINITY, int probe_samples = 256,
                                        uint64_t seed = 1);
 
+/// Exposure and white balance from a grey card: what match_exposure_grey_card measures, per
+/// channel. `intensity` is the luminance of the new gain (intensity times white balance) and
+/// `scale` that over the current intensity; `pixels` and `spread` are as there.
+struct WhiteBalanceMatch : ExposureMatch {
+    vec3 white_balance{1.0f};  ///< the probe's new white balance, of luminance 1
+    /// New gain over the current gain, per channel: pi sum(L_c) / (rho sum(E_c)).
+    vec3 channel_scale{1.0f};
+    /// The card's colour as r, g, b summing to 1: in the photo, and as the probe lit it
+    /// (rho E / pi) before and after the match (equal to the photo's but for rounding).
+    vec3 photo_chromaticity{1.0f / 3.0f}, before_chromaticity{1.0f / 3.0f},
+        after_chromaticity{1.0f / 3.0f};
+};
+
+/// Probe intensity and white balance from a grey card (a neutral reflectance): the card is traced
+/// as in match_exposure_grey_card, and the probe's gain per channel c (intensity times white
+/// balance) is scaled by pi * sum(L_c) / (rho * sum(E_c)). The result is split into the
+/// luminance of the new gain (the intensity) and the gain over it (the white balance, of
+/// luminance 1). Throws InputError as match_exposure_grey_card does, and for a channel in which
+/// the card is black or unlit.
+WhiteBalanceMatch match_white_balance_grey_card(const RenderScene& scene, const GreyCard& card,
+                                                float clip_level = INFINITY,
+                                                int probe_samples = 256, uint64_t seed = 1);
+
 }  // namespace dp

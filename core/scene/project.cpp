@@ -55,28 +55,51 @@ bool Project::operator==(const Project& o) const {
            display == o.display;
 }
 
-std::vector<std::pair<std::string, std::filesystem::path>> project_inputs(const Project& project) {
-    std::vector<std::pair<std::string, std::filesystem::path>> in;
-    auto add = [&](const std::string& field, const std::string& path) {
-        if (!path.empty()) in.emplace_back(field, project.resolve(path));
+void for_each_input(Project& project,
+                    const std::function<void(const InputRef&, std::string& path)>& visit) {
+    auto item = [&](std::string field, std::string what, std::string& path) {
+        if (!path.empty()) visit(InputRef{std::move(field), std::move(what)}, path);
     };
-    add("photo.path", project.photo.path);
-    add("probe.path", project.probe.path);
+    auto quoted = [](const std::string& name) { return "\"" + name + "\""; };
+    item("photo.path", "photo", project.photo.path);
+    item("probe.path", "light probe", project.probe.path);
     for (size_t i = 0; i < project.real.size(); ++i) {
+        RealProxy& r = project.real[i];
         const std::string at = "real[" + std::to_string(i) + "]";
-        if (project.real[i].shape.kind == Shape::Kind::Mesh) add(at + ".shape.path", project.real[i].shape.mesh_path);
-        add(at + ".albedo.texture", project.real[i].albedo.texture_path);
+        if (r.shape.kind == Shape::Kind::Mesh)
+            item(at + ".shape.path", "mesh of proxy " + quoted(r.name), r.shape.mesh_path);
+        if (r.albedo.kind == Albedo::Kind::Texture)
+            item(at + ".albedo.texture", "texture of proxy " + quoted(r.name),
+                 r.albedo.texture_path);
     }
     for (size_t i = 0; i < project.objects.size(); ++i) {
+        VirtualObject& o = project.objects[i];
         const std::string at = "objects[" + std::to_string(i) + "]";
-        if (project.objects[i].shape.kind == Shape::Kind::Mesh) add(at + ".shape.path", project.objects[i].shape.mesh_path);
-        add(at + ".material.albedo.texture", project.objects[i].material.albedo.texture_path);
+        if (o.shape.kind == Shape::Kind::Mesh)
+            item(at + ".shape.path", "mesh of " + quoted(o.name), o.shape.mesh_path);
+        if (o.material.albedo.kind == Albedo::Kind::Texture)
+            item(at + ".material.albedo.texture", "texture of " + quoted(o.name),
+                 o.material.albedo.texture_path);
     }
+}
+
+void for_each_input(const Project& project,
+                    const std::function<void(const InputRef&, const std::string& path)>& visit) {
+    // The visitor above only hands the paths on; this one's `visit` cannot write through them.
+    for_each_input(const_cast<Project&>(project),
+                   [&](const InputRef& in, std::string& path) { visit(in, path); });
+}
+
+std::vector<std::pair<std::string, std::filesystem::path>> project_inputs(const Project& project) {
+    std::vector<std::pair<std::string, std::filesystem::path>> in;
+    for_each_input(project, [&](const InputRef& ref, const std::string& path) {
+        in.emplace_back(ref.field, project.resolve(path));
+    });
     return in;
 }
 
-void refuse_overwriting_inputs(const std::string& output, const std::string& option, const Project& project,
-                               const std::string& project_file) {
+void refuse_overwriting_inputs(const std::string& output, const std::string& option,
+                               const Project& project, const std::string& project_file) {
     namespace fs = std::filesystem;
     std::error_code ec;
     const fs::path out = fs::weakly_canonical(fs::absolute(output, ec), ec);

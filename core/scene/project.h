@@ -1,5 +1,6 @@
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -88,9 +89,15 @@ struct ProbeSpec {
     Format format = Format::LatLong;
     vec3 rotation_deg{0.0f};  ///< Euler XYZ applied to the probe in world space
     float intensity = 1.0f;   ///< linear scale on the probe's radiance
+    /// Per-channel scale on the probe's radiance, with `intensity`: the probe's white balance
+    /// brought to the photo's. The grey-card match keeps its luminance at 1, so `intensity`
+    /// alone still says how bright the probe is.
+    vec3 white_balance{1.0f};
     /// Mirror ball only: vertical field of view (degrees) of the camera that photographed the
     /// ball, cropped so the ball fills the image; 0 reads it as an orthographic view.
     float mirror_ball_fov_deg = 0.0f;
+    /// What the probe's radiance is multiplied by, per channel: intensity * white_balance.
+    vec3 gain() const { return intensity * white_balance; }
     bool operator==(const ProbeSpec&) const = default;
 };
 
@@ -160,6 +167,20 @@ struct Project {
     std::filesystem::path resolve(const std::string& path) const;
     bool operator==(const Project& o) const;
 };
+
+/// One file path a project holds, as for_each_input hands it out.
+struct InputRef {
+    std::string field;  ///< where the file names it: "photo.path", "objects[2].shape.path", ...
+    std::string what;   ///< what it is, for people: "photo", "light probe", "mesh of \"teapot\""
+};
+
+/// Calls `visit` with every non-empty path `project` reads a file from (the photo, the probe,
+/// the meshes of mesh shapes and the textures of textured albedos), in file order, as written:
+/// `visit` may change it (a file relinked).
+void for_each_input(Project& project,
+                    const std::function<void(const InputRef&, std::string& path)>& visit);
+void for_each_input(const Project& project,
+                    const std::function<void(const InputRef&, const std::string& path)>& visit);
 
 /// Every file `project` reads (photo, probe, meshes, textures), resolved, each with the field
 /// that names it ("photo.path", "objects[2].shape.path", ...).

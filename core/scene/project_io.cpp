@@ -370,8 +370,11 @@ J write_project(const Project& p) {
         J{{"path", p.probe.path},
           {"format", p.probe.format == ProbeSpec::Format::LatLong ? "latlong" : "mirrorball"},
           {"rotation_deg", vec<J>(p.probe.rotation_deg)},
-          {"intensity", num(p.probe.intensity)},
-          {"mirror_ball_fov_deg", num(p.probe.mirror_ball_fov_deg)}};
+          {"intensity", num(p.probe.intensity)}};
+    // Neutral is left out: such a file stays readable by builds that know no white balance.
+    if (p.probe.white_balance != vec3(1.0f))
+        doc["probe"]["white_balance"] = vec<J>(p.probe.white_balance);
+    doc["probe"]["mirror_ball_fov_deg"] = num(p.probe.mirror_ball_fov_deg);
     doc["camera"] = write_camera<J>(p.camera);
     doc["real"] = J::array();
     for (const RealProxy& r : p.real) {
@@ -433,7 +436,8 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
 
     const json& probe = r.required(doc, "", "probe");
     r.object(probe, "probe",
-             {"path", "format", "rotation_deg", "intensity", "mirror_ball_fov_deg"});
+             {"path", "format", "rotation_deg", "intensity", "white_balance",
+              "mirror_ball_fov_deg"});
     p.probe.path = r.string(r.required(probe, "probe", "path"), "probe.path");
     if (auto* f = r.optional(probe, "format")) {
         p.probe.format =
@@ -448,6 +452,8 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
         r.check(p.probe.intensity >= 0, "probe.intensity",
                 "must be >= 0 (got " + shortest_decimal(p.probe.intensity) + ")");
     }
+    if (auto* e = r.optional(probe, "white_balance"))
+        p.probe.white_balance = r.positive3(*e, "probe.white_balance");
     if (auto* e = r.optional(probe, "mirror_ball_fov_deg")) {
         p.probe.mirror_ball_fov_deg = r.real(*e, "probe.mirror_ball_fov_deg");
         r.check(p.probe.mirror_ball_fov_deg >= 0 && p.probe.mirror_ball_fov_deg < 180,

@@ -2,22 +2,6 @@
 # mirror ball's field of view; bad requests exit with code 2.
 source "$(dirname "$0")/testlib.bash" "$@"
 
-# A camera 5 m above the origin looking straight down: world (x, 0, z) is pixel
-# (fx x / 5 + cx, fx z / 5 + cy), which the clicks below are computed from.
-write_topdown() {  # write_topdown FILE PHOTO PROBE REAL ROTATION_Y INTENSITY
-    cat >"$1" <<JSON
-{
-  "schema_version": 1,
-  "photo": {"path": "$2"},
-  "probe": {"path": "$3", "rotation_deg": [0, $5, 0], "intensity": $6},
-  "camera": {"model": "opencv", "fx": $FX, "fy": $FX, "cx": $CX, "cy": $CY,
-             "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]], "translation": [0, 0, 5]},
-  "real": [$4]
-}
-JSON
-}
-FLOOR18='{"name": "floor", "shape": {"type": "plane", "size": [20, 20]}, "albedo": [0.18, 0.18, 0.18]}'
-
 # --- Shadow cue: a 1 m pole at the origin under the sun of the probe (direction 0.3 0.9 0.3).
 run make-test-image big.exr --size 640 480 --value 0.5 0.5 0.5
 expect_rc 0 "photo"

@@ -98,3 +98,20 @@ write_project() {
 }
 JSON
 }
+
+# A camera 5 m above the origin looking straight down (FX, CX, CY set by the caller): world
+# (x, 0, z) is pixel (fx x / 5 + cx, fx z / 5 + cy), which the calibrate tests' clicks are
+# computed from. WHITE_BALANCE, when given, is the probe's "white_balance" array.
+write_topdown() {  # write_topdown FILE PHOTO PROBE REAL ROTATION_Y INTENSITY [WHITE_BALANCE]
+    cat >"$1" <<JSON
+{
+  "schema_version": 1,
+  "photo": {"path": "$2"},
+  "probe": {"path": "$3", "rotation_deg": [0, $5, 0], "intensity": $6${7:+, \"white_balance\": $7}},
+  "camera": {"model": "opencv", "fx": $FX, "fy": $FX, "cx": $CX, "cy": $CY,
+             "rotation": [[1, 0, 0], [0, 0, 1], [0, -1, 0]], "translation": [0, 0, 5]},
+  "real": [$4]
+}
+JSON
+}
+FLOOR18='{"name": "floor", "shape": {"type": "plane", "size": [20, 20]}, "albedo": [0.18, 0.18, 0.18]}'

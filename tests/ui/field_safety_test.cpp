@@ -3,6 +3,7 @@
 #include <QApplication>
 #include <QDockWidget>
 #include <QElapsedTimer>
+#include <QFileInfo>
 #include <QDropEvent>
 #include <QFile>
 #include <QListWidget>
@@ -17,6 +18,7 @@
 #include "autosave.h"
 #include "camera_panel.h"
 #include "document.h"
+#include "missing_files_dialog.h"
 #include "number_field.h"
 #include "scene/project_io.h"
 #include "scene_check.h"
@@ -37,7 +39,7 @@ private Q_SLOTS:
     void aRadiusInsideTheFieldsRangeButBeyondTheRenderLimitsIsRefused();
     void aCameraTargetOnTheEyeIsRefusedAndTheEditsBeforeItStay();
     void aCorruptMeshDroppedOnTheWindowChangesNothing();
-    void aProjectWithAMissingProbeOrAHugeSphereIsNotOpened();
+    void aProjectWithAHugeSphereIsNotOpenedAndOneWithAMissingProbeWaitsForIt();
     void aRenderFailureLeavesTheDocumentAndUndoAsTheyWere();
     void importingAMeshAutosavesTheUnsavedWorkFirst();
     void applyingACalibrationAutosavesFirstAndRefusesAnInvalidCamera();
@@ -184,7 +186,7 @@ void FieldSafetyTest::aCorruptMeshDroppedOnTheWindowChangesNothing() {
     QCOMPARE(w_->document()->undoStack()->count(), steps);
 }
 
-void FieldSafetyTest::aProjectWithAMissingProbeOrAHugeSphereIsNotOpened() {
+void FieldSafetyTest::aProjectWithAHugeSphereIsNotOpenedAndOneWithAMissingProbeWaitsForIt() {
     w_->action("addSphere")->trigger();
     const Project before = w_->document()->project();
     const int steps = w_->document()->undoStack()->count();
@@ -195,17 +197,25 @@ void FieldSafetyTest::aProjectWithAMissingProbeOrAHugeSphereIsNotOpened() {
     huge.objects[0].shape.radius = 1e20f;  // once crashed the renderer 0.2 s after opening
     save_project(huge, dir_->filePath("huge.json").toStdString());
 
-    drop(dir_->filePath("missing.json"));
+    drop(dir_->filePath("huge.json"));
     QCOMPARE(reporter_->questions.size(), 1);  // asked first: the sphere is unsaved
     QCOMPARE(reporter_->errors.size(), 1);
-    QVERIFY2(reporter_->errors[0].contains("missing-probe.exr"), qPrintable(reporter_->errors[0]));
-    drop(dir_->filePath("huge.json"));
-    QCOMPARE(reporter_->errors.size(), 2);
-    QVERIFY2(reporter_->errors[1].contains("beyond 1e9 m"), qPrintable(reporter_->errors[1]));
+    QVERIFY2(reporter_->errors[0].contains("beyond 1e9 m"), qPrintable(reporter_->errors[0]));
     QVERIFY(w_->document()->project() == before);
     QCOMPARE(w_->document()->undoStack()->count(), steps);
     QCOMPARE(w_->document()->path(), QFileInfo(project_).absoluteFilePath());
     QVERIFY(w_->document()->isModified());
+
+    // A file that is not there is no reason to refuse: the project opens and waits for it.
+    drop(dir_->filePath("missing.json"));
+    QCOMPARE(reporter_->questions.size(), 2);  // the sphere is still unsaved: "no" discards it
+    QCOMPARE(reporter_->errors.size(), 1);
+    QCOMPARE(w_->document()->path(), QFileInfo(dir_->filePath("missing.json")).absoluteFilePath());
+    QCOMPARE(w_->missingFiles(), QStringList{"probe.path"});
+    QVERIFY(w_->relinkDialog() && w_->relinkDialog()->isVisible());
+    QVERIFY(w_->relinkDialog()->isMissing(1));
+    QVERIFY(w_->relinkDialog()->storedPath(1).endsWith("missing-probe.exr"));
+    w_->relinkDialog()->reject();
 }
 
 void FieldSafetyTest::aRenderFailureLeavesTheDocumentAndUndoAsTheyWere() {

@@ -58,6 +58,24 @@ TEST_F(AssetLibraryTest, DecodesEachFileOnceAndAgainWhenItChanges) {
     EXPECT_FLOAT_EQ(second->at(0, 0).x, 0.25f);
 }
 
+TEST_F(AssetLibraryTest, TheLitProbeFollowsTheWhiteBalanceAndKeepsOnePerSetting) {
+    AssetLibrary library;
+    const auto neutral = library.lit_probe(project_);
+    EXPECT_EQ(library.lit_probe(project_).get(), neutral.get());
+    Project tinted = project_;
+    tinted.probe.intensity = 2;
+    tinted.probe.white_balance = vec3(1.2f, 1.0f, 0.7f);
+    const auto lit = library.lit_probe(tinted);
+    ASSERT_NE(lit.get(), neutral.get());
+    EXPECT_EQ(lit->probe.pixel_radiance(0), vec3(2.4f, 2.0f, 1.4f));
+    EXPECT_EQ(neutral->probe.pixel_radiance(0), vec3(1.0f));
+    EXPECT_EQ(library.lit_probe(project_).get(), neutral.get());  // both kept
+    // A scene built without the library applies it the same way.
+    SceneAssets assets = library.load(tinted);
+    const RenderScene scene(tinted, std::move(assets));
+    EXPECT_EQ(scene.probe().pixel_radiance(0), vec3(2.4f, 2.0f, 1.4f));
+}
+
 TEST_F(AssetLibraryTest, AProbeOfTheWrongShapeOrWithNegativeValuesIsSaid) {
     AssetLibrary clean;
     clean.probe(project_);

@@ -153,3 +153,19 @@ TEST(Probe, IntensityScalesRadianceButNotThePmf) {
     EXPECT_EQ(sa.pixel, sb.pixel);
     EXPECT_NEAR(sa.pdf, sb.pdf, 1e-5f * sa.pdf);
 }
+
+TEST(Probe, AGainPerChannelScalesEachChannelAndSamplesByTheScaledLuminance) {
+    Image img = random_probe(16, 8, 11);
+    const vec3 gain(1.2f, 1.0f, 0.7f);
+    Probe p(img, glm::mat3(1), gain);
+    double total = 0;
+    for (size_t k = 0; k < img.size(); ++k) {
+        EXPECT_EQ(p.pixel_radiance(k), img[k] * gain);
+        total += std::max(0.0, luminance(dvec3(img[k]) * dvec3(gain))) *
+                 p.pixel_solid_angle(int(k / 16));
+    }
+    EXPECT_NEAR(p.total_luminance_power(), total, 1e-9 * total);
+    // A grey gain is the intensity it stands for.
+    Probe grey(img, glm::mat3(1), vec3(3.0f)), scalar(img, glm::mat3(1), 3.0f);
+    for (size_t k = 0; k < img.size(); ++k) EXPECT_EQ(grey.pixel_pmf(k), scalar.pixel_pmf(k));
+}

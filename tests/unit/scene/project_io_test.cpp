@@ -22,6 +22,7 @@ TEST_F(ProjectIo, RichProjectLoadsWithEveryField) {
     EXPECT_EQ(p.probe.format, ProbeSpec::Format::MirrorBall);
     EXPECT_FLOAT_EQ(p.probe.rotation_deg.y, 90.5f);
     EXPECT_FLOAT_EQ(p.probe.intensity, 1.25f);
+    EXPECT_EQ(p.probe.white_balance, vec3(1.1f, 1.0f, 0.85f));
 
     ASSERT_EQ(p.camera.model, CameraSpec::Model::Intrinsics);
     EXPECT_FLOAT_EQ(p.camera.fx, 1210.5f);
@@ -90,6 +91,31 @@ TEST_F(ProjectIo, LookAtProjectWithDefaultsRoundTrips) {
     std::string saved = (dir_ / "saved.json").string();
     save_project(a, saved);
     EXPECT_EQ(load_project(saved), a);
+}
+
+TEST_F(ProjectIo, TheProbesWhiteBalanceRoundTripsAndIsLeftOutWhenNeutral) {
+    const char* text = R"({"schema_version": 1, "photo": {"path": "p.png"},
+        "probe": {"path": "probe.hdr", "intensity": 2.04, "white_balance": [1.18, 0.98, 0.69]},
+        "camera": {"model": "lookat", "eye": [0, 1, 4], "target": [0, 0.5, 0]}})";
+    Project a = load_project(write("wb.json", text));
+    EXPECT_EQ(a.probe.white_balance, vec3(1.18f, 0.98f, 0.69f));
+    EXPECT_EQ(a.probe.gain(), 2.04f * vec3(1.18f, 0.98f, 0.69f));
+    const std::string saved = (dir_ / "saved.json").string();
+    save_project(a, saved);
+    EXPECT_EQ(load_project(saved), a);
+    EXPECT_NE(read(saved).find("\"white_balance\""), std::string::npos);
+    EXPECT_EQ(parse_project(to_json(a), "memory", dir_), a);
+
+    // Neutral, it is not written: the file stays as older builds wrote (and read) it.
+    a.probe.white_balance = vec3(1.0f);
+    save_project(a, saved);
+    EXPECT_EQ(read(saved).find("white_balance"), std::string::npos);
+    EXPECT_EQ(load_project(saved).probe.white_balance, vec3(1.0f));
+    EXPECT_EQ(load_project(write("min.json", R"({"schema_version": 1, "photo": {"path": "p.png"},
+        "probe": {"path": "probe.hdr"},
+        "camera": {"model": "lookat", "eye": [0, 1, 4], "target": [0, 0.5, 0]}})"))
+                  .probe.white_balance,
+              vec3(1.0f));
 }
 
 TEST_F(ProjectIo, ProgrammaticProjectRoundTripsBitExactly) {

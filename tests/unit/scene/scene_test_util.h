@@ -43,7 +43,7 @@ inline const char* kRichProject = R"({
   "schema_version": 1,
   "photo": {"path": "photos/kitchen.jpg", "exposure": -0.5},
   "probe": {"path": "../probes/kitchen_ball.exr", "format": "mirrorball",
-            "rotation_deg": [0, 90.5, 0], "intensity": 1.25},
+            "rotation_deg": [0, 90.5, 0], "intensity": 1.25, "white_balance": [1.1, 1, 0.85]},
   "camera": {"model": "opencv", "fx": 1210.5, "fy": 1208.25, "cx": 959.5, "cy": 539.5,
              "distortion": [-0.11, 0.032, 0.0005, -0.0004, 0.001],
              "rotation": [[0, 0, 1], [0, 1, 0], [-1, 0, 0]],
