@@ -2,8 +2,8 @@
 # absolute paths to files that exist; bad projects are refused with exit 2. Where Blender is
 # installed, the exported scene is rendered and its object and shadow masks are compared with
 # ours (IoU); without Blender that part is skipped with a note.
+SRC=$(cd "$(dirname "$0")/../.." && pwd)  # before testlib.bash moves into the scratch folder
 source "$(dirname "$0")/testlib.bash" "$@"
-SRC=$(cd "$(dirname "$0")/../.." && pwd)
 make_inputs
 
 # A project in a folder of its own whose files are named relative to it (one a level up), with
