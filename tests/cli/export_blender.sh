@@ -159,4 +159,13 @@ run_blender --python turned.py -- --render turned.exr --threads 2
 masks turned.exr
 awk -v v="$SHADOW_IOU" 'BEGIN { exit !(v < 0.5) }' ||
     fail "a probe turned by 90 degrees still gives a shadow IoU of $SHADOW_IOU"
+
+# docs/cycles.md's Mapping-node rotation for a scene rebuilt in Blender's axes: the shadow stays
+# where the exported frame puts it; with the sign of the rotation flipped it moves.
+run_blender --factory-startup --python "$SRC/tests/cli/export_blender_mapping.py" -- small.json "$PWD"
+grep documented_iou blender.txt
+DOCUMENTED=$(awk '$1 == "documented_iou" { print $2 }' blender.txt)
+WRONG=$(awk '$1 == "documented_iou" { print $4 }' blender.txt)
+awk -v v="$DOCUMENTED" 'BEGIN { exit !(v > 0.9) }' || fail "documented Mapping rotation: shadow IoU '$DOCUMENTED' <= 0.9"
+awk -v v="$WRONG" 'BEGIN { exit !(v < 0.6) }' || fail "the rotation's sign flipped: shadow IoU '$WRONG' >= 0.6"
 echo "ok"
