@@ -34,6 +34,10 @@ std::string utf8_literal(const std::string& text, bool multiline = false) {
     return "b" + python_string_literal(text, multiline) + ".decode()";
 }
 
+constexpr const char* kRule =
+    "# ==========================================================================================="
+    "==\n";
+
 // The main part of the script. The converter above it defines CyclesScene and ConversionError.
 constexpr const char* kMain = R"py(
 
@@ -92,16 +96,20 @@ hand_off()
 
 std::string blender_script(const BlenderScriptInputs& in) {
     std::string s;
-    s += "# A diffphoton project as a Blender Cycles scene, written by `diffphoton export blender`.\n";
-    s += "#\n#   blender -b --python THIS.py [-- --blend OUT.blend] [-- --render OUT.exr]  (headless)\n";
-    s += "#   blender --python THIS.py                                              (to work on it)\n";
-    s += "#\n# Parts: the converter (bench/cycles/dp_cycles.py of diffphoton, verbatim), the project\n";
-    s += "# (paths made absolute), and the hand-off at the end. Conventions: docs/cycles.md.\n\n";
-    s += "# =============================================================================================\n";
+    s += "# A diffphoton project as a Blender Cycles scene, written by `diffphoton export "
+         "blender`.\n#\n";
+    s += "#   blender -b --python " + in.script_name +
+         " -- [--blend OUT.blend] [--render OUT.exr]  (headless)\n";
+    s += "#   blender --python " + in.script_name + "  (to work on it)\n#\n";
+    s += "# Parts: the converter (bench/cycles/dp_cycles.py of diffphoton, verbatim), the\n";
+    s += "# project (paths made absolute), and the hand-off at the end. Conventions:\n";
+    s += "# docs/cycles.md.\n\n";
+    s += kRule;
     s += "# The converter\n\n";
     s += in.converter_source;
     if (!s.empty() && s.back() != '\n') s += '\n';
-    s += "\n\n# =============================================================================================\n";
+    s += "\n\n";
+    s += kRule;
     s += "# The project\n\n";
     s += "PROJECT_FILE = " + utf8_literal(in.project_file) + "\n";
     // JSON inside a string literal rather than as Python: true/false/null and any key survive.

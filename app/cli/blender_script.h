@@ -11,6 +11,7 @@ struct BlenderScriptInputs {
     nlohmann::json project;        ///< the project with absolute paths (hand_off_project)
     int samples = 128;             ///< Cycles samples per pixel
     std::string blend;             ///< absolute .blend path to save to, or empty
+    std::string script_name = "scene.py";  ///< the script's own file name, for its usage lines
 };
 
 /// One self-contained Python script for Blender: the converter, the project as data, and a main

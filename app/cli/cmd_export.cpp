@@ -36,19 +36,21 @@ Project hand_off_project(const std::string& file, const LoadedScene& loaded) {
     Project p = loaded.project;
     if (p.probe.format != ProbeSpec::Format::LatLong)
         throw InputError(file, "probe.format",
-                         "Blender reads lat-long probes only; unwrap the mirror ball first (diffphoton calibrate "
-                         "probe) and point probe.path at the lat-long image");
+                         "Blender reads lat-long probes only; unwrap the mirror ball first "
+                         "(diffphoton calibrate probe) and point probe.path at the lat-long image");
     const Distortion& d = p.camera.distortion;
     if (p.camera.model == CameraSpec::Model::Intrinsics &&
         (d.k1 != 0 || d.k2 != 0 || d.p1 != 0 || d.p2 != 0 || d.k3 != 0))
         throw InputError(file, "camera.distortion",
-                         "Cycles' perspective camera has no lens distortion; undistort the photograph and set the "
-                         "distortion to zero");
+                         "Cycles' perspective camera has no lens distortion; undistort the "
+                         "photograph and set the distortion to zero");
     auto mesh_path = [&](Shape& s, const std::string& field) {
         if (s.kind != Shape::Kind::Mesh) return;
         const std::string ext = fs::path(s.mesh_path).extension().string();
         if (ext != ".obj" && ext != ".OBJ" && ext != ".ply" && ext != ".PLY")
-            throw InputError(file, field, "'" + s.mesh_path + "': Blender's scene is built from OBJ or PLY meshes only");
+            throw InputError(file, field,
+                             "'" + s.mesh_path +
+                                 "': Blender's scene is built from OBJ or PLY meshes only");
         s.mesh_path = absolute_path(p, s.mesh_path);
     };
     auto texture_path = [&](Albedo& a) {
@@ -89,13 +91,15 @@ int run_export_blender(const ExportBlenderOptions& o) {
     in.project_file = fs::absolute(o.project).lexically_normal().string();
     in.project = to_json(p);
     in.samples = o.samples;
+    in.script_name = fs::path(o.output).filename().string();
     in.blend = o.blend.empty() ? "" : fs::absolute(o.blend).lexically_normal().string();
     const std::string script = blender_script(in);
     std::ofstream f(o.output, std::ios::binary);
     f << script;
     f.close();
     if (!f) throw InputError(o.output, "-o", "cannot write the script");
-    std::printf("wrote %s (run it with: blender -b --python %s)\n", o.output.c_str(), o.output.c_str());
+    std::printf("wrote %s (run it with: blender -b --python %s)\n", o.output.c_str(),
+                o.output.c_str());
     return 0;
 }
 
@@ -106,8 +110,9 @@ Command add_export_command(CLI::App& app) {
     CLI::App* sub = app.add_subcommand("export", "Hand a project to another program");
     sub->require_subcommand(1);
     CLI::App* blender = sub->add_subcommand(
-        "blender", "Write one Python script that builds the project as a Blender Cycles scene (blender --python "
-                   "SCRIPT; add -- --blend OUT.blend to save it, -- --render OUT.exr to render it)");
+        "blender",
+        "Write one Python script that builds the project as a Blender Cycles scene (blender "
+        "--python SCRIPT; add -- --blend OUT.blend to save it, -- --render OUT.exr to render it)");
     blender->add_option("project", o->project, "Project file (JSON)")->required();
     blender->add_option("-o,--output", o->output, "The script to write (.py)")->required();
     blender->add_option("--blend", o->blend, "Have the script save the scene as this .blend file");
