@@ -92,6 +92,9 @@ int run_export_blender(const ExportBlenderOptions& o) {
     in.project = to_json(p);
     in.samples = o.samples;
     in.script_name = fs::path(o.output).filename().string();
+    // It goes into comment lines: a line break in the name would end the comment.
+    for (char& c : in.script_name)
+        if (static_cast<unsigned char>(c) < 0x20) c = '?';
     in.blend = o.blend.empty() ? "" : fs::absolute(o.blend).lexically_normal().string();
     const std::string script = blender_script(in);
     std::ofstream f(o.output, std::ios::binary);

@@ -65,6 +65,15 @@ expect_stdout "wrote ../proj.py" "the written script"
 check_script proj.py >paths.txt
 grep -qx "4 paths" paths.txt || fail "expected 4 paths (photo, probe, texture, mesh), got: $(cat paths.txt)"
 
+# Quotes, a backslash, non-ASCII letters and a line break in the paths survive the literals.
+odd=$'odd \'q\' "dq" \\ \u00fc\nline'
+oddpy="$odd/x"$'\n'".py"
+cp -r proj "$odd"
+run export blender "$odd/scene.json" -o "$oddpy"
+expect_rc 0 "export blender from a folder with an odd name"
+check_script "$oddpy" >paths.txt
+grep -qx "4 paths" paths.txt || fail "odd names: expected 4 paths, got: $(cat paths.txt)"
+
 run export blender proj/scene.json -o withblend.py --blend out/scene.blend
 expect_rc 2 "--blend into a missing folder"
 expect_stderr "--blend" "the message names --blend"
