@@ -18,6 +18,8 @@ Command add_info_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_convert_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+/// `export blender`: the project as a self-contained Python script for Blender Cycles.
+Command add_export_command(CLI::App& app);
 /// Time against error of both methods on benchmark scenes.
 Command add_bench_command(CLI::App& app);
 /// `calibrate`: a parent command; each add_calibrate_*_commands function adds a group of its

@@ -52,9 +52,9 @@ def _read_cstr(buf, pos):
     return buf[pos:end].decode(), end + 1
 
 
-def read_exr(path, layer=""):
-    """(width, height, RGB floats, rows top-down) of one layer ("" = R, G, B) of a scanline EXR
-    with no, ZIPS or ZIP compression and half or float channels."""
+def read_exr(path, layer="", channels="RGB"):
+    """(width, height, floats interleaved as `channels`, rows top-down) of one layer ("" = R, G,
+    B) of a scanline EXR with no, ZIPS or ZIP compression and half or float channels."""
     with open(path, "rb") as f:
         buf = f.read()
     if struct.unpack_from("<I", buf, 0)[0] != 20000630:
@@ -68,12 +68,12 @@ def read_exr(path, layer=""):
         size = struct.unpack_from("<i", buf, pos)[0]
         attrs[name] = (kind, buf[pos + 4:pos + 4 + size])
         pos += 4 + size
-    channels, data = [], attrs["channels"][1]
+    stored, data = [], attrs["channels"][1]
     p = 0
     while data[p] != 0:
         name, p = _read_cstr(data, p)
         ptype = struct.unpack_from("<i", data, p)[0]
-        channels.append((name, ptype))
+        stored.append((name, ptype))
         p += 16
     compression = attrs["compression"][1][0]
     if compression not in (0, 2, 3):
@@ -83,8 +83,8 @@ def read_exr(path, layer=""):
     lines = 16 if compression == 3 else 1
     chunks = (h + lines - 1) // lines
     offsets = struct.unpack_from(f"<{chunks}Q", buf, pos)
-    want = [layer + "." + c if layer else c for c in "RGB"]
-    names = [c[0] for c in channels]
+    want = [layer + "." + c if layer else c for c in channels]
+    names = [c[0] for c in stored]
     for c in want:
         if c not in names:
             raise ValueError(f"{path}: no channel {c} (channels: {', '.join(names)})")
@@ -93,7 +93,7 @@ def read_exr(path, layer=""):
         y, size = struct.unpack_from("<ii", buf, off)
         raw = buf[off + 8:off + 8 + size]
         n_lines = min(lines, ymax - y + 1)
-        expected = sum(w * (2 if t == 1 else 4) for _, t in channels) * n_lines
+        expected = sum(w * (2 if t == 1 else 4) for _, t in stored) * n_lines
         if compression and size < expected:
             t = bytearray(zlib.decompress(raw))
             for i in range(1, len(t)):
@@ -106,16 +106,16 @@ def read_exr(path, layer=""):
         p = 0
         for ly in range(n_lines):
             row = y - ymin + ly
-            for name, ptype in channels:
+            for name, ptype in stored:
                 nbytes = w * (2 if ptype == 1 else 4)
                 if name in planes:
                     fmt = f"<{w}e" if ptype == 1 else (f"<{w}f" if ptype == 2 else f"<{w}I")
                     planes[name][row * w:(row + 1) * w] = array.array("f", struct.unpack_from(fmt, raw, p))
                 p += nbytes
-    rgb = array.array("f", bytes(12 * w * h))
+    out = array.array("f", bytes(4 * len(want) * w * h))
     for k, c in enumerate(want):
-        rgb[k::3] = planes[c]
-    return w, h, rgb
+        out[k::len(want)] = planes[c]
+    return w, h, out
 
 
 # ---------------------------------------------------------------------------------------------

@@ -576,13 +576,19 @@ class CyclesScene:
     as plain diffuse surfaces, no objects, the probe visible: what `diffphoton reference
     --real-only` renders."""
 
-    def __init__(self, project_path, mode="catcher", threads=0):
+    def __init__(self, project_path, mode="catcher", threads=0, project=None):
+        """`project`: the project's JSON already read (the script `diffphoton export blender`
+        writes carries it); `project_path` then only names it in messages and anchors relative
+        paths."""
         self.file = project_path
-        with open(project_path) as f:
-            try:
-                p = json.load(f)
-            except json.JSONDecodeError as e:
-                raise ConversionError(project_path, "", f"invalid JSON: {e}")
+        if project is not None:
+            p = project
+        else:
+            with open(project_path) as f:
+                try:
+                    p = json.load(f)
+                except json.JSONDecodeError as e:
+                    raise ConversionError(project_path, "", f"invalid JSON: {e}")
         self.project = p
         base_dir = os.path.dirname(os.path.abspath(project_path))
         for key in ("photo", "probe", "camera"):

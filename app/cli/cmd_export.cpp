@@ -1,0 +1,127 @@
+// `diffphoton export blender`: a project as one self-contained Python script that builds the
+// Blender Cycles scene (shadow catchers, objects, probe, camera, compositor) for an artist.
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "base/error.h"
+#include "scene/project_io.h"
+#include "blender_script.h"
+#include "commands.h"
+#include "common.h"
+#include "dp_cycles_source.h"
+
+namespace dp::cli {
+
+namespace {
+
+struct ExportBlenderOptions {
+    std::string project;
+    std::string output;
+    std::string blend;
+    int samples = 128;
+};
+
+namespace fs = std::filesystem;
+
+std::string absolute_path(const Project& p, const std::string& path) {
+    return fs::absolute(p.resolve(path)).lexically_normal().string();
+}
+
+/// The project as the converter reads it: every path absolute (the script runs from anywhere),
+/// albedos the loader estimated from the photo written as the constants it found. Refuses what
+/// dp_cycles.py cannot express, at export time rather than when an artist runs the script.
+Project hand_off_project(const std::string& file, const LoadedScene& loaded) {
+    Project p = loaded.project;
+    if (p.probe.format != ProbeSpec::Format::LatLong)
+        throw InputError(file, "probe.format",
+                         "Blender reads lat-long probes only; unwrap the mirror ball first "
+                         "(diffphoton calibrate probe) and point probe.path at the lat-long image");
+    const Distortion& d = p.camera.distortion;
+    if (p.camera.model == CameraSpec::Model::Intrinsics &&
+        (d.k1 != 0 || d.k2 != 0 || d.p1 != 0 || d.p2 != 0 || d.k3 != 0))
+        throw InputError(file, "camera.distortion",
+                         "Cycles' perspective camera has no lens distortion; undistort the "
+                         "photograph and set the distortion to zero");
+    auto mesh_path = [&](Shape& s, const std::string& field) {
+        if (s.kind != Shape::Kind::Mesh) return;
+        const std::string ext = fs::path(s.mesh_path).extension().string();
+        if (ext != ".obj" && ext != ".OBJ" && ext != ".ply" && ext != ".PLY")
+            throw InputError(file, field,
+                             "'" + s.mesh_path +
+                                 "': Blender's scene is built from OBJ or PLY meshes only");
+        s.mesh_path = absolute_path(p, s.mesh_path);
+    };
+    auto texture_path = [&](Albedo& a) {
+        if (a.kind == Albedo::Kind::Texture) a.texture_path = absolute_path(p, a.texture_path);
+    };
+    for (size_t i = 0; i < p.real.size(); ++i) {
+        RealProxy& r = p.real[i];
+        mesh_path(r.shape, "real[" + std::to_string(i) + "].shape.path");
+        texture_path(r.albedo);
+        if (r.albedo.kind == Albedo::Kind::Estimate) {
+            r.albedo.kind = Albedo::Kind::Constant;
+            r.albedo.rgb = loaded.scene->real_surfaces()[i].albedo;
+        }
+    }
+    for (size_t i = 0; i < p.objects.size(); ++i) {
+        mesh_path(p.objects[i].shape, "objects[" + std::to_string(i) + "].shape.path");
+        texture_path(p.objects[i].material.albedo);
+    }
+    p.photo.path = absolute_path(p, p.photo.path);
+    p.probe.path = absolute_path(p, p.probe.path);
+    return p;
+}
+
+int run_export_blender(const ExportBlenderOptions& o) {
+    check_output_folder(o.output, "-o");
+    if (fs::path(o.output).extension() != ".py")
+        throw InputError(o.output, "-o", "the script's name must end in .py");
+    if (!o.blend.empty()) {
+        check_output_folder(o.blend, "--blend");
+        if (fs::path(o.blend).extension() != ".blend")
+            throw InputError(o.blend, "--blend", "the file's name must end in .blend");
+    }
+    const LoadedScene loaded = load_scene(o.project);
+    refuse_overwriting_inputs(o.output, "-o", loaded.project, o.project);
+    const Project p = hand_off_project(o.project, loaded);
+    BlenderScriptInputs in;
+    in.converter_source = kDpCyclesSource;
+    in.project_file = fs::absolute(o.project).lexically_normal().string();
+    in.project = to_json(p);
+    in.samples = o.samples;
+    in.script_name = fs::path(o.output).filename().string();
+    // It goes into comment lines: a line break in the name would end the comment.
+    for (char& c : in.script_name)
+        if (static_cast<unsigned char>(c) < 0x20) c = '?';
+    in.blend = o.blend.empty() ? "" : fs::absolute(o.blend).lexically_normal().string();
+    const std::string script = blender_script(in);
+    std::ofstream f(o.output, std::ios::binary);
+    f << script;
+    f.close();
+    if (!f) throw InputError(o.output, "-o", "cannot write the script");
+    std::printf("wrote %s (run it with: blender -b --python %s)\n", o.output.c_str(),
+                o.output.c_str());
+    return 0;
+}
+
+}  // namespace
+
+Command add_export_command(CLI::App& app) {
+    auto o = std::make_shared<ExportBlenderOptions>();
+    CLI::App* sub = app.add_subcommand("export", "Hand a project to another program");
+    sub->require_subcommand(1);
+    CLI::App* blender = sub->add_subcommand(
+        "blender",
+        "Write one Python script that builds the project as a Blender Cycles scene (blender "
+        "--python SCRIPT; add -- --blend OUT.blend to save it, -- --render OUT.exr to render it)");
+    blender->add_option("project", o->project, "Project file (JSON)")->required();
+    blender->add_option("-o,--output", o->output, "The script to write (.py)")->required();
+    blender->add_option("--blend", o->blend, "Have the script save the scene as this .blend file");
+    blender->add_option("--samples", o->samples, "Cycles samples per pixel the scene is set to")
+        ->check(CLI::Range(1, 1 << 24));
+    return {sub, [o] { return run_export_blender(*o); }};
+}
+
+}  // namespace dp::cli

@@ -1,0 +1,180 @@
+# `export blender`: the script compiles, carries the converter verbatim and the project with
+# absolute paths to files that exist; bad projects are refused with exit 2. Where Blender is
+# installed, the exported scene is rendered and its object and shadow masks are compared with
+# ours (IoU); without Blender that part is skipped with a note.
+SRC=$(cd "$(dirname "$0")/../.." && pwd)  # before testlib.bash moves into the scratch folder
+source "$(dirname "$0")/testlib.bash" "$@"
+make_inputs
+
+# A project in a folder of its own whose files are named relative to it (one a level up), with
+# a textured proxy, a mesh object and an estimated albedo.
+mkdir -p proj/meshes
+run make-test-image proj/tex.png --size 8 8 --value 0.3 0.6 0.2
+expect_rc 0 "make-test-image texture"
+printf 'v 0 0 0\nv 0.4 0 0\nv 0 0.4 0\nv 0 0 0.4\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' >proj/meshes/tet.obj
+cat >proj/scene.json <<'JSON'
+{
+  "schema_version": 1,
+  "photo": {"path": "../photo.exr"},
+  "probe": {"path": "../probe.exr", "rotation_deg": [0, 30, 0]},
+  "camera": {"model": "lookat", "eye": [0, 1.5, 4], "target": [0, 0.4, 0], "vfov_deg": 40},
+  "real": [{"name": "floor", "shape": {"type": "plane", "size": [10, 10]}, "albedo": "estimate"},
+           {"name": "mat", "shape": {"type": "plane", "size": [1, 1]},
+            "transform": {"translation": [1, 0.001, 0]}, "albedo": {"texture": "tex.png"}}],
+  "objects": [{"name": "tet", "shape": {"type": "mesh", "path": "meshes/tet.obj"},
+               "transform": {"translation": [-1, 0, 0]}}],
+  "render": {"photons_per_pass": 20000, "passes": 3, "seed": 7}
+}
+JSON
+
+# check_script SCRIPT [BLEND]: compiles; holds dp_cycles.py verbatim; every path in its project
+# is absolute and names an existing file; no "estimate" is left; BLEND is the .blend it saves.
+check_script() {
+    python3 -m py_compile "$1" || fail "$1 does not compile"
+    python3 - "$1" "$SRC/bench/cycles/dp_cycles.py" "${2:-}" <<'PY' || fail "$1: the script's content is wrong"
+import ast, json, os, re, sys
+script, converter, blend = sys.argv[1:4]
+src = open(script).read()
+assert open(converter).read() in src, "dp_cycles.py is not embedded verbatim"
+def literal(name, pattern):
+    m = re.search(r"^" + name + r" = " + pattern, src, re.S | re.M)
+    assert m, f"no {name} in the script"
+    return ast.literal_eval(m.group(1)).decode()
+project = json.loads(literal("PROJECT", r"json\.loads\((b'''.*?''')\.decode\(\)\)$"))
+assert literal("BLEND", r"(b'.*?')\.decode\(\)$") == blend, "BLEND"
+paths = [project["photo"]["path"], project["probe"]["path"]]
+for e in project.get("real", []) + project.get("objects", []):
+    if e["shape"]["type"] == "mesh":
+        paths.append(e["shape"]["path"])
+    albedo = e.get("albedo", e.get("material", {}).get("albedo"))
+    assert albedo != "estimate", "an albedo left as 'estimate'"
+    if isinstance(albedo, dict):
+        paths.append(albedo["texture"])
+for p in paths:
+    assert os.path.isabs(p) and os.path.isfile(p), f"not an absolute path to a file: {p}"
+print(len(paths), "paths")
+PY
+}
+
+# From another folder, so that nothing resolves by accident against the working directory.
+mkdir -p elsewhere
+(cd elsewhere && "$DP" export blender ../proj/scene.json -o ../proj.py >../stdout.txt 2>../stderr.txt)
+RC=$?
+expect_rc 0 "export blender of a project in its own folder"
+expect_stdout "wrote ../proj.py" "the written script"
+check_script proj.py >paths.txt
+grep -qx "4 paths" paths.txt || fail "expected 4 paths (photo, probe, texture, mesh), got: $(cat paths.txt)"
+
+# Quotes, a backslash, non-ASCII letters and a line break in the paths survive the literals.
+odd=$'odd \'q\' "dq" \\ \u00fc\nline'
+oddpy="$odd/x"$'\n'".py"
+cp -r proj "$odd"
+run export blender "$odd/scene.json" -o "$oddpy"
+expect_rc 0 "export blender from a folder with an odd name"
+check_script "$oddpy" >paths.txt
+grep -qx "4 paths" paths.txt || fail "odd names: expected 4 paths, got: $(cat paths.txt)"
+
+run export blender proj/scene.json -o withblend.py --blend out/scene.blend
+expect_rc 2 "--blend into a missing folder"
+expect_stderr "--blend" "the message names --blend"
+mkdir -p out
+run export blender proj/scene.json -o withblend.py --blend out/scene.blend --samples 16
+expect_rc 0 "export blender --blend"
+check_script withblend.py "$PWD/out/scene.blend"
+grep -qx "SAMPLES = 16" withblend.py || fail "--samples 16 is not the script's SAMPLES"
+
+# The bundled sample names Blender's own city probe: it loads where Blender is installed.
+sample_probe=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["probe"]["path"])' \
+    "$SRC/resources/sample/sample.json")
+if [ -f "$sample_probe" ]; then
+    run export blender "$SRC/resources/sample/sample.json" -o sample.py
+    expect_rc 0 "export blender of the bundled sample"
+    check_script sample.py
+else
+    echo "note: $sample_probe is missing (it comes with Blender); the bundled sample was not exported"
+fi
+
+# Bad input: exit 2 naming the file and the field.
+echo '{"schema_version": 1, "photo": ' >broken.json
+expect_refused "invalid JSON" "broken.json" export blender broken.json -o x.py
+write_project nophoto.json "$BALL" "$FLOOR" gone.exr
+expect_refused "missing photo" "photo.path" export blender nophoto.json -o x.py
+[ ! -e x.py ] || fail "a script was written for a bad project"
+expect_refused "not a .py output" "-o" export blender proj/scene.json -o x.txt
+expect_refused "output in a missing folder" "-o" export blender proj/scene.json -o nowhere/x.py
+run make-test-image ball.exr --size 32 32 --value 0.5 0.5 0.5
+sed 's/"probe": {"path": "probe.exr"}/"probe": {"path": "ball.exr", "format": "mirrorball"}/' nophoto.json |
+    sed 's/gone.exr/photo.exr/' >ball.json
+expect_refused "a mirror-ball probe" "probe.format" export blender ball.json -o x.py
+expect_stderr "ball.json" "the message names the project"
+cat >distorted.json <<'JSON'
+{
+  "schema_version": 1, "photo": {"path": "photo.exr"}, "probe": {"path": "probe.exr"},
+  "camera": {"model": "opencv", "fx": 60, "fy": 60, "cx": 31.5, "cy": 23.5,
+             "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "translation": [0, 1, 4],
+             "distortion": [-0.1, 0, 0, 0, 0]},
+  "real": [], "objects": []
+}
+JSON
+expect_refused "lens distortion" "camera.distortion" export blender distorted.json -o x.py
+run export blender
+expect_rc 2 "no project"
+
+blender=${DP_BLENDER:-$(command -v blender || true)}
+if [ -z "$blender" ]; then
+    echo "note: Blender is not installed; the exported scene was not rendered"
+    exit 0
+fi
+
+# The exported scene against ours, at 128 x 72: a ball on a grey floor under a sky with a sun.
+run make-test-image plate.exr --size 128 72 --value 0.5 0.5 0.5
+expect_rc 0 "make-test-image plate"
+write_project small.json "$BALL" "$FLOOR" plate.exr
+sed -i 's/"probe": {"path": "probe.exr"}/"probe": {"path": "probe.exr", "rotation_deg": [0, 30, 0]}/' small.json
+run export blender small.json -o small.py --blend "$PWD/small.blend" --samples 64
+expect_rc 0 "export blender small.json"
+run_blender() {  # run_blender ARGS...: Blender headless; output in blender.txt
+    "$blender" -b --python-exit-code 1 "$@" >blender.txt 2>&1 || {
+        cat blender.txt >&2
+        fail "Blender failed: $*"
+    }
+}
+run_blender --python small.py -- --render cycles.exr --threads 2
+[ -s small.blend ] || fail "the script did not save small.blend (exported with --blend)"
+[ -s cycles.exr ] || fail "the script did not write cycles.exr (--render)"
+run render small.json -o ours.exr --layers --passes 32 --threads 2
+expect_rc 0 "render small.json"
+run reference small.json -o real-only.exr --real-only --spp 16 --threads 2
+expect_rc 0 "reference --real-only small.json"
+
+# masks CYCLES.exr: sets OBJECTS_IOU and SHADOW_IOU against ours.
+masks() {
+    run_blender --factory-startup --python "$SRC/tests/cli/export_blender_masks.py" -- "$1" ours.exr real-only.exr
+    grep objects_iou blender.txt
+    OBJECTS_IOU=$(awk '$1 == "objects_iou" { print $2 }' blender.txt)
+    SHADOW_IOU=$(awk '$1 == "objects_iou" { print $4 }' blender.txt)
+    [ -n "$OBJECTS_IOU" ] && [ -n "$SHADOW_IOU" ] || fail "no IoUs from export_blender_masks.py"
+}
+masks cycles.exr
+awk -v v="$OBJECTS_IOU" 'BEGIN { exit !(v > 0.95) }' || fail "objects' IoU $OBJECTS_IOU <= 0.95"
+awk -v v="$SHADOW_IOU" 'BEGIN { exit !(v > 0.8) }' || fail "shadow's IoU $SHADOW_IOU <= 0.8"
+
+# The comparison can tell: with the probe turned a further 90 degrees in the exported scene
+# only, the sun and so the shadow move, and the shadow's IoU falls.
+sed 's/"rotation_deg": \[0, 30, 0\]/"rotation_deg": [0, 120, 0]/' small.json >turned.json
+run export blender turned.json -o turned.py --samples 64
+expect_rc 0 "export blender turned.json"
+run_blender --python turned.py -- --render turned.exr --threads 2
+masks turned.exr
+awk -v v="$SHADOW_IOU" 'BEGIN { exit !(v < 0.5) }' ||
+    fail "a probe turned by 90 degrees still gives a shadow IoU of $SHADOW_IOU"
+
+# docs/cycles.md's Mapping-node rotation for a scene rebuilt in Blender's axes: the shadow stays
+# where the exported frame puts it; with the sign of the rotation flipped it moves.
+run_blender --factory-startup --python "$SRC/tests/cli/export_blender_mapping.py" -- small.json "$PWD"
+grep documented_iou blender.txt
+DOCUMENTED=$(awk '$1 == "documented_iou" { print $2 }' blender.txt)
+WRONG=$(awk '$1 == "documented_iou" { print $4 }' blender.txt)
+awk -v v="$DOCUMENTED" 'BEGIN { exit !(v > 0.9) }' || fail "documented Mapping rotation: shadow IoU '$DOCUMENTED' <= 0.9"
+awk -v v="$WRONG" 'BEGIN { exit !(v < 0.6) }' || fail "the rotation's sign flipped: shadow IoU '$WRONG' >= 0.6"
+echo "ok"
