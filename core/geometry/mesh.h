@@ -6,7 +6,8 @@
 
 namespace dp {
 
-/// Indexed triangle mesh. `normals` and `uvs` are either empty or one per position.
+/// Indexed triangle mesh. `normals` and `uvs` are either empty or one per position. UVs follow
+/// the renderer's convention: texel row 0 (the top of the image) at v = 0 (Surface::reflectance_at).
 struct TriangleMesh {
     std::vector<vec3> positions;
     std::vector<vec3> normals;
@@ -35,7 +36,8 @@ struct LoadedMesh {
 };
 
 /// Loads every mesh in an OBJ, PLY, glTF 2.0, STL or FBX file through Assimp (node transforms applied),
-/// merged into one mesh. Throws InputError naming the file (and `field`) when the file is missing,
+/// merged into one mesh. The file's UVs (v = 0 at the bottom of the image, as Blender and OpenGL
+/// have it) are turned to the renderer's (v = 0 at the top): u, 1 - v. Throws InputError naming the file (and `field`) when the file is missing,
 /// unreadable, or has no non-degenerate triangle.
 LoadedMesh load_mesh(const std::string& path, const std::string& field = "");
 

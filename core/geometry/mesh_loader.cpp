@@ -79,9 +79,13 @@ struct Collector {
         // Keep one normal per vertex even when this part has none; fill_missing_normals sets them.
         if (part.normals.empty()) part.normals.assign(part.positions.size(), vec3(0.0f));
         out.normals.insert(out.normals.end(), part.normals.begin(), part.normals.end());
+        // Assimp hands over every format's UVs with v = 0 at the bottom of the image (OBJ's and
+        // OpenGL's convention; it flips glTF's to match), while Surface::reflectance_at reads the
+        // image's top row at v = 0: flipped here, once, so a texture painted in Blender reads
+        // upright.
         for (unsigned i = 0; i < src.mNumVertices; ++i) {
             const aiVector3D uv = src.HasTextureCoords(0) ? src.mTextureCoords[0][i] : aiVector3D();
-            out.uvs.emplace_back(uv.x, uv.y);
+            out.uvs.emplace_back(uv.x, 1.0f - uv.y);
         }
         any_uvs = any_uvs || src.HasTextureCoords(0);
 

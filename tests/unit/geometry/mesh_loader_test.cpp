@@ -90,9 +90,10 @@ TEST_F(MeshLoader, LoadsAnObjQuadAsTwoTrianglesWithUvsAndGeneratedNormals) {
     EXPECT_GT(min_winding_agreement(m), 0.999f);
     EXPECT_NEAR(surface_area(m), 4.0, 1e-5);
     for (size_t i = 0; i < m.positions.size(); ++i) {
-        // The file maps u to +X and v to -Z.
+        // The file maps u to +X and v to -Z with v = 0 at the image's bottom; the loaded mesh has
+        // v = 0 at the image's top, so its v runs along +Z.
         EXPECT_NEAR(m.uvs[i].x, 0.5f * (m.positions[i].x + 1.0f), 1e-6f);
-        EXPECT_NEAR(m.uvs[i].y, 0.5f * (1.0f - m.positions[i].z), 1e-6f);
+        EXPECT_NEAR(m.uvs[i].y, 0.5f * (1.0f + m.positions[i].z), 1e-6f);
     }
 }
 
