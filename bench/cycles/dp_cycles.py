@@ -392,6 +392,27 @@ def smooth_normals_like_ours(mesh):
     set_vertex_normals(mesh, normals)
 
 
+# The rotation taking a mesh file's up axis to ours' +Y (core/scene Shape::file_frame), by rows.
+UP_AXIS_ROTATIONS = {
+    "y": ((1, 0, 0), (0, 1, 0), (0, 0, 1)),
+    "z": ((1, 0, 0), (0, 0, 1), (0, -1, 0)),
+    "-y": ((1, 0, 0), (0, -1, 0), (0, 0, -1)),
+    "-z": ((1, 0, 0), (0, 0, -1), (0, 1, 0)),
+}
+
+
+def file_frame(shape, file, field):
+    """A mesh file's coordinates to the shape's local frame: its up axis turned to +Y, then
+    `unit_scale` (the identity for the other shapes)."""
+    if shape.get("type") != "mesh":
+        return Matrix.Identity(4)
+    axis = shape.get("up_axis", "y")
+    if axis not in UP_AXIS_ROTATIONS:
+        raise ConversionError(file, field + ".up_axis", f"unknown up axis '{axis}' (y, z, -y, -z)")
+    scale = float(shape.get("unit_scale", 1.0))
+    return (Matrix(UP_AXIS_ROTATIONS[axis]) * scale).to_4x4()
+
+
 def shape_objects(shape, transform, frame, base_dir, file, field, name):
     """Blender objects for one shape placed by `transform` (ours' conventions)."""
     kind = shape.get("type")
@@ -411,6 +432,7 @@ def shape_objects(shape, transform, frame, base_dir, file, field, name):
         objs = import_mesh(resolve(base_dir, shape["path"]), name, file, field + ".path")
     else:
         raise ConversionError(file, field + ".type", f"unknown shape '{kind}' (plane, box, sphere, mesh)")
+    m = m @ file_frame(shape, file, field)
     for o in objs:
         o.matrix_world = blender_matrix(frame, m)
     return objs

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <system_error>
 
+#include "assets/mesh_units.h"
 #include "assets/scene_checks.h"
 #include "base/euler.h"
 #include "base/text.h"
@@ -241,6 +242,12 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
                                                [&](Entry&) { return load_mesh(path.string(), field); });
                 a.degenerate_triangles_dropped += mesh->dropped_degenerate;
                 meshes[i] = mesh->mesh;
+                // Said on every load: the size depends on the transform, which edits change.
+                const float size =
+                    placed_mesh_size(mesh->bounds_lo, mesh->bounds_hi, list[i].shape, list[i].transform);
+                const std::string why = mesh_size_warning(indexed(name, i, "shape.unit_scale"), list[i].name, size,
+                                                          list[i].shape.unit_scale);
+                if (!why.empty()) a.warnings.push_back(why);
             }
             const Albedo& alb = albedo_of(list[i]);
             if (alb.kind == Albedo::Kind::Texture) {

@@ -36,7 +36,7 @@ void place_shape(const Shape& shape, const Transform& transform, const TriangleM
             if (loaded) mesh = *loaded;
             break;
     }
-    mesh.transform(m);
+    mesh.transform(m * shape.file_frame());  // a mesh file's axes and unit first
     mesh_slot = std::move(mesh);
     s.mesh = &mesh_slot;
 }

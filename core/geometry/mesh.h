@@ -29,10 +29,18 @@ TriangleMesh make_box(const vec3& size);
 TriangleMesh make_uv_sphere(float radius, int segments = 96, int rings = 48);
 
 /// Result of loading a mesh file: the mesh plus how many degenerate (zero-area) triangles were
-/// dropped.
+/// dropped, and what the file says of its units and axes.
 struct LoadedMesh {
     TriangleMesh mesh;
     size_t dropped_degenerate = 0;
+    vec3 bounds_lo{0.0f}, bounds_hi{0.0f};  ///< the mesh's bounds, in the file's frame
+    /// Metres per unit as the file declares it, 0 where it declares none (OBJ, PLY, STL). An FBX
+    /// file's UnitScaleFactor (centimetres per unit) is applied on load, so its mesh is in metres
+    /// whatever unit it was modelled in; glTF 2.0 is in metres by its specification.
+    float declared_unit_m = 0;
+    /// The up axis an FBX file declares ("y", "z", "-y", "-z"; also "x", "-x"), "" where the file
+    /// declares none. Informative: the mesh is not turned.
+    std::string declared_up;
 };
 
 /// Loads every mesh in an OBJ, PLY, glTF 2.0, STL or FBX file through Assimp (node transforms applied),

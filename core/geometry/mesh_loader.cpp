@@ -199,6 +199,33 @@ void keep_documented_readers(Assimp::Importer& importer) {
     }
 }
 
+/// A number in the scene's metadata (FBX's global settings), whatever type the importer stored
+/// it as; false when absent.
+bool metadata_number(const aiScene& scene, const char* key, double& value) {
+    const aiMetadata* meta = scene.mMetaData;
+    if (!meta) return false;
+    for (unsigned i = 0; i < meta->mNumProperties; ++i) {
+        if (std::string(meta->mKeys[i].C_Str()) != key || !meta->mValues[i].mData) continue;
+        const aiMetadataEntry& e = meta->mValues[i];
+        switch (e.mType) {
+            case AI_FLOAT: value = double(*static_cast<const float*>(e.mData)); return true;
+            case AI_DOUBLE: value = *static_cast<const double*>(e.mData); return true;
+            case AI_INT32: value = double(*static_cast<const int32_t*>(e.mData)); return true;
+            case AI_UINT64: value = double(*static_cast<const uint64_t*>(e.mData)); return true;
+            default: return false;
+        }
+    }
+    return false;
+}
+
+/// The format's name as the importer recorded it ("glTF2 Importer", "Autodesk FBX Importer").
+std::string source_format(const aiScene& scene) {
+    const aiMetadata* meta = scene.mMetaData;
+    aiString format;
+    if (meta && meta->Get("SourceAsset_Format", format)) return format.C_Str();
+    return "";
+}
+
 /// The first `n` bytes of the file (fewer if it is shorter).
 std::string file_prefix(const std::string& path, size_t n) {
     std::ifstream in(path, std::ios::binary);
@@ -262,8 +289,30 @@ LoadedMesh load_mesh(const std::string& path, const std::string& field) {
                          std::string("cannot read mesh: ") + importer.GetErrorString());
     }
 
+    // FBX files say how many centimetres a unit is; the mesh is brought to metres here so that
+    // a project's unit_scale means the same for every format.
+    LoadedMesh result;
+    const std::string format = source_format(*scene);
+    double unit_cm = 0;
+    if (format.find("FBX") != std::string::npos && metadata_number(*scene, "UnitScaleFactor", unit_cm)) {
+        if (!(std::isfinite(unit_cm) && unit_cm > 0 && unit_cm < 1e12)) {
+            throw InputError(path, field,
+                             "malformed FBX: UnitScaleFactor (" + std::to_string(unit_cm) +
+                                 " centimetres per unit) is not a positive number");
+        }
+        result.declared_unit_m = float(unit_cm * 0.01);
+        double axis = 0, sign = 1;
+        if (metadata_number(*scene, "UpAxis", axis) && axis >= 0 && axis <= 2) {
+            metadata_number(*scene, "UpAxisSign", sign);
+            result.declared_up = std::string(sign < 0 ? "-" : "") + "xyz"[int(axis)];
+        }
+    } else if (format.find("glTF") != std::string::npos) {
+        result.declared_unit_m = 1;
+    }
+
     Collector c{scene, {}};
-    c.visit(*scene->mRootNode, glm::mat4(1.0f));
+    const float to_metres = unit_cm > 0 ? result.declared_unit_m : 1.0f;
+    c.visit(*scene->mRootNode, glm::mat4(glm::mat3(to_metres)));
     if (c.total_triangles == 0) throw InputError(path, field, "mesh file contains no triangles");
     if (c.out.triangles.empty()) {
         throw InputError(path, field,
@@ -274,8 +323,8 @@ LoadedMesh load_mesh(const std::string& path, const std::string& field) {
     drop_unused_vertices(c.out);
     fill_missing_normals(c.out);
 
-    LoadedMesh result;
     result.mesh = std::move(c.out);
+    result.mesh.bounds(result.bounds_lo, result.bounds_hi);
     result.dropped_degenerate = c.dropped;
     return result;
 }

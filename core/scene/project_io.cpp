@@ -52,10 +52,19 @@ Shape parse_shape(const JsonReader& r, const json& j, const std::string& path) {
             r.check(s.radius > 0, p, "must be > 0 (got " + shortest_decimal(s.radius) + ")");
             break;
         }
-        case Shape::Kind::Mesh:
-            r.object(j, path, {"type", "path"}, ctx);
+        case Shape::Kind::Mesh: {
+            r.object(j, path, {"type", "path", "up_axis", "unit_scale"}, ctx);
             s.mesh_path = r.string(r.required(j, path, "path"), json_join(path, "path"));
+            if (auto* v = r.optional(j, "up_axis"))
+                s.up_axis = r.choice<UpAxis>(*v, json_join(path, "up_axis"), "up axis", kUpAxes);
+            if (auto* v = r.optional(j, "unit_scale")) {
+                const std::string p = json_join(path, "unit_scale");
+                s.unit_scale = r.real(*v, p);
+                r.check(s.unit_scale > 0, p,
+                        "must be > 0 metres per file unit (got " + shortest_decimal(s.unit_scale) + ")");
+            }
             break;
+        }
     }
     return s;
 }
@@ -305,7 +314,10 @@ J write_shape(const Shape& s) {
         case Shape::Kind::Sphere:
             return J{{"type", shape_kind_name(s.kind)}, {"radius", num(s.radius)}};
         case Shape::Kind::Mesh:
-            return J{{"type", shape_kind_name(s.kind)}, {"path", s.mesh_path}};
+            return J{{"type", shape_kind_name(s.kind)},
+                     {"path", s.mesh_path},
+                     {"up_axis", up_axis_name(s.up_axis)},
+                     {"unit_scale", num(s.unit_scale)}};
     }
     return J();
 }
