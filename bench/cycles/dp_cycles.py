@@ -641,6 +641,10 @@ class CyclesScene:
                 if not ob.get("visible", True):
                     continue
                 field = f"objects[{i}]"
+                if ob.get("material_source", "project") != "project":
+                    # Ours would draw the file's own materials; the conversion knows the project's only.
+                    raise ConversionError(project_path, field + ".material_source",
+                                          "the Cycles conversion draws the project's material only: set \"project\"")
                 sphere_frame = frame if is_exact_sphere(ob["shape"], ob.get("transform")) else None
                 mat = object_material(f"object {i}", ob.get("material", {}), base_dir, sphere_frame, project_path,
                                       field + ".material", ob["shape"].get("type") == "mesh")

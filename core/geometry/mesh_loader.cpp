@@ -18,6 +18,7 @@
 #include "base/input_file.h"
 #include "geometry/mesh.h"
 #include "geometry/mesh_file_checks.h"
+#include "geometry/mesh_materials.h"
 
 namespace dp {
 
@@ -43,6 +44,7 @@ bool is_degenerate(const vec3& a, const vec3& b, const vec3& c) {
 
 struct Collector {
     const aiScene* scene;
+    std::vector<bool> made_up;  ///< per Assimp material: one Assimp invented (no file material)
     TriangleMesh out;
     bool any_uvs = false;
     size_t total_triangles = 0;
@@ -88,6 +90,10 @@ struct Collector {
             out.uvs.emplace_back(uv.x, 1.0f - uv.y);
         }
         any_uvs = any_uvs || src.HasTextureCoords(0);
+        const uint32_t material =
+            src.mMaterialIndex < made_up.size() && !made_up[src.mMaterialIndex]
+                ? uint32_t(src.mMaterialIndex)
+                : kNoFileMaterial;
 
         for (const glm::uvec3& t : part.triangles) {
             ++total_triangles;
@@ -96,6 +102,7 @@ struct Collector {
                 continue;
             }
             out.triangles.push_back(t + glm::uvec3(base));
+            out.triangle_materials.push_back(material);
         }
     }
 
@@ -255,6 +262,7 @@ void drop_unused_vertices(TriangleMesh& m) {
         if (uvs) out.uvs.push_back(m.uvs[i]);
     }
     out.triangles = std::move(m.triangles);
+    out.triangle_materials = std::move(m.triangle_materials);
     for (glm::uvec3& t : out.triangles) t = glm::uvec3(remap[t.x], remap[t.y], remap[t.z]);
     m = std::move(out);
 }
@@ -310,7 +318,9 @@ LoadedMesh load_mesh(const std::string& path, const std::string& field) {
         result.declared_unit_m = 1;
     }
 
-    Collector c{scene, {}};
+    Collector c{scene, {}, {}};
+    result.materials =
+        read_file_materials(*scene, path, result.embedded_textures, c.made_up, result.warnings);
     const float to_metres = unit_cm > 0 ? result.declared_unit_m : 1.0f;
     c.visit(*scene->mRootNode, glm::mat4(glm::mat3(to_metres)));
     if (c.total_triangles == 0) throw InputError(path, field, "mesh file contains no triangles");
@@ -325,6 +335,7 @@ LoadedMesh load_mesh(const std::string& path, const std::string& field) {
 
     result.mesh = std::move(c.out);
     result.mesh.bounds(result.bounds_lo, result.bounds_hi);
+    keep_used_materials(result);
     result.dropped_degenerate = c.dropped;
     return result;
 }

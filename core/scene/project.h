@@ -82,14 +82,27 @@ struct RealProxy {
     bool operator==(const RealProxy&) const = default;
 };
 
+/// Where a mesh object's materials come from.
+enum class MaterialSource {
+    Project,  ///< the object's `material`, on every triangle
+    File,     ///< the mesh file's own materials; `material` on the triangles the file gives none
+};
+
 struct VirtualObject {
     std::string name;
     Shape shape;
     Transform transform;
     Material material;
+    MaterialSource material_source = MaterialSource::Project;  ///< meshes only
     bool visible = true;
     bool operator==(const VirtualObject&) const = default;
 };
+
+/// The material sources by the names the project file uses.
+inline constexpr std::pair<const char*, MaterialSource> kMaterialSources[] = {{"project", MaterialSource::Project},
+                                                                             {"file", MaterialSource::File}};
+/// "project" or "file".
+inline const char* material_source_name(MaterialSource s) { return kMaterialSources[int(s)].first; }
 
 struct PhotoSpec {
     std::string path;

@@ -145,10 +145,18 @@ RealProxy parse_real(const JsonReader& r, const json& j, const std::string& path
 }
 
 VirtualObject parse_object(const JsonReader& r, const json& j, const std::string& path) {
-    r.object(j, path, {"name", "shape", "transform", "material", "visible"});
+    r.object(j, path, {"name", "shape", "transform", "material", "material_source", "visible"});
     VirtualObject o;
     o.name = parse_name(r, j, path);
     o.shape = parse_shape(r, r.required(j, path, "shape"), json_join(path, "shape"));
+    if (auto* v = r.optional(j, "material_source")) {
+        const std::string p = json_join(path, "material_source");
+        o.material_source = r.choice<MaterialSource>(*v, p, "material source", kMaterialSources);
+        r.check(o.material_source == MaterialSource::Project || o.shape.kind == Shape::Kind::Mesh,
+                p,
+                "\"file\" takes the materials of a mesh file, and this shape is a " +
+                    std::string(shape_kind_name(o.shape.kind)));
+    }
     if (auto* v = r.optional(j, "transform"))
         o.transform = parse_transform(r, *v, json_join(path, "transform"));
     if (auto* v = r.optional(j, "material"))
@@ -394,11 +402,15 @@ J write_project(const Project& p) {
     }
     doc["objects"] = J::array();
     for (const VirtualObject& o : p.objects) {
-        doc["objects"].push_back(J{{"name", o.name},
-                                   {"shape", write_shape<J>(o.shape)},
-                                   {"transform", write_transform<J>(o.transform)},
-                                   {"material", write_material<J>(o.material)},
-                                   {"visible", o.visible}});
+        J object{{"name", o.name},
+                 {"shape", write_shape<J>(o.shape)},
+                 {"transform", write_transform<J>(o.transform)},
+                 {"material", write_material<J>(o.material)}};
+        // Only a mesh has a file to take materials from.
+        if (o.shape.kind == Shape::Kind::Mesh)
+            object["material_source"] = material_source_name(o.material_source);
+        object["visible"] = o.visible;
+        doc["objects"].push_back(object);
     }
     const RenderSettings& s = p.render;
     J render;

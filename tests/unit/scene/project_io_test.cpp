@@ -47,6 +47,8 @@ TEST_F(ProjectIo, RichProjectLoadsWithEveryField) {
     EXPECT_EQ(p.real[2].shape.unit_scale, 1.0f);
     EXPECT_EQ(p.objects[2].shape.up_axis, UpAxis::Z);
     EXPECT_EQ(p.objects[2].shape.unit_scale, 0.01f);
+    EXPECT_EQ(p.objects[2].material_source, MaterialSource::File);
+    EXPECT_EQ(p.objects[0].material_source, MaterialSource::Project);  // the default
 
     ASSERT_EQ(p.objects.size(), 5u);
     EXPECT_EQ(p.objects[0].material.kind, Material::Kind::Glass);
@@ -146,6 +148,22 @@ TEST_F(ProjectIo, EveryUpAxisAndAUnitScaleRoundTripAndAreWrittenForMeshesOnly) {
         EXPECT_FALSE(doc["objects"][0]["shape"].contains("unit_scale"));
         EXPECT_EQ(parse_project(doc, "memory", dir_), a);
     }
+}
+
+TEST_F(ProjectIo, TheMaterialSourceRoundTripsAndIsWrittenForMeshesOnly) {
+    Project a = load_project(write("rich.json", kRichProject));
+    for (const MaterialSource source : {MaterialSource::Project, MaterialSource::File}) {
+        a.objects[2].material_source = source;
+        const nlohmann::json doc = to_json(a);
+        EXPECT_EQ(doc["objects"][2]["material_source"], material_source_name(source));
+        EXPECT_FALSE(doc["objects"][0].contains("material_source"));  // a sphere has no file
+        EXPECT_EQ(parse_project(doc, "memory", dir_), a);
+    }
+    // An object written before the key existed takes the project's material.
+    nlohmann::json doc = to_json(a);
+    doc["objects"][2].erase("material_source");
+    EXPECT_EQ(parse_project(doc, "memory", dir_).objects[2].material_source,
+              MaterialSource::Project);
 }
 
 TEST_F(ProjectIo, SavedFileIsPrettyWithPathsAsStored) {
