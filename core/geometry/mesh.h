@@ -86,4 +86,9 @@ struct LoadedMesh {
 /// unreadable, or has no non-degenerate triangle.
 LoadedMesh load_mesh(const std::string& path, const std::string& field = "");
 
+/// The file name extensions load_mesh reads, lower case without the dot, sorted: those of the
+/// Assimp readers it keeps (OBJ, PLY, glTF 2.0, STL, FBX), as Assimp itself lists them, so that
+/// what the studio offers is exactly what the loader takes.
+const std::vector<std::string>& mesh_file_extensions();
+
 }  // namespace dp

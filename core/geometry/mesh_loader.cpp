@@ -188,7 +188,8 @@ void restate_primitive_types(aiScene& scene, const std::string& path, const std:
 /// Leaves `importer` only the readers of the formats the project documents (OBJ, PLY, glTF
 /// 2.0, STL, FBX). Assimp falls back to reading a file by its content when the reader for its
 /// extension declines it, and some of its rarer readers overrun their buffers on what they are
-/// handed then.
+/// handed then. The one list of the formats load_mesh reads (mesh_file_extensions asks the
+/// readers kept here).
 void keep_documented_readers(Assimp::Importer& importer) {
     static const char* const kKept[] = {"obj", "ply", "gltf", "glb", "stl", "fbx"};
     std::vector<Assimp::BaseImporter*> dropped;
@@ -265,6 +266,27 @@ void drop_unused_vertices(TriangleMesh& m) {
     out.triangle_materials = std::move(m.triangle_materials);
     for (glm::uvec3& t : out.triangles) t = glm::uvec3(remap[t.x], remap[t.y], remap[t.z]);
     m = std::move(out);
+}
+
+const std::vector<std::string>& mesh_file_extensions() {
+    static const std::vector<std::string> extensions = [] {
+        Assimp::Importer importer;
+        keep_documented_readers(importer);
+        aiString list;  // "*.obj;*.ply;..."
+        importer.GetExtensionList(list);
+        std::vector<std::string> out;
+        std::istringstream items(list.C_Str());
+        for (std::string item; std::getline(items, item, ';');) {
+            if (item.rfind("*.", 0) == 0) item = item.substr(2);
+            std::transform(item.begin(), item.end(), item.begin(),
+                           [](unsigned char ch) { return char(std::tolower(ch)); });
+            if (!item.empty() && std::find(out.begin(), out.end(), item) == out.end())
+                out.push_back(item);
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    }();
+    return extensions;
 }
 
 LoadedMesh load_mesh(const std::string& path, const std::string& field) {
