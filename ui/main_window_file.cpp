@@ -21,6 +21,7 @@
 #include "geometry/mesh.h"
 #include "image/image_io.h"
 #include "main_window.h"
+#include "mesh_files.h"
 #include "new_project_dialog.h"
 #include "placement.h"
 #include "project_edit.h"
@@ -38,7 +39,6 @@ namespace dp::ui {
 
 namespace {
 
-const QStringList kMeshSuffixes = {"obj", "ply", "gltf", "glb"};
 const QStringList kImageSuffixes = {"exr", "hdr", "png", "jpg", "jpeg", "tif", "tiff"};
 
 }  // namespace
@@ -217,34 +217,46 @@ bool MainWindow::importMesh(const QString& path) {
         error(tr("Cannot import mesh"), QString::fromUtf8(e.what()));
         return false;
     }
-    vec3 lo, hi;
-    mesh.mesh.bounds(lo, hi);
-    const float size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9f});
+    VirtualObject o;
+    o.shape.kind = Shape::Kind::Mesh;
+    // A file that brings its materials is drawn with them; the project's material stays for
+    // triangles without one (and to switch back to).
+    if (mesh.has_file_materials()) o.material_source = MaterialSource::File;
+    o.shape.mesh_path = QFileInfo(path).absoluteFilePath().toStdString();
+    // An FBX file's up axis, where it names one of ours (its unit is applied on load).
+    for (const auto& [axis_name, axis] : kUpAxes)
+        if (mesh.declared_up == axis_name) o.shape.up_axis = axis;
+    const vec3 extent = mesh.bounds_hi - mesh.bounds_lo;
+    const float size = std::max({extent.x, extent.y, extent.z, 1e-9f});
     Project p = doc_->project();
+    o.name = unique_name(p, QFileInfo(path).baseName().toStdString());
     const Camera camera = placementCamera();
-    // The file's unit from its size; a model still far larger (or smaller) than what the view
-    // shows is brought to the size of a new object in this view.
-    const UnitGuess unit = guess_mesh_unit(size);
-    float scale = unit.scale;
+    // The file's unit (unit_scale): as the file declares it (FBX, glTF), else guessed from its
+    // size. A model still far larger (or smaller) than what the view shows is brought to the
+    // size of a new object in this view by its transform's scale.
+    const bool declared = mesh.declared_unit_m > 0;
+    const UnitGuess unit = declared ? UnitGuess{} : guess_mesh_unit(size);
+    o.shape.unit_scale = unit.scale;
+    const float metres = size * unit.scale;
+    float scale = 1.0f;
     const VisibleGround ground = visible_ground(p, camera);
     const float fit = view_object_size(p, camera);
     const QString name = QFileInfo(path).fileName();
-    QString note = tr("Imported %1: %2 units across, read as %3 (%4 m)")
-                       .arg(name)
-                       .arg(double(size), 0, 'g', 4)
-                       .arg(tr(unit.unit))
-                       .arg(double(size * scale), 0, 'g', 3);
+    QString note = declared ? tr("Imported %1: %2 m across (the file's own unit)")
+                                  .arg(name)
+                                  .arg(double(size), 0, 'g', 4)
+                            : tr("Imported %1: %2 units across, read as %3 (%4 m)")
+                                  .arg(name)
+                                  .arg(double(size), 0, 'g', 4)
+                                  .arg(tr(unit.unit))
+                                  .arg(double(metres), 0, 'g', 3);
     const float largest = ground.valid ? ground.extent : 10.0f * fit;
-    if (size * scale > largest || size * scale < 0.02f * fit) {
-        scale = fit / size;
+    if (metres > largest || metres < 0.02f * fit) {
+        scale = fit / metres;
         note += tr("; %1 than the view, scaled to %2 m")
-                    .arg(size * unit.scale > largest ? tr("far larger") : tr("far smaller"))
+                    .arg(metres > largest ? tr("far larger") : tr("far smaller"))
                     .arg(double(fit), 0, 'g', 3);
     }
-    VirtualObject o;
-    o.name = unique_name(p, QFileInfo(path).baseName().toStdString());
-    o.shape.kind = Shape::Kind::Mesh;
-    o.shape.mesh_path = QFileInfo(path).absoluteFilePath().toStdString();
     o.transform.scale = vec3(scale);
     place_free(p, o, view_centre_point(p, camera), &camera);
     p.objects.push_back(o);
@@ -309,8 +321,8 @@ void MainWindow::exportDialog() {
 }
 
 void MainWindow::importDialog() {
-    const QString f = QFileDialog::getOpenFileName(this, tr("Import mesh"), QString(),
-                                                   tr("Meshes (*.obj *.ply *.gltf *.glb)"));
+    const QString f =
+        QFileDialog::getOpenFileName(this, tr("Import mesh"), QString(), mesh_file_filter());
     if (!f.isEmpty()) importMesh(f);
 }
 
@@ -328,7 +340,7 @@ void MainWindow::dropEvent(QDropEvent* e) {
         }
         else if (suffix == "fspy")
             importFspy(f);
-        else if (kMeshSuffixes.contains(suffix))
+        else if (is_mesh_file(f))
             importMesh(f);
         else if (kImageSuffixes.contains(suffix))
             images << f;

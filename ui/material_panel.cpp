@@ -38,6 +38,16 @@ void paint_swatch(QPushButton* b, const QColor& c) {
 
 MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
     auto* form = new QFormLayout(this);
+    form_ = form;
+    source_ = new QComboBox;
+    source_->addItems({tr("This material"), tr("The mesh file's")});
+    source_->setToolTip(tr("Draw the mesh with the materials of its file, or with this one"));
+    form->addRow(tr("Materials"), source_);
+    sourceNote_ =
+        new QLabel(tr("Triangles with a material in the file are drawn with it; the material "
+                      "below covers the others."));
+    sourceNote_->setWordWrap(true);
+    form->addRow(sourceNote_);
     kind_ = new QComboBox;
     kind_->addItems({tr("Diffuse"), tr("Mirror"), tr("Glass")});
     kind_->setToolTip(tr("Kind of material of the selected object"));
@@ -59,6 +69,13 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
         Project p = doc_->project();
         p.objects[size_t(sel)].material.kind = Material::Kind(k);
         doc_->edit(tr("Change material"), p);
+    });
+    connect(source_, &QComboBox::currentIndexChanged, this, [this](int k) {
+        const int sel = doc_->selected();
+        if (refreshing_ || sel < 0) return;
+        Project p = doc_->project();
+        p.objects[size_t(sel)].material_source = MaterialSource(k);
+        doc_->edit(tr("Change material source"), p);
     });
     connect(colour_, &QPushButton::clicked, this, [this] { pickColour(false); });
     connect(tint_, &QPushButton::clicked, this, [this] { pickColour(true); });
@@ -123,8 +140,16 @@ void MaterialPanel::refresh() {
     refreshing_ = true;
     const int sel = doc_->selected();
     setEnabled(sel >= 0);
+    form_->setRowVisible(source_, false);
+    form_->setRowVisible(sourceNote_, false);
     if (sel >= 0) {
-        const Material& m = doc_->project().objects[size_t(sel)].material;
+        const VirtualObject& o = doc_->project().objects[size_t(sel)];
+        const Material& m = o.material;
+        // Only a mesh has a file to take materials from.
+        const bool mesh = o.shape.kind == Shape::Kind::Mesh;
+        form_->setRowVisible(source_, mesh);
+        form_->setRowVisible(sourceNote_, mesh && o.material_source == MaterialSource::File);
+        source_->setCurrentIndex(int(o.material_source));
         kind_->setCurrentIndex(int(m.kind));
         paint_swatch(colour_, to_qcolor(m.albedo.rgb));
         paint_swatch(tint_, to_qcolor(m.tint));

@@ -12,14 +12,17 @@ namespace dp::ui {
 class Document;
 
 /// The selected object's material: kind, diffuse colour (colour picker), mirror reflectance,
-/// glass index of refraction and tint. Sliders are live: a stroke is one undo step and renders
-/// quick passes until released.
+/// glass index of refraction and tint; for a mesh, whether its file's own materials are used
+/// (with a note saying what this material then covers). Sliders are live: a stroke is one undo
+/// step and renders quick passes until released.
 class MaterialPanel : public QWidget {
     Q_OBJECT
 public:
     explicit MaterialPanel(Document* doc, QWidget* parent = nullptr);
 
     QSlider* iorSlider() const { return ior_; }
+    QComboBox* sourceBox() const { return source_; }
+    QLabel* sourceNote() const { return sourceNote_; }
     /// Sets the diffuse colour as the colour dialog would (sRGB).
     void setDiffuseColour(const QColor& colour);
 
@@ -35,7 +38,9 @@ private:
     void pickColour(bool tint);
 
     Document* doc_;
-    QComboBox* kind_;
+    QFormLayout* form_;
+    QComboBox *kind_, *source_;
+    QLabel* sourceNote_;
     QPushButton *colour_, *tint_;
     QSlider *reflectance_, *ior_;
     QLabel *reflectanceValue_, *iorValue_;

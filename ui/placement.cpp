@@ -125,8 +125,15 @@ bool local_bounds(const Project& project, const VirtualObject& o, vec3& lo, vec3
             return false;
         }
     }
-    lo = it->second.first;
-    hi = it->second.second;
+    // The file's bounds in the shape's frame: its up axis turned to +Y and its unit applied.
+    const glm::mat4 frame = o.shape.file_frame();
+    lo = vec3(INFINITY);
+    hi = vec3(-INFINITY);
+    for (const vec3& c : corners(it->second.first, it->second.second)) {
+        const vec3 p = vec3(frame * glm::vec4(c, 1.0f));
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
     return true;
 }
 

@@ -9,7 +9,10 @@ namespace dp::ui {
 namespace {
 
 bool same_geometry(const VirtualObject& a, const VirtualObject& b) {
-    return a.shape == b.shape && a.transform == b.transform && a.visible == b.visible;
+    // The material source picks which textures are loaded with the assets: a rebuild, as for
+    // a texture.
+    return a.shape == b.shape && a.transform == b.transform && a.visible == b.visible &&
+           a.material_source == b.material_source;
 }
 
 }  // namespace
@@ -81,7 +84,7 @@ void bounding_sphere(const VirtualObject& o, vec3& center, float& radius, float 
             radius = 0.5f * std::hypot(o.shape.size.x * s.x, o.shape.size.z * s.z);
             break;
         case Shape::Kind::Mesh:
-            radius = mesh_radius * smax;
+            radius = mesh_radius * o.shape.unit_scale * smax;
             break;
     }
 }

@@ -31,6 +31,11 @@ std::string shape_text(const Shape& s, const TriangleMesh* mesh) {
         case Shape::Kind::Mesh: {
             std::string t = "mesh '" + s.mesh_path + "'";
             if (mesh) t += " (" + std::to_string(mesh->triangle_count()) + " triangles)";
+            if (s.up_axis != UpAxis::Y) t += std::string(", up axis ") + up_axis_name(s.up_axis);
+            if (s.unit_scale != 1.0f) {
+                std::snprintf(buf, sizeof(buf), ", unit_scale %g", double(s.unit_scale));
+                t += buf;
+            }
             return t;
         }
     }
@@ -167,11 +172,20 @@ int run_info(const std::string& project_path, bool json) {
     std::printf("virtual objects: %zu\n", p.objects.size());
     for (size_t i = 0; i < p.objects.size(); ++i) {
         const VirtualObject& o = p.objects[i];
-        std::printf("  %s: %s, %s%s%s\n", object_label(o.name, "objects", i).c_str(),
-                    shape_text(o.shape, i < a.object_meshes.size() ? &a.object_meshes[i] : nullptr)
-                        .c_str(),
-                    material_text(o.material, a.object_textures[i]).c_str(),
-                    o.visible ? "" : " (hidden)", transform_text(o.transform).c_str());
+        const std::vector<FileMaterialAsset>* file =
+            i < a.object_file_materials.size() && !a.object_file_materials[i].empty()
+                ? &a.object_file_materials[i]
+                : nullptr;
+        std::printf(
+            "  %s: %s, %s%s%s%s\n", object_label(o.name, "objects", i).c_str(),
+            shape_text(o.shape, i < a.object_meshes.size() ? &a.object_meshes[i] : nullptr).c_str(),
+            file ? "materials from the file, elsewhere " : "",
+            material_text(o.material, a.object_textures[i]).c_str(), o.visible ? "" : " (hidden)",
+            transform_text(o.transform).c_str());
+        if (file)
+            for (const FileMaterialAsset& f : *file)
+                std::printf("    file material '%s': %s\n", f.name.c_str(),
+                            material_text(f.material, f.texture).c_str());
     }
     print_render_settings(p.render);
     std::printf("scene scale %g\n", scene->scale());

@@ -392,6 +392,27 @@ def smooth_normals_like_ours(mesh):
     set_vertex_normals(mesh, normals)
 
 
+# The rotation taking a mesh file's up axis to ours' +Y (core/scene Shape::file_frame), by rows.
+UP_AXIS_ROTATIONS = {
+    "y": ((1, 0, 0), (0, 1, 0), (0, 0, 1)),
+    "z": ((1, 0, 0), (0, 0, 1), (0, -1, 0)),
+    "-y": ((1, 0, 0), (0, -1, 0), (0, 0, -1)),
+    "-z": ((1, 0, 0), (0, 0, -1), (0, 1, 0)),
+}
+
+
+def file_frame(shape, file, field):
+    """A mesh file's coordinates to the shape's local frame: its up axis turned to +Y, then
+    `unit_scale` (the identity for the other shapes)."""
+    if shape.get("type") != "mesh":
+        return Matrix.Identity(4)
+    axis = shape.get("up_axis", "y")
+    if axis not in UP_AXIS_ROTATIONS:
+        raise ConversionError(file, field + ".up_axis", f"unknown up axis '{axis}' (y, z, -y, -z)")
+    scale = float(shape.get("unit_scale", 1.0))
+    return (Matrix(UP_AXIS_ROTATIONS[axis]) * scale).to_4x4()
+
+
 def shape_objects(shape, transform, frame, base_dir, file, field, name):
     """Blender objects for one shape placed by `transform` (ours' conventions)."""
     kind = shape.get("type")
@@ -411,6 +432,7 @@ def shape_objects(shape, transform, frame, base_dir, file, field, name):
         objs = import_mesh(resolve(base_dir, shape["path"]), name, file, field + ".path")
     else:
         raise ConversionError(file, field + ".type", f"unknown shape '{kind}' (plane, box, sphere, mesh)")
+    m = m @ file_frame(shape, file, field)
     for o in objs:
         o.matrix_world = blender_matrix(frame, m)
     return objs
@@ -429,10 +451,11 @@ def node_material(name):
     return mat, mat.node_tree.nodes, mat.node_tree.links, out
 
 
-def texture_albedo(nodes, links, tex_path, sphere_frame, file, field):
+def texture_albedo(nodes, links, tex_path, sphere_frame, file, field, file_uvs=False):
     """A node giving a texture's albedo clamped to [0, 0.98], looked up as ours looks it up:
     by the mesh's UVs, or on an exact sphere (`sphere_frame`: the scene's blender_from_ours) by
-    the direction from its centre."""
+    the direction from its centre. `file_uvs`: the UVs came from a mesh file, whose v ours
+    flips on load, so Blender's own lookup of the imported UVs already agrees."""
     tex = nodes.new("ShaderNodeTexImage")
     tex.image = load_linear_image(tex_path, file, field, os.path.basename(tex_path))
     tex.interpolation = "Linear"  # ours: bilinear between texel centres, clamped at the edges
@@ -481,6 +504,9 @@ def texture_albedo(nodes, links, tex_path, sphere_frame, file, field):
         links.new(u.outputs["Value"], comb.inputs["X"])
         links.new(v.outputs["Value"], comb.inputs["Y"])
         links.new(comb.outputs["Vector"], tex.inputs["Vector"])
+    elif file_uvs:
+        uv = nodes.new("ShaderNodeUVMap")
+        links.new(uv.outputs["UV"], tex.inputs["Vector"])
     else:
         # Ours reads texture row v * H from the top, Blender's from the bottom: v -> 1 - v.
         uv = nodes.new("ShaderNodeUVMap")
@@ -501,7 +527,7 @@ def texture_albedo(nodes, links, tex_path, sphere_frame, file, field):
     return hi.outputs["Vector"]
 
 
-def diffuse_material(name, albedo, base_dir, sphere_frame, file, field):
+def diffuse_material(name, albedo, base_dir, sphere_frame, file, field, file_uvs=False):
     mat, nodes, links, out = node_material(name)
     bsdf = nodes.new("ShaderNodeBsdfDiffuse")
     bsdf.inputs["Roughness"].default_value = 0.0  # Lambertian, two-sided as ours
@@ -510,7 +536,8 @@ def diffuse_material(name, albedo, base_dir, sphere_frame, file, field):
         bsdf.inputs["Color"].default_value = (*rgb, 1.0)
     elif isinstance(albedo, dict) and "texture" in albedo:
         path = resolve(base_dir, albedo["texture"])
-        links.new(texture_albedo(nodes, links, path, sphere_frame, file, field + ".texture"), bsdf.inputs["Color"])
+        links.new(texture_albedo(nodes, links, path, sphere_frame, file, field + ".texture", file_uvs),
+                  bsdf.inputs["Color"])
     elif albedo == "estimate":
         raise ConversionError(file, field, "'estimate' is resolved by diffphoton at load time; write the "
                               "estimated [r, g, b] into the project for Cycles")
@@ -520,11 +547,11 @@ def diffuse_material(name, albedo, base_dir, sphere_frame, file, field):
     return mat
 
 
-def object_material(name, m, base_dir, sphere_frame, file, field):
+def object_material(name, m, base_dir, sphere_frame, file, field, file_uvs=False):
     kind = m.get("type", "diffuse")
     if kind == "diffuse":
         return diffuse_material(name, m.get("albedo", [0.5, 0.5, 0.5]), base_dir, sphere_frame, file,
-                                field + ".albedo")
+                                field + ".albedo", file_uvs)
     mat, nodes, links, out = node_material(name)
     if kind == "mirror":
         # Ours: reflectance times a perfect reflection, no Fresnel, two-sided: a sharp Glossy.
@@ -609,7 +636,7 @@ class CyclesScene:
             field = f"real[{i}]"
             sphere_frame = frame if is_exact_sphere(r["shape"], r.get("transform")) else None
             mat = diffuse_material(f"real {i}", r.get("albedo", [0.5, 0.5, 0.5]), base_dir, sphere_frame,
-                                   project_path, field + ".albedo")
+                                   project_path, field + ".albedo", r["shape"].get("type") == "mesh")
             for o in shape_objects(r["shape"], r.get("transform"), frame, base_dir, project_path, field + ".shape",
                                    f"real {i} {r.get('name', '')}"):
                 o.data.materials.append(mat)
@@ -620,9 +647,13 @@ class CyclesScene:
                 if not ob.get("visible", True):
                     continue
                 field = f"objects[{i}]"
+                if ob.get("material_source", "project") != "project":
+                    # Ours would draw the file's own materials; the conversion knows the project's only.
+                    raise ConversionError(project_path, field + ".material_source",
+                                          "the Cycles conversion draws the project's material only: set \"project\"")
                 sphere_frame = frame if is_exact_sphere(ob["shape"], ob.get("transform")) else None
                 mat = object_material(f"object {i}", ob.get("material", {}), base_dir, sphere_frame, project_path,
-                                      field + ".material")
+                                      field + ".material", ob["shape"].get("type") == "mesh")
                 for o in shape_objects(ob["shape"], ob.get("transform"), frame, base_dir, project_path,
                                        field + ".shape", f"object {i} {ob.get('name', '')}"):
                     o.data.materials.append(mat)

@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <system_error>
 
+#include "assets/file_materials.h"
+#include "assets/mesh_units.h"
 #include "assets/scene_checks.h"
+#include "base/error.h"
 #include "base/euler.h"
 #include "base/text.h"
 #include "image/image_io.h"
@@ -243,6 +246,12 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
                                                [&](Entry&) { return load_mesh(path.string(), field); });
                 a.degenerate_triangles_dropped += mesh->dropped_degenerate;
                 meshes[i] = mesh->mesh;
+                // Said on every load: the size depends on the transform, which edits change.
+                const float size =
+                    placed_mesh_size(mesh->bounds_lo, mesh->bounds_hi, list[i].shape, list[i].transform);
+                const std::string why = mesh_size_warning(indexed(name, i, "shape.unit_scale"), list[i].name, size,
+                                                          list[i].shape.unit_scale);
+                if (!why.empty()) a.warnings.push_back(why);
             }
             const Albedo& alb = albedo_of(list[i]);
             if (alb.kind == Albedo::Kind::Texture) {
@@ -263,6 +272,18 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
               [](const RealProxy& r) -> const Albedo& { return r.albedo; });
     load_list(project.objects, "objects", a.object_meshes, a.object_textures,
               [](const VirtualObject& o) -> const Albedo& { return o.material.albedo; });
+    a.object_file_materials.resize(project.objects.size());
+    for (size_t i = 0; i < project.objects.size(); ++i) {
+        const VirtualObject& o = project.objects[i];
+        if (o.shape.kind != Shape::Kind::Mesh || o.material_source != MaterialSource::File)
+            continue;
+        const fs::path path = project.resolve(o.shape.mesh_path);
+        const std::string field = indexed("objects", i, "shape.path");
+        // Loaded (and cached) by load_list just now.
+        auto mesh = cached<LoadedMesh>("mesh|" + path.string(), path,
+                                       [&](Entry&) { return load_mesh(path.string(), field); });
+        a.object_file_materials[i] = file_materials(*mesh, path, field, a);
+    }
     SceneAssets head;
     report(photo_key(project), head);
     report(probe_key(project), head);
@@ -271,6 +292,73 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
     if (a.degenerate_triangles_dropped > 0)
         a.warnings.push_back(std::to_string(a.degenerate_triangles_dropped) + " zero-area triangles dropped");
     return a;
+}
+
+std::vector<FileMaterialAsset> AssetLibrary::file_materials(const LoadedMesh& mesh,
+                                                            const fs::path& mesh_path,
+                                                            const std::string& field,
+                                                            SceneAssets& a) {
+    for (const std::string& w : mesh.warnings) a.warnings.push_back(field + ": " + w);
+    std::vector<FileMaterialAsset> out;
+    for (const FileMaterial& f : mesh.materials) {
+        const bool embedded =
+            f.embedded_texture >= 0 && size_t(f.embedded_texture) < mesh.embedded_textures.size();
+        const std::string label = embedded ? shorten_path(mesh_path.filename().string()) +
+                                                 " (embedded texture " +
+                                                 std::to_string(f.embedded_texture) + ")"
+                                           : f.texture;
+        FileMaterialAsset asset{
+            f.name, material_from_file(f, embedded || !f.texture.empty() ? label : ""), {}};
+        if (asset.material.kind != Material::Kind::Diffuse ||
+            asset.material.albedo.kind != Albedo::Kind::Texture) {
+            out.push_back(std::move(asset));
+            continue;
+        }
+        // glTF's base colour texture is multiplied by its base colour: the product is cached.
+        const vec3 factor =
+            f.texture_times_colour ? glm::clamp(f.colour, vec3(0.0f), vec3(1.0f)) : vec3(1.0f);
+        char tag[96];
+        std::snprintf(tag, sizeof(tag), "|%.9g,%.9g,%.9g", double(factor.x), double(factor.y),
+                      double(factor.z));
+        const std::string key =
+            (embedded ? "embedded|" + mesh_path.string() + "|" + std::to_string(f.embedded_texture)
+                      : "texture|" + f.texture) +
+            tag;
+        try {
+            asset.texture =
+                *cached<Image>(key, embedded ? mesh_path : fs::path(f.texture), [&](Entry& e) {
+                    ImageLoadReport report;
+                    Image texture =
+                        embedded ? decode_embedded_texture(
+                                       mesh.embedded_textures[size_t(f.embedded_texture)],
+                                       f.embedded_texture, mesh_path.string(), field, &report)
+                                 : load_image(f.texture, field, &report);
+                    e.non_finite = report.non_finite_replaced;
+                    if (e.non_finite > 0)
+                        e.warnings.push_back(
+                            shorten_path(label) + ": " + std::to_string(e.non_finite) +
+                            " NaN/Inf values replaced by 0 (field '" + field + "')");
+                    check_albedo_values(
+                        texture,
+                        field + " material '" + f.name + "' texture '" + shorten_path(label) + "'",
+                        e.warnings);
+                    if (factor != vec3(1.0f))
+                        for (size_t k = 0; k < texture.size(); ++k) texture[k] *= factor;
+                    return texture;
+                });
+            report(key, a);
+        } catch (const InputError& e) {
+            // A texture path from another machine is common in files passed around: the
+            // material's colour stands in, and the warning says which file is missing.
+            a.warnings.push_back(field + ": material '" + f.name +
+                                 "': its texture cannot be read (" + e.what() +
+                                 "); its colour is used");
+            asset.material.albedo.kind = Albedo::Kind::Constant;
+            asset.material.albedo.texture_path.clear();
+        }
+        out.push_back(std::move(asset));
+    }
+    return out;
 }
 
 std::vector<std::string> AssetLibrary::warnings(const Project& project) {

@@ -60,6 +60,11 @@ private:
     std::shared_ptr<const T> cached(const std::string& key, const std::filesystem::path& path, Make&& make);
     /// Adds what decoding `key` found to `assets` (its warnings and replaced NaN/Inf).
     void report(const std::string& key, SceneAssets& assets);
+    /// The materials of `mesh` (read from `mesh_path`, named in the project by `field`) mapped
+    /// onto ours, their textures decoded; a texture that cannot be read leaves its material its
+    /// colour, with a warning in `assets`.
+    std::vector<FileMaterialAsset> file_materials(const LoadedMesh& mesh, const std::filesystem::path& mesh_path,
+                                                  const std::string& field, SceneAssets& assets);
 
     std::mutex mutex_;
     std::map<std::string, Entry> entries_;

@@ -36,9 +36,19 @@ void place_shape(const Shape& shape, const Transform& transform, const TriangleM
             if (loaded) mesh = *loaded;
             break;
     }
-    mesh.transform(m);
+    mesh.transform(m * shape.file_frame());  // a mesh file's axes and unit first
     mesh_slot = std::move(mesh);
     s.mesh = &mesh_slot;
+}
+
+/// Some surface, or part of one, transmits light (glass).
+bool any_transmits(const std::vector<Surface>& surfaces) {
+    for (const Surface& s : surfaces) {
+        if (s.transmits()) return true;
+        for (const Surface& p : s.parts)
+            if (p.transmits()) return true;
+    }
+    return false;
 }
 
 PlacedShape placed(const Surface& s, bool present) {
@@ -76,6 +86,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets, std::shared
         lit_ = std::make_shared<const LitProbe>(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg),
                                                 project_.probe.gain());
     place_surfaces();
+    has_transmissive_ = any_transmits(virtual_surfaces_);
     check_extent();
     check_camera();
     std::vector<PlacedShape> real, virt;
@@ -102,8 +113,19 @@ void RenderScene::place_surfaces() {
             s.texture = &assets_.object_textures[i];
         const TriangleMesh* loaded = i < assets_.object_meshes.size() ? &assets_.object_meshes[i] : nullptr;
         place_shape(o.shape, o.transform, loaded, s, virtual_world_meshes_[i]);
-        if (s.transmits()) has_transmissive_ = true;
-        virtual_surfaces_.push_back(s);
+        // A mesh drawn with its file's materials: a part per material, found per triangle.
+        if (o.material_source == MaterialSource::File && s.mesh &&
+            !s.mesh->triangle_materials.empty() && i < assets_.object_file_materials.size()) {
+            const Surface base = s;
+            for (const FileMaterialAsset& f : assets_.object_file_materials[i]) {
+                Surface part = base;
+                part.material = f.material;
+                part.albedo = f.material.albedo.rgb;
+                part.texture = f.texture.empty() ? nullptr : &f.texture;
+                s.parts.push_back(std::move(part));
+            }
+        }
+        virtual_surfaces_.push_back(std::move(s));
     }
     const auto& real = project_.real;
     real_world_meshes_.resize(real.size());
@@ -225,15 +247,19 @@ void RenderScene::update_materials(const Project& project) {
         project_.objects[i].material = project.objects[i].material;
         virtual_surfaces_[i].material = project.objects[i].material;
         virtual_surfaces_[i].albedo = project.objects[i].material.albedo.rgb;
+        // Parts keep their file materials: only the triangles without one take the project's.
     }
-    has_transmissive_ = std::any_of(virtual_surfaces_.begin(), virtual_surfaces_.end(),
-                                    [](const Surface& s) { return s.transmits(); });
+    has_transmissive_ = any_transmits(virtual_surfaces_);
 }
 
 Hit RenderScene::to_hit(const ShapeHit& h) const {
     Hit hit;
     static_cast<ShapeHit&>(hit) = h;
-    if (h) hit.surface = h.is_virtual ? &virtual_surfaces_[size_t(h.index)] : &real_surfaces_[size_t(h.index)];
+    if (h) {
+        const Surface& s =
+            h.is_virtual ? virtual_surfaces_[size_t(h.index)] : real_surfaces_[size_t(h.index)];
+        hit.surface = &s.part(h.prim);
+    }
     return hit;
 }
 

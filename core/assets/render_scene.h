@@ -13,6 +13,14 @@
 
 namespace dp {
 
+/// A material of a mesh file mapped onto ours (material_from_file), with its texture decoded
+/// (empty for none).
+struct FileMaterialAsset {
+    std::string name;
+    Material material;
+    Image texture;
+};
+
 /// Everything loaded from disk for a project: the linear photo, the lat-long probe, meshes.
 /// Kept apart from RenderScene so tests can build scenes from images made in memory.
 struct SceneAssets {
@@ -22,6 +30,9 @@ struct SceneAssets {
     std::vector<TriangleMesh> object_meshes;  ///< one per project.objects entry (empty for spheres)
     std::vector<Image> real_textures;         ///< one per real entry (empty unless Texture)
     std::vector<Image> object_textures;       ///< one per object (empty unless Texture)
+    /// One per object: its mesh file's materials, by the indices of the mesh's
+    /// triangle_materials, where its material_source is "file" (empty otherwise).
+    std::vector<std::vector<FileMaterialAsset>> object_file_materials;
     size_t non_finite_replaced = 0;           ///< NaN/Inf channels replaced (on load, or by RenderScene)
     size_t degenerate_triangles_dropped = 0;
     std::vector<std::string> warnings;
@@ -53,6 +64,16 @@ struct Surface {
     vec3 sphere_center{0};
     float sphere_radius = 0;
     const TriangleMesh* mesh = nullptr;  ///< world-space mesh (null for analytic spheres)
+    /// A mesh drawn with its file's materials: one surface per file material, the same but for
+    /// its material and texture. Triangles without a file material are drawn with this one.
+    std::vector<Surface> parts;
+
+    /// The surface triangle `prim` of the mesh is drawn with: its file material's part, or this.
+    const Surface& part(int prim) const {
+        if (parts.empty() || prim < 0 || size_t(prim) >= mesh->triangle_materials.size()) return *this;
+        const uint32_t m = mesh->triangle_materials[size_t(prim)];
+        return m < parts.size() ? parts[m] : *this;
+    }
 
     /// Diffuse reflectance at a hit (texture lookup when there is one), clamped to [0, 0.98].
     vec3 reflectance_at(const vec2& uv) const;

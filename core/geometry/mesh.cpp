@@ -61,7 +61,9 @@ void add_quad(TriangleMesh& mesh, const vec3 (&corners)[4], const vec3& n) {
 TriangleMesh make_plane(float size_x, float size_z) {
     const float hx = 0.5f * size_x, hz = 0.5f * size_z;
     TriangleMesh mesh;
-    // u runs along +X and v along -Z, so the texture reads upright when viewed from +Y with -Z up.
+    // u runs along +X and v along -Z; the renderer reads texel row 0 (the image's top) at v = 0,
+    // so the image's top edge lies along +Z (docs/reconstruction.md, "Texture layout"). Mesh
+    // files are turned to this convention on load, built-in shapes are written in it.
     // The order (-x,+z), (+x,+z), (+x,-z), (-x,-z) is counter-clockwise seen from +Y.
     const vec3 corners[4] = {vec3(-hx, 0, hz), vec3(hx, 0, hz), vec3(hx, 0, -hz),
                              vec3(-hx, 0, -hz)};

@@ -18,6 +18,7 @@
 #include "base/input_file.h"
 #include "geometry/mesh.h"
 #include "geometry/mesh_file_checks.h"
+#include "geometry/mesh_materials.h"
 
 namespace dp {
 
@@ -43,6 +44,7 @@ bool is_degenerate(const vec3& a, const vec3& b, const vec3& c) {
 
 struct Collector {
     const aiScene* scene;
+    std::vector<bool> made_up;  ///< per Assimp material: one Assimp invented (no file material)
     TriangleMesh out;
     bool any_uvs = false;
     size_t total_triangles = 0;
@@ -79,11 +81,19 @@ struct Collector {
         // Keep one normal per vertex even when this part has none; fill_missing_normals sets them.
         if (part.normals.empty()) part.normals.assign(part.positions.size(), vec3(0.0f));
         out.normals.insert(out.normals.end(), part.normals.begin(), part.normals.end());
+        // Assimp hands over every format's UVs with v = 0 at the bottom of the image (OBJ's and
+        // OpenGL's convention; it flips glTF's to match), while Surface::reflectance_at reads the
+        // image's top row at v = 0: flipped here, once, so a texture painted in Blender reads
+        // upright.
         for (unsigned i = 0; i < src.mNumVertices; ++i) {
             const aiVector3D uv = src.HasTextureCoords(0) ? src.mTextureCoords[0][i] : aiVector3D();
-            out.uvs.emplace_back(uv.x, uv.y);
+            out.uvs.emplace_back(uv.x, 1.0f - uv.y);
         }
         any_uvs = any_uvs || src.HasTextureCoords(0);
+        const uint32_t material =
+            src.mMaterialIndex < made_up.size() && !made_up[src.mMaterialIndex]
+                ? uint32_t(src.mMaterialIndex)
+                : kNoFileMaterial;
 
         for (const glm::uvec3& t : part.triangles) {
             ++total_triangles;
@@ -92,6 +102,7 @@ struct Collector {
                 continue;
             }
             out.triangles.push_back(t + glm::uvec3(base));
+            out.triangle_materials.push_back(material);
         }
     }
 
@@ -177,7 +188,8 @@ void restate_primitive_types(aiScene& scene, const std::string& path, const std:
 /// Leaves `importer` only the readers of the formats the project documents (OBJ, PLY, glTF
 /// 2.0, STL, FBX). Assimp falls back to reading a file by its content when the reader for its
 /// extension declines it, and some of its rarer readers overrun their buffers on what they are
-/// handed then.
+/// handed then. The one list of the formats load_mesh reads (mesh_file_extensions asks the
+/// readers kept here).
 void keep_documented_readers(Assimp::Importer& importer) {
     static const char* const kKept[] = {"obj", "ply", "gltf", "glb", "stl", "fbx"};
     std::vector<Assimp::BaseImporter*> dropped;
@@ -193,6 +205,33 @@ void keep_documented_readers(Assimp::Importer& importer) {
         // The importer deletes only the readers it still holds.
         if (importer.UnregisterLoader(reader) == aiReturn_SUCCESS) delete reader;
     }
+}
+
+/// A number in the scene's metadata (FBX's global settings), whatever type the importer stored
+/// it as; false when absent.
+bool metadata_number(const aiScene& scene, const char* key, double& value) {
+    const aiMetadata* meta = scene.mMetaData;
+    if (!meta) return false;
+    for (unsigned i = 0; i < meta->mNumProperties; ++i) {
+        if (std::string(meta->mKeys[i].C_Str()) != key || !meta->mValues[i].mData) continue;
+        const aiMetadataEntry& e = meta->mValues[i];
+        switch (e.mType) {
+            case AI_FLOAT: value = double(*static_cast<const float*>(e.mData)); return true;
+            case AI_DOUBLE: value = *static_cast<const double*>(e.mData); return true;
+            case AI_INT32: value = double(*static_cast<const int32_t*>(e.mData)); return true;
+            case AI_UINT64: value = double(*static_cast<const uint64_t*>(e.mData)); return true;
+            default: return false;
+        }
+    }
+    return false;
+}
+
+/// The format's name as the importer recorded it ("glTF2 Importer", "Autodesk FBX Importer").
+std::string source_format(const aiScene& scene) {
+    const aiMetadata* meta = scene.mMetaData;
+    aiString format;
+    if (meta && meta->Get("SourceAsset_Format", format)) return format.C_Str();
+    return "";
 }
 
 /// The first `n` bytes of the file (fewer if it is shorter).
@@ -224,8 +263,30 @@ void drop_unused_vertices(TriangleMesh& m) {
         if (uvs) out.uvs.push_back(m.uvs[i]);
     }
     out.triangles = std::move(m.triangles);
+    out.triangle_materials = std::move(m.triangle_materials);
     for (glm::uvec3& t : out.triangles) t = glm::uvec3(remap[t.x], remap[t.y], remap[t.z]);
     m = std::move(out);
+}
+
+const std::vector<std::string>& mesh_file_extensions() {
+    static const std::vector<std::string> extensions = [] {
+        Assimp::Importer importer;
+        keep_documented_readers(importer);
+        aiString list;  // "*.obj;*.ply;..."
+        importer.GetExtensionList(list);
+        std::vector<std::string> out;
+        std::istringstream items(list.C_Str());
+        for (std::string item; std::getline(items, item, ';');) {
+            if (item.rfind("*.", 0) == 0) item = item.substr(2);
+            std::transform(item.begin(), item.end(), item.begin(),
+                           [](unsigned char ch) { return char(std::tolower(ch)); });
+            if (!item.empty() && std::find(out.begin(), out.end(), item) == out.end())
+                out.push_back(item);
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    }();
+    return extensions;
 }
 
 LoadedMesh load_mesh(const std::string& path, const std::string& field) {
@@ -258,8 +319,32 @@ LoadedMesh load_mesh(const std::string& path, const std::string& field) {
                          std::string("cannot read mesh: ") + importer.GetErrorString());
     }
 
-    Collector c{scene, {}};
-    c.visit(*scene->mRootNode, glm::mat4(1.0f));
+    // FBX files say how many centimetres a unit is; the mesh is brought to metres here so that
+    // a project's unit_scale means the same for every format.
+    LoadedMesh result;
+    const std::string format = source_format(*scene);
+    double unit_cm = 0;
+    if (format.find("FBX") != std::string::npos && metadata_number(*scene, "UnitScaleFactor", unit_cm)) {
+        if (!(std::isfinite(unit_cm) && unit_cm > 0 && unit_cm < 1e12)) {
+            throw InputError(path, field,
+                             "malformed FBX: UnitScaleFactor (" + std::to_string(unit_cm) +
+                                 " centimetres per unit) is not a positive number");
+        }
+        result.declared_unit_m = float(unit_cm * 0.01);
+        double axis = 0, sign = 1;
+        if (metadata_number(*scene, "UpAxis", axis) && axis >= 0 && axis <= 2) {
+            metadata_number(*scene, "UpAxisSign", sign);
+            result.declared_up = std::string(sign < 0 ? "-" : "") + "xyz"[int(axis)];
+        }
+    } else if (format.find("glTF") != std::string::npos) {
+        result.declared_unit_m = 1;
+    }
+
+    Collector c{scene, {}, {}};
+    result.materials =
+        read_file_materials(*scene, path, result.embedded_textures, c.made_up, result.warnings);
+    const float to_metres = unit_cm > 0 ? result.declared_unit_m : 1.0f;
+    c.visit(*scene->mRootNode, glm::mat4(glm::mat3(to_metres)));
     if (c.total_triangles == 0) throw InputError(path, field, "mesh file contains no triangles");
     if (c.out.triangles.empty()) {
         throw InputError(path, field,
@@ -270,8 +355,9 @@ LoadedMesh load_mesh(const std::string& path, const std::string& field) {
     drop_unused_vertices(c.out);
     fill_missing_normals(c.out);
 
-    LoadedMesh result;
     result.mesh = std::move(c.out);
+    result.mesh.bounds(result.bounds_lo, result.bounds_hi);
+    keep_used_materials(result);
     result.dropped_degenerate = c.dropped;
     return result;
 }

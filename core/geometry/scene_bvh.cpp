@@ -57,6 +57,7 @@ ShapeHit finish_hit(const RTCRayHit& rh, const std::vector<PlacedShape>& shapes,
     hit.ng = glm::normalize(vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
     const TriangleMesh& m = *s.mesh;
     const glm::uvec3& tri = m.triangles[rh.hit.primID];
+    hit.prim = int(rh.hit.primID);
     float u = rh.hit.u, v = rh.hit.v, w = 1 - u - v;
     hit.ns = hit.ng;
     if (!m.normals.empty()) {

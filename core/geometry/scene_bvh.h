@@ -29,6 +29,7 @@ struct ShapeHit {
     vec3 p{0}, ng{0}, ns{0};
     vec2 uv{0};
     int index = -1;
+    int prim = -1;  ///< the triangle hit, in the shape's mesh; -1 for an exact sphere
     bool is_virtual = false;
     explicit operator bool() const { return index >= 0; }
 };

@@ -16,6 +16,20 @@ glm::mat4 Transform::matrix() const {
     return glm::scale(m, scale);
 }
 
+glm::mat4 Shape::file_frame() const {
+    if (kind != Kind::Mesh) return glm::mat4(1.0f);
+    // Columns are the images of the file's x, y and z axes; each is a proper rotation (a file
+    // with +Z up has its front, -Y, turned towards +Z as exporters to +Y up do).
+    glm::mat3 r(1.0f);
+    switch (up_axis) {
+        case UpAxis::Y: break;
+        case UpAxis::Z: r = glm::mat3(vec3(1, 0, 0), vec3(0, 0, -1), vec3(0, 1, 0)); break;
+        case UpAxis::NegY: r = glm::mat3(vec3(1, 0, 0), vec3(0, -1, 0), vec3(0, 0, -1)); break;
+        case UpAxis::NegZ: r = glm::mat3(vec3(1, 0, 0), vec3(0, 0, 1), vec3(0, -1, 0)); break;
+    }
+    return glm::mat4(r * unit_scale);
+}
+
 Camera CameraSpec::build(int width, int height) const {
     if (model == Model::Intrinsics)
         return Camera(width, height, fx, fy, cx, cy, distortion, rotation, translation);

@@ -22,17 +22,32 @@ struct Transform {
     bool operator==(const Transform&) const = default;
 };
 
+/// The axis a mesh file treats as up (+Y is the project's up).
+enum class UpAxis { Y, Z, NegY, NegZ };
+
 /// Geometry of a proxy or object in its local frame.
 /// plane: `size.x` by `size.z` in local XZ, normal +Y; box: `size` centred at the origin;
-/// sphere: `radius` at the origin; mesh: a file loaded through Assimp.
+/// sphere: `radius` at the origin; mesh: a file loaded through Assimp, its up axis turned to
+/// +Y and its coordinates scaled by `unit_scale` (file_frame).
 struct Shape {
     enum class Kind { Plane, Box, Sphere, Mesh };
     Kind kind = Kind::Plane;
     vec3 size{1.0f};
     float radius = 1.0f;
-    std::string mesh_path;  ///< as written in the project (relative to the project file)
+    std::string mesh_path;   ///< as written in the project (relative to the project file)
+    UpAxis up_axis = UpAxis::Y;  ///< mesh: the file's up axis
+    float unit_scale = 1.0f;     ///< mesh: metres per file unit (beyond what an FBX file declares)
+    /// The mesh file's coordinates to the shape's local frame: a rotation that takes `up_axis`
+    /// to +Y, then `unit_scale`. The identity for the other kinds.
+    glm::mat4 file_frame() const;
     bool operator==(const Shape&) const = default;
 };
+
+/// The up axes by the names the project file uses.
+inline constexpr std::pair<const char*, UpAxis> kUpAxes[] = {
+    {"y", UpAxis::Y}, {"z", UpAxis::Z}, {"-y", UpAxis::NegY}, {"-z", UpAxis::NegZ}};
+/// "y", "z", "-y" or "-z".
+inline const char* up_axis_name(UpAxis axis) { return kUpAxes[int(axis)].first; }
 
 /// The shape kinds by the names the project file, the CLI and the studio use.
 inline constexpr std::pair<const char*, Shape::Kind> kShapeKinds[] = {
@@ -68,14 +83,27 @@ struct RealProxy {
     bool operator==(const RealProxy&) const = default;
 };
 
+/// Where a mesh object's materials come from.
+enum class MaterialSource {
+    Project,  ///< the object's `material`, on every triangle
+    File,     ///< the mesh file's own materials; `material` on the triangles the file gives none
+};
+
 struct VirtualObject {
     std::string name;
     Shape shape;
     Transform transform;
     Material material;
+    MaterialSource material_source = MaterialSource::Project;  ///< meshes only
     bool visible = true;
     bool operator==(const VirtualObject&) const = default;
 };
+
+/// The material sources by the names the project file uses.
+inline constexpr std::pair<const char*, MaterialSource> kMaterialSources[] = {{"project", MaterialSource::Project},
+                                                                             {"file", MaterialSource::File}};
+/// "project" or "file".
+inline const char* material_source_name(MaterialSource s) { return kMaterialSources[int(s)].first; }
 
 struct PhotoSpec {
     std::string path;

@@ -52,10 +52,19 @@ Shape parse_shape(const JsonReader& r, const json& j, const std::string& path) {
             r.check(s.radius > 0, p, "must be > 0 (got " + shortest_decimal(s.radius) + ")");
             break;
         }
-        case Shape::Kind::Mesh:
-            r.object(j, path, {"type", "path"}, ctx);
+        case Shape::Kind::Mesh: {
+            r.object(j, path, {"type", "path", "up_axis", "unit_scale"}, ctx);
             s.mesh_path = r.string(r.required(j, path, "path"), json_join(path, "path"));
+            if (auto* v = r.optional(j, "up_axis"))
+                s.up_axis = r.choice<UpAxis>(*v, json_join(path, "up_axis"), "up axis", kUpAxes);
+            if (auto* v = r.optional(j, "unit_scale")) {
+                const std::string p = json_join(path, "unit_scale");
+                s.unit_scale = r.real(*v, p);
+                r.check(s.unit_scale > 0, p,
+                        "must be > 0 metres per file unit (got " + shortest_decimal(s.unit_scale) + ")");
+            }
             break;
+        }
     }
     return s;
 }
@@ -136,10 +145,18 @@ RealProxy parse_real(const JsonReader& r, const json& j, const std::string& path
 }
 
 VirtualObject parse_object(const JsonReader& r, const json& j, const std::string& path) {
-    r.object(j, path, {"name", "shape", "transform", "material", "visible"});
+    r.object(j, path, {"name", "shape", "transform", "material", "material_source", "visible"});
     VirtualObject o;
     o.name = parse_name(r, j, path);
     o.shape = parse_shape(r, r.required(j, path, "shape"), json_join(path, "shape"));
+    if (auto* v = r.optional(j, "material_source")) {
+        const std::string p = json_join(path, "material_source");
+        o.material_source = r.choice<MaterialSource>(*v, p, "material source", kMaterialSources);
+        r.check(o.material_source == MaterialSource::Project || o.shape.kind == Shape::Kind::Mesh,
+                p,
+                "\"file\" takes the materials of a mesh file, and this shape is a " +
+                    std::string(shape_kind_name(o.shape.kind)));
+    }
     if (auto* v = r.optional(j, "transform"))
         o.transform = parse_transform(r, *v, json_join(path, "transform"));
     if (auto* v = r.optional(j, "material"))
@@ -305,7 +322,10 @@ J write_shape(const Shape& s) {
         case Shape::Kind::Sphere:
             return J{{"type", shape_kind_name(s.kind)}, {"radius", num(s.radius)}};
         case Shape::Kind::Mesh:
-            return J{{"type", shape_kind_name(s.kind)}, {"path", s.mesh_path}};
+            return J{{"type", shape_kind_name(s.kind)},
+                     {"path", s.mesh_path},
+                     {"up_axis", up_axis_name(s.up_axis)},
+                     {"unit_scale", num(s.unit_scale)}};
     }
     return J();
 }
@@ -385,11 +405,15 @@ J write_project(const Project& p) {
     }
     doc["objects"] = J::array();
     for (const VirtualObject& o : p.objects) {
-        doc["objects"].push_back(J{{"name", o.name},
-                                   {"shape", write_shape<J>(o.shape)},
-                                   {"transform", write_transform<J>(o.transform)},
-                                   {"material", write_material<J>(o.material)},
-                                   {"visible", o.visible}});
+        J object{{"name", o.name},
+                 {"shape", write_shape<J>(o.shape)},
+                 {"transform", write_transform<J>(o.transform)},
+                 {"material", write_material<J>(o.material)}};
+        // Only a mesh has a file to take materials from.
+        if (o.shape.kind == Shape::Kind::Mesh)
+            object["material_source"] = material_source_name(o.material_source);
+        object["visible"] = o.visible;
+        doc["objects"].push_back(object);
     }
     const RenderSettings& s = p.render;
     J render;

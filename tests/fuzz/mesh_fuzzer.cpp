@@ -23,6 +23,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                           "a loaded mesh indexes past its vertices");
         fuzz::require(m.normals.empty() || m.normals.size() == m.positions.size(), "normals do not match positions");
         fuzz::require(m.uvs.empty() || m.uvs.size() == m.positions.size(), "uvs do not match positions");
+        fuzz::require(
+            m.triangle_materials.empty() || m.triangle_materials.size() == m.triangles.size(),
+            "triangle materials do not match triangles");
+        for (uint32_t k : m.triangle_materials)
+            fuzz::require(k == kNoFileMaterial || k < loaded.materials.size(),
+                          "a triangle names a material past the file's");
+        for (const FileMaterial& f : loaded.materials)
+            fuzz::require(f.embedded_texture < int(loaded.embedded_textures.size()),
+                          "a material names a texture past the file's");
     });
     return 0;
 }

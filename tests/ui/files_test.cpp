@@ -14,6 +14,7 @@
 #include "autosave.h"
 #include "document.h"
 #include "material_panel.h"
+#include "mesh_files.h"
 #include "scene/project_io.h"
 #include "ui_test_support.h"
 #include "viewport.h"
@@ -29,6 +30,7 @@ private Q_SLOTS:
     void autosaveRecoversTheEditsOfAKilledProcess();
     void cleanCloseLeavesNothingToRecover();
     void recentFilesAreRememberedBetweenRuns();
+    void theImportFilterOffersExactlyTheFormatsTheLoaderReads();
 };
 
 namespace {
@@ -172,6 +174,25 @@ int run_child(int argc, char** argv) {
 }
 
 }  // namespace
+
+void FilesTest::theImportFilterOffersExactlyTheFormatsTheLoaderReads() {
+    const QString filter = mesh_file_filter();
+    // The formats the loader keeps Assimp's readers for, and every one of them.
+    for (const char* kept : {"obj", "ply", "gltf", "glb", "stl", "fbx"})
+        QVERIFY2(filter.contains(QString(" *.%1").arg(kept)) ||
+                     filter.contains(QString("(*.%1").arg(kept)),
+                 qPrintable(filter));
+    // Formats Assimp reads but the loader refuses for hardening.
+    for (const char* dropped : {"3ds", "dae", "blend", "x", "ase", "lwo", "md5mesh"})
+        QVERIFY2(!filter.contains(QString("*.%1 ").arg(dropped)) &&
+                     !filter.contains(QString("*.%1)").arg(dropped)),
+                 qPrintable(filter));
+    QCOMPARE(filter.count("*."), int(mesh_file_extensions().size()));
+    QVERIFY(is_mesh_file("/tmp/Chair.FBX"));
+    QVERIFY(is_mesh_file("scene.glb"));
+    QVERIFY(!is_mesh_file("scene.dae"));
+    QVERIFY(!is_mesh_file("photo.exr"));
+}
 
 int main(int argc, char** argv) {
     if (argc == 4 && std::string(argv[1]) == "--child") return run_child(argc, argv);

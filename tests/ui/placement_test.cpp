@@ -6,8 +6,10 @@
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
+#include <QComboBox>
 #include <QCursor>
 #include <QFile>
+#include <QLabel>
 #include <QListWidget>
 #include <QStatusBar>
 #include <QTemporaryDir>
@@ -18,6 +20,7 @@
 
 #include "document.h"
 #include "gizmo.h"
+#include "material_panel.h"
 #include "number_field.h"
 #include "scene_panel.h"
 #include "ui_test_support.h"
@@ -39,6 +42,7 @@ private Q_SLOTS:
     void endDropsARaisedObjectOntoTheSurfaceBelow();
     void uniformLockScalesAllThreeFromOneField();
     void importedMeshesGetTheirUnitAndFitTheView();
+    void anImportedMeshWithMaterialsIsDrawnWithThemAndThePanelSaysSo();
 
 private:
     void press(int key, Qt::KeyboardModifiers modifiers = {});
@@ -350,20 +354,56 @@ void PlacementTest::importedMeshesGetTheirUnitAndFitTheView() {
     QVERIFY(w_->importMesh(cube("chair.obj", 2700)));
     const Project& p = w_->document()->project();
     const VirtualObject chair = p.objects.back();  // a copy: the next import replaces `p`
-    QVERIFY(chair.transform.scale == vec3(0.001f));
+    // The unit is the file's (unit_scale); the transform is left for the artist.
+    QVERIFY(chair.shape.unit_scale == 0.001f);
+    QVERIFY(chair.transform.scale == vec3(1.0f));
     QVERIFY(std::abs(object_bottom(p, chair)) < 1e-4f);
     QVERIFY(w_->statusBar()->currentMessage().contains("millimetres"));
     // A million units is far larger than the view even in millimetres: fitted to it.
     QVERIFY(w_->importMesh(cube("city.obj", 1e6)));
     const float fit = view_object_size(w_->document()->project(), w_->viewport()->viewCamera());
     const VirtualObject city = w_->document()->project().objects.back();
-    QVERIFY(std::abs(city.transform.scale.x * 1e6f - fit) < 1e-3f * fit);
+    QVERIFY(city.shape.unit_scale == 0.001f);
+    QVERIFY(std::abs(city.transform.scale.x * 1e6f * 0.001f - fit) < 1e-3f * fit);
     QVERIFY(w_->statusBar()->currentMessage().contains("scaled to"));
     vec3 c, oc;
     float r, orad;
     world_sphere(w_->document()->project(), city, c, r);
     world_sphere(w_->document()->project(), chair, oc, orad);
     QVERIFY(glm::length(c - oc) >= r + orad - 1e-4f);
+}
+
+void PlacementTest::anImportedMeshWithMaterialsIsDrawnWithThemAndThePanelSaysSo() {
+    auto write = [this](const QString& name, const QByteArray& text) {
+        QFile f(dir_->filePath(name));
+        QVERIFY(f.open(QIODevice::WriteOnly));
+        f.write(text);
+    };
+    write("painted.mtl", "newmtl red\nKd 0.8 0.1 0.1\n");
+    write("painted.obj", "mtllib painted.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n");
+    write("plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    MaterialPanel* panel = w_->materialPanel();
+
+    QVERIFY(w_->importMesh(dir_->filePath("plain.obj")));
+    QCOMPARE(w_->document()->project().objects.back().material_source,
+             MaterialSource::Project);                // nothing in the file
+    QVERIFY(panel->sourceBox()->isVisibleTo(panel));  // a mesh: the choice is offered
+    QVERIFY(!panel->sourceNote()->isVisibleTo(panel));
+
+    QVERIFY(w_->importMesh(dir_->filePath("painted.obj")));
+    const int painted = int(w_->document()->project().objects.size()) - 1;
+    QCOMPARE(object(painted).material_source, MaterialSource::File);
+    QCOMPARE(panel->sourceBox()->currentIndex(), int(MaterialSource::File));
+    QVERIFY(panel->sourceNote()->isVisibleTo(panel));
+    // Back to the project's material, as one undo step.
+    const int steps = w_->document()->undoStack()->count();
+    panel->sourceBox()->setCurrentIndex(int(MaterialSource::Project));
+    QCOMPARE(object(painted).material_source, MaterialSource::Project);
+    QCOMPARE(w_->document()->undoStack()->count(), steps + 1);
+    QVERIFY(!panel->sourceNote()->isVisibleTo(panel));
+
+    w_->action("addSphere")->trigger();  // a primitive has no file
+    QVERIFY(!panel->sourceBox()->isVisibleTo(panel));
 }
 
 QTEST_MAIN(PlacementTest)

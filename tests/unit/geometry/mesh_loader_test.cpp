@@ -1,3 +1,6 @@
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -7,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -90,9 +94,10 @@ TEST_F(MeshLoader, LoadsAnObjQuadAsTwoTrianglesWithUvsAndGeneratedNormals) {
     EXPECT_GT(min_winding_agreement(m), 0.999f);
     EXPECT_NEAR(surface_area(m), 4.0, 1e-5);
     for (size_t i = 0; i < m.positions.size(); ++i) {
-        // The file maps u to +X and v to -Z.
+        // The file maps u to +X and v to -Z with v = 0 at the image's bottom; the loaded mesh has
+        // v = 0 at the image's top, so its v runs along +Z.
         EXPECT_NEAR(m.uvs[i].x, 0.5f * (m.positions[i].x + 1.0f), 1e-6f);
-        EXPECT_NEAR(m.uvs[i].y, 0.5f * (1.0f - m.positions[i].z), 1e-6f);
+        EXPECT_NEAR(m.uvs[i].y, 0.5f * (1.0f + m.positions[i].z), 1e-6f);
     }
 }
 
@@ -322,4 +327,64 @@ TEST_F(MeshLoader, RefusesGltfBuffersThatDeclareMoreBytesThanTheyHold) {
     glb.resize(glb.size() - 8);  // the binary chunk now runs past the end
     message = input_error_text([&] { load_mesh(write("cut.glb", glb)); });
     EXPECT_NE(message.find("malformed glTF"), std::string::npos) << message;
+}
+
+namespace {
+
+/// An ASCII FBX of a 2 x 1 quad (x 0..2, y 0..1) written by Assimp's own exporter, its global
+/// settings then edited: `unit_cm` centimetres per unit, `up_axis` 0/1/2 for X/Y/Z. Empty where
+/// this Assimp was built without its FBX exporter.
+std::string fbx_quad(const fs::path& dir, const std::string& unit_cm, const std::string& up_axis) {
+    const fs::path obj = dir / "quad_for_fbx.obj", fbx = dir / "quad_for_fbx.fbx";
+    std::ofstream(obj) << "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(obj.string(), 0);
+    Assimp::Exporter exporter;
+    if (!scene || exporter.Export(scene, "fbxa", fbx.string()) != aiReturn_SUCCESS) return "";
+    std::ifstream in(fbx);
+    std::string text((std::istreambuf_iterator<char>(in)), {}), out, line;
+    std::istringstream lines(text);
+    while (std::getline(lines, line)) {
+        if (line.find("P: \"UnitScaleFactor\"") != std::string::npos) line = line.substr(0, line.rfind(',') + 1) + unit_cm;
+        if (line.find("P: \"UpAxis\"") != std::string::npos) line = line.substr(0, line.rfind(',') + 1) + up_axis;
+        out += line + "\n";
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_F(MeshLoader, AnFbxFileIsBroughtToMetresFromTheUnitItDeclaresAndItsUpAxisIsReported) {
+    const std::string metres = fbx_quad(dir_, "100", "2");  // 100 cm per unit, Z up
+    if (metres.empty()) GTEST_SKIP() << "this Assimp has no FBX exporter";
+    LoadedMesh m = load_mesh(write("metres.fbx", metres));
+    EXPECT_FLOAT_EQ(m.declared_unit_m, 1.0f);
+    EXPECT_EQ(m.declared_up, "z");
+    EXPECT_NEAR(m.bounds_hi.x - m.bounds_lo.x, 2.0f, 1e-5f);
+
+    // The same numbers in centimetres: a quad 2 cm wide.
+    m = load_mesh(write("centimetres.fbx", fbx_quad(dir_, "1", "1")));
+    EXPECT_FLOAT_EQ(m.declared_unit_m, 0.01f);
+    EXPECT_EQ(m.declared_up, "y");
+    EXPECT_NEAR(m.bounds_hi.x - m.bounds_lo.x, 0.02f, 1e-7f);
+    EXPECT_NEAR(m.bounds_hi.y - m.bounds_lo.y, 0.01f, 1e-7f);
+
+    const std::string message =
+        input_error_text([&] { load_mesh(write("zero.fbx", fbx_quad(dir_, "0", "1")), "objects[0].shape.path"); });
+    EXPECT_NE(message.find("objects[0].shape.path"), std::string::npos) << message;
+    EXPECT_NE(message.find("UnitScaleFactor"), std::string::npos) << message;
+}
+
+TEST_F(MeshLoader, GltfIsInMetresAndObjDeclaresNoUnit) {
+    EXPECT_EQ(load_mesh(write("t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).declared_unit_m, 0.0f);
+    EXPECT_EQ(load_mesh(write("t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).declared_up, "");
+    std::vector<uint8_t> buf;
+    append_bytes(buf, std::vector<float>{0, 0, 0, 1, 0, 0, 0, 1, 0});
+    const std::string gltf = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" + base64(buf) + R"("}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+    EXPECT_EQ(load_mesh(write("t.gltf", gltf)).declared_unit_m, 1.0f);
 }

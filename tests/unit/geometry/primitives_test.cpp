@@ -59,9 +59,12 @@ TEST(Primitives, PlaneUvsCoverTheUnitSquare) {
     }
     EXPECT_EQ(lo, vec2(0.0f));
     EXPECT_EQ(hi, vec2(1.0f));
-    // u follows +X.
+    // u follows +X, v follows -Z from 0 on the +Z edge: the renderer reads the image's top row
+    // at v = 0, so the top lies along +Z (docs/reconstruction.md). Loading mesh files flips
+    // their v; the built-in plane must keep this layout, which estimated albedo textures use.
     for (size_t i = 0; i < m.positions.size(); ++i) {
         EXPECT_FLOAT_EQ(m.uvs[i].x, m.positions[i].x / 4.0f + 0.5f);
+        EXPECT_FLOAT_EQ(m.uvs[i].y, 0.5f - m.positions[i].z / 1.0f);
     }
 }
 

@@ -43,6 +43,13 @@ TEST_F(ProjectIo, RichProjectLoadsWithEveryField) {
     EXPECT_EQ(p.real[2].albedo.kind, Albedo::Kind::Texture);
     EXPECT_EQ(p.real[2].albedo.texture_path, "wood.png");
     EXPECT_EQ(p.real[2].shape.mesh_path, "/abs/table.obj");
+    // A mesh's axes and unit: as written, or +Y up in metres where left out.
+    EXPECT_EQ(p.real[2].shape.up_axis, UpAxis::Y);
+    EXPECT_EQ(p.real[2].shape.unit_scale, 1.0f);
+    EXPECT_EQ(p.objects[2].shape.up_axis, UpAxis::Z);
+    EXPECT_EQ(p.objects[2].shape.unit_scale, 0.01f);
+    EXPECT_EQ(p.objects[2].material_source, MaterialSource::File);
+    EXPECT_EQ(p.objects[0].material_source, MaterialSource::Project);  // the default
 
     ASSERT_EQ(p.objects.size(), 5u);
     EXPECT_EQ(p.objects[0].material.kind, Material::Kind::Glass);
@@ -152,6 +159,37 @@ TEST_F(ProjectIo, ProgrammaticProjectRoundTripsBitExactly) {
     EXPECT_EQ(load_project(saved), a);
     // to_json / parse_project round-trip without a file too.
     EXPECT_EQ(parse_project(to_json(a), "memory", dir_), a);
+}
+
+TEST_F(ProjectIo, EveryUpAxisAndAUnitScaleRoundTripAndAreWrittenForMeshesOnly) {
+    Project a = load_project(write("rich.json", kRichProject));
+    for (const auto& [name, axis] : kUpAxes) {
+        SCOPED_TRACE(name);
+        a.objects[2].shape.up_axis = axis;
+        a.objects[2].shape.unit_scale = 0.0254f;  // inches
+        const nlohmann::json doc = to_json(a);
+        EXPECT_EQ(doc["objects"][2]["shape"]["up_axis"], name);
+        EXPECT_EQ(doc["objects"][2]["shape"]["unit_scale"], 0.0254);
+        EXPECT_FALSE(doc["objects"][0]["shape"].contains("up_axis"));  // a sphere has no file
+        EXPECT_FALSE(doc["objects"][0]["shape"].contains("unit_scale"));
+        EXPECT_EQ(parse_project(doc, "memory", dir_), a);
+    }
+}
+
+TEST_F(ProjectIo, TheMaterialSourceRoundTripsAndIsWrittenForMeshesOnly) {
+    Project a = load_project(write("rich.json", kRichProject));
+    for (const MaterialSource source : {MaterialSource::Project, MaterialSource::File}) {
+        a.objects[2].material_source = source;
+        const nlohmann::json doc = to_json(a);
+        EXPECT_EQ(doc["objects"][2]["material_source"], material_source_name(source));
+        EXPECT_FALSE(doc["objects"][0].contains("material_source"));  // a sphere has no file
+        EXPECT_EQ(parse_project(doc, "memory", dir_), a);
+    }
+    // An object written before the key existed takes the project's material.
+    nlohmann::json doc = to_json(a);
+    doc["objects"][2].erase("material_source");
+    EXPECT_EQ(parse_project(doc, "memory", dir_).objects[2].material_source,
+              MaterialSource::Project);
 }
 
 TEST_F(ProjectIo, SavedFileIsPrettyWithPathsAsStored) {

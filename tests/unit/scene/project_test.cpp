@@ -148,3 +148,37 @@ TEST(Project, EqualityIgnoresBaseDir) {
     b.render.seed = 7;
     EXPECT_NE(a, b);
 }
+
+TEST(Shape, AZUpMeshFileIsTurnedSoItsUpIsPlusYAndItsFrontFacesPlusZ) {
+    Shape s;
+    s.kind = Shape::Kind::Mesh;
+    s.up_axis = UpAxis::Z;
+    // Blender's up (+Z) becomes +Y; its front view looks along +Y at the model's -Y side,
+    // which faces +Z here as Blender's exporters to +Y up put it.
+    expect_vec_near(apply(s.file_frame(), vec3(0, 0, 1)), vec3(0, 1, 0));
+    expect_vec_near(apply(s.file_frame(), vec3(0, -1, 0)), vec3(0, 0, 1));
+    expect_vec_near(apply(s.file_frame(), vec3(1, 0, 0)), vec3(1, 0, 0));
+}
+
+TEST(Shape, EveryUpAxisIsTurnedToPlusYByAProperRotationAndUnitScaleScalesAfter) {
+    const vec3 up_in_file[] = {vec3(0, 1, 0), vec3(0, 0, 1), vec3(0, -1, 0), vec3(0, 0, -1)};
+    for (const auto& [name, axis] : kUpAxes) {
+        SCOPED_TRACE(name);
+        Shape s;
+        s.kind = Shape::Kind::Mesh;
+        s.up_axis = axis;
+        s.unit_scale = 0.01f;
+        const glm::mat4 m = s.file_frame();
+        expect_vec_near(apply(m, 100.0f * up_in_file[int(axis)]), vec3(0, 1, 0));
+        EXPECT_NEAR(glm::determinant(glm::mat3(m)), 1e-6f, 1e-9f);  // no mirroring: windings kept
+        EXPECT_EQ(std::string(up_axis_name(axis)), name);
+    }
+}
+
+TEST(Shape, OnlyMeshesHaveAFileFrame) {
+    Shape box;
+    box.kind = Shape::Kind::Box;
+    box.unit_scale = 0.01f;  // meaningless for a box, and ignored
+    box.up_axis = UpAxis::Z;
+    expect_matrix_near(box.file_frame(), glm::mat4(1.0f));
+}

@@ -63,8 +63,8 @@ inline const char* kRichProject = R"({
      "material": {"type": "glass", "ior": 1.45, "tint": [0.9, 0.95, 1]}},
     {"name": "mirror", "shape": {"type": "box", "size": [1, 1, 0.02]},
      "material": {"type": "mirror", "reflectance": [0.9, 0.9, 0.85]}, "visible": false},
-    {"name": "bunny", "shape": {"type": "mesh", "path": "meshes/bunny.obj"},
-     "material": {"type": "diffuse", "albedo": {"texture": "fur.png"}}},
+    {"name": "bunny", "shape": {"type": "mesh", "path": "meshes/bunny.obj", "up_axis": "z", "unit_scale": 0.01},
+     "material": {"type": "diffuse", "albedo": {"texture": "fur.png"}}, "material_source": "file"},
     {"name": "rug", "shape": {"type": "plane", "size": [1.5, 0.75]},
      "material": {"type": "diffuse", "albedo": [0.8, 0.1, 0.1]}},
     {"shape": {"type": "sphere", "radius": 0.1}}

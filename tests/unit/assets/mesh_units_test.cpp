@@ -1,0 +1,104 @@
+// A mesh whose size once placed looks off by a unit mix-up is said, with the unit_scale that
+// fixes it; sizes an object in a photograph can have are not.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "assets/asset_library.h"
+#include "assets/mesh_units.h"
+#include "image/image_io.h"
+
+using namespace dp;
+namespace fs = std::filesystem;
+
+namespace {
+
+Shape mesh_shape(UpAxis up = UpAxis::Y, float unit_scale = 1.0f) {
+    Shape s;
+    s.kind = Shape::Kind::Mesh;
+    s.mesh_path = "m.obj";
+    s.up_axis = up;
+    s.unit_scale = unit_scale;
+    return s;
+}
+
+}  // namespace
+
+TEST(MeshUnits, ThePlacedSizeTakesTheUnitTheAxesAndTheTransformsScaleButNotItsRotation) {
+    const vec3 lo(0, 0, 0), hi(2, 1, 30);  // 30 units along the file's z
+    Transform t;
+    EXPECT_FLOAT_EQ(placed_mesh_size(lo, hi, mesh_shape(), t), 30.0f);
+    EXPECT_FLOAT_EQ(placed_mesh_size(lo, hi, mesh_shape(UpAxis::Z, 0.01f), t), 0.3f);
+    t.scale = vec3(1, 50, 1);  // the file's z is the shape's y once turned: 0.3 * 50
+    EXPECT_FLOAT_EQ(placed_mesh_size(lo, hi, mesh_shape(UpAxis::Z, 0.01f), t), 15.0f);
+    t.rotation_deg = vec3(0, 0, 90);
+    EXPECT_FLOAT_EQ(placed_mesh_size(lo, hi, mesh_shape(UpAxis::Z, 0.01f), t), 15.0f);
+}
+
+TEST(MeshUnits, SizesOfThingsInPhotographsAreNotSaid) {
+    for (float size : {0.01f, 0.05f, 1.0f, 12.0f, 100.0f})
+        EXPECT_EQ(mesh_size_warning("objects[0].shape.unit_scale", "chair", size, 1.0f), "") << size;
+}
+
+TEST(MeshUnits, ALargeMeshIsSaidToBeInCentimetresOrMillimetresWhicheverGivesAboutAMetre) {
+    EXPECT_EQ(mesh_size_warning("objects[1].shape.unit_scale", "chair", 215.0f, 1.0f),
+              "objects[1].shape.unit_scale: 'chair' is 215 m across once placed: its file looks like "
+              "centimetres: set unit_scale 0.01");
+    EXPECT_EQ(mesh_size_warning("objects[1].shape.unit_scale", "", 900.0f, 1.0f),
+              "objects[1].shape.unit_scale: the mesh is 900 m across once placed: its file looks like "
+              "millimetres: set unit_scale 0.001");
+    // With a unit already set, the factor applies to it.
+    EXPECT_EQ(mesh_size_warning("real[0].shape.unit_scale", "table", 150.0f, 0.1f),
+              "real[0].shape.unit_scale: 'table' is 150 m across once placed: it looks 100 times too large: "
+              "set unit_scale 0.001");
+}
+
+TEST(MeshUnits, ASmallMeshIsSaidToBe100Or1000TimesTooSmall) {
+    EXPECT_EQ(mesh_size_warning("objects[0].shape.unit_scale", "cup", 0.0012f, 0.001f),
+              "objects[0].shape.unit_scale: 'cup' is 0.0012 m across once placed: it looks 1000 times too small: "
+              "set unit_scale 1");
+    EXPECT_EQ(mesh_size_warning("objects[0].shape.unit_scale", "cup", 0.005f, 0.01f),
+              "objects[0].shape.unit_scale: 'cup' is 0.005 m across once placed: it looks 100 times too small: "
+              "set unit_scale 1");
+}
+
+TEST(MeshUnits, TheAssetLibrarySaysItForObjectsAndProxiesOnEveryLoad) {
+    const fs::path dir = fs::temp_directory_path() / ("dp_mesh_units_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const Image photo(16, 12, vec3(0.5f)), probe(32, 16, vec3(1.0f));
+    save_exr((dir / "photo.exr").string(), {{"", &photo}});
+    save_exr((dir / "probe.exr").string(), {{"", &probe}});
+    // A triangle 180 units across: a 1.8 m thing modelled in centimetres.
+    std::ofstream(dir / "m.obj") << "v 0 0 0\nv 180 0 0\nv 0 90 0\nf 1 2 3\n";
+    Project p;
+    p.base_dir = dir;
+    p.photo.path = "photo.exr";
+    p.probe.path = "probe.exr";
+    VirtualObject o;
+    o.name = "statue";
+    o.shape = mesh_shape();
+    p.objects.push_back(o);
+    RealProxy r;
+    r.shape = mesh_shape(UpAxis::Y, 0.01f);
+    p.real.push_back(r);
+
+    AssetLibrary library;
+    auto said = [&](const std::string& text) {
+        for (const std::string& w : library.warnings(p))
+            if (w.find(text) != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_TRUE(said("objects[0].shape.unit_scale: 'statue' is 180 m across once placed: its file looks like "
+                     "centimetres: set unit_scale 0.01"));
+    EXPECT_FALSE(said("real[0]"));  // 1.8 m
+    // The same mesh file, cached, scaled down by its transform: no longer said.
+    p.objects[0].transform.scale = vec3(0.01f);
+    EXPECT_FALSE(said("statue"));
+    p.real[0].shape.unit_scale = 0.00001f;
+    EXPECT_TRUE(said("real[0].shape.unit_scale: the mesh is 0.0018 m across once placed: it looks 1000 times "
+                     "too small: set unit_scale 0.01"));
+    fs::remove_all(dir);
+}
