@@ -50,7 +50,9 @@ TEST(ChangeRegion, CoversTheEditedObjectItsSurroundingsAndItsSunShadowButNotTheR
     const vec3 to_sun = s.sun.direction();
     ASSERT_GT(to_sun.y, 0.05f);
     const vec3 shadow = a.center - to_sun * (a.center.y / to_sun.y);
-    if (glm::length(shadow - a.center) > 3 * a.radius) EXPECT_TRUE(s.at(mask, shadow));
+    if (glm::length(shadow - a.center) > 3 * a.radius) {
+        EXPECT_TRUE(s.at(mask, shadow));
+    }
     // The other (diffuse) object and the ground far from both are not in it.
     EXPECT_FALSE(s.at(mask, s.bounds(1).center));
     EXPECT_FALSE(s.at(mask, vec3(0.5f, 0, -0.5f)));
