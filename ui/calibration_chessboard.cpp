@@ -25,6 +25,7 @@
 #include "image/image_io.h"
 #include "lens_photos_dialog.h"
 #include "number_field.h"
+#include "panel_widgets.h"
 #include "viewport.h"
 
 namespace dp::ui {
@@ -42,24 +43,6 @@ struct CalibrationPanel::LensJob {
 };
 
 namespace {
-
-NumberField* field(double lo, double hi, double value, int decimals, const QString& suffix,
-                   const QString& tip) {
-    auto* s = new NumberField;
-    s->setRange(lo, hi);
-    s->setDecimals(decimals);
-    s->setValue(value);
-    s->setSuffix(suffix);
-    s->setToolTip(tip);
-    return s;
-}
-
-QPushButton* named_button(const QString& name, const QString& text, const QString& tip) {
-    auto* b = new QPushButton(text);
-    b->setObjectName(name);
-    b->setToolTip(tip);
-    return b;
-}
 
 QString file_name(const std::string& path) {
     return QFileInfo(QString::fromStdString(path)).fileName();
@@ -84,7 +67,7 @@ QWidget* CalibrationPanel::makeChessboardPage() {
     size->addWidget(new QLabel(QStringLiteral("x")));
     size->addWidget(rows_);
     form->addRow(tr("Inner corners"), size);
-    square_ = field(0.001, 10, 0.025, 4, tr(" m"), tr("Side of one square in metres"));
+    square_ = make_number_field(0.001, 10, 0.025, 4, tr(" m"), tr("Side of one square in metres"));
     square_->setObjectName("boardSquare");
     form->addRow(tr("Square size"), square_);
     focalSource_ = new QComboBox;
@@ -95,7 +78,7 @@ QWidget* CalibrationPanel::makeChessboardPage() {
         tr("Where the focal length comes from: the photo's EXIF data, the "
            "field below, or the board's perspective (a tilted board)"));
     form->addRow(tr("Focal length"), focalSource_);
-    boardFocal_ = field(0, 1e5, 1000, 1, tr(" px"), tr("Focal length in pixels of the photo"));
+    boardFocal_ = make_number_field(0, 1e5, 1000, 1, tr(" px"), tr("Focal length in pixels of the photo"));
     boardFocal_->setObjectName("boardFocal");
     form->addRow(QString(), boardFocal_);
 
@@ -108,12 +91,12 @@ QWidget* CalibrationPanel::makeChessboardPage() {
            "wall, with up from the camera (a photo taken without roll) or from the horizon "
            "dragged on the photo"));
     form->addRow(tr("Board lies on"), boardPlane_);
-    boardHeight_ = field(0, 1000, 1.0, 3, tr(" m"),
+    boardHeight_ = make_number_field(0, 1000, 1.0, 3, tr(" m"),
                          tr("Height of the board's origin corner (its first inner corner, "
                             "marked O after Detect and apply) above the floor"));
     boardHeight_->setObjectName("boardHeight");
     form->addRow(tr("Board height"), boardHeight_);
-    horizonButton_ = named_button("boardHorizon", tr("Click horizon"),
+    horizonButton_ = make_named_button("boardHorizon", tr("Click horizon"),
                                   tr("Drag along the horizon in the photo (where the floor "
                                      "would meet the sky, or a level line at eye height)"));
     connect(horizonButton_, &QPushButton::clicked, this, [this] { startPicking(Target::Horizon); });
@@ -125,17 +108,17 @@ QWidget* CalibrationPanel::makeChessboardPage() {
     connect(boardPlane_, &QComboBox::currentIndexChanged, this, enable);
     enable(boardPlane_->currentIndex());
 
-    QPushButton* go = named_button("chessboardApply", tr("Detect and apply"),
+    QPushButton* go = make_named_button("chessboardApply", tr("Detect and apply"),
                                    tr("Find the board in the photo and match the camera to it"));
     connect(go, &QPushButton::clicked, this, [this] { applyChessboard(); });
     form->addRow(go);
-    lensButton_ = named_button("lensPhotos", tr("Lens from several photos..."),
+    lensButton_ = make_named_button("lensPhotos", tr("Lens from several photos..."),
                                tr("Calibrate the lens (focal length, principal point, "
                                   "distortion) from this photo and more photos of the board"));
     connect(lensButton_, &QPushButton::clicked, this, [this] { lensDialog()->open(); });
     form->addRow(lensButton_);
     QPushButton* undistort =
-        named_button("exportUndistorted", tr("Export undistorted photo..."),
+        make_named_button("exportUndistorted", tr("Export undistorted photo..."),
                      tr("Write the photo with the camera's lens distortion taken out"));
     connect(undistort, &QPushButton::clicked, this, [this] { exportUndistortedDialog(); });
     form->addRow(undistort);

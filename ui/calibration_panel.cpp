@@ -20,6 +20,7 @@
 #include "camera_panel.h"
 #include "document.h"
 #include "number_field.h"
+#include "panel_widgets.h"
 #include "error_reporter.h"
 #include "image/image_io.h"
 #include "project_edit.h"
@@ -29,24 +30,6 @@
 namespace dp::ui {
 
 namespace {
-
-NumberField* spin(double lo, double hi, double value, int decimals, const QString& suffix,
-                     const QString& tip) {
-    auto* s = new NumberField;
-    s->setRange(lo, hi);
-    s->setDecimals(decimals);
-    s->setValue(value);
-    s->setSuffix(suffix);
-    s->setToolTip(tip);
-    return s;
-}
-
-QPushButton* button(const QString& name, const QString& text, const QString& tip) {
-    auto* b = new QPushButton(text);
-    b->setObjectName(name);
-    b->setToolTip(tip);
-    return b;
-}
 
 const QColor kAxisColour[3] = {QColor(240, 70, 70), QColor(70, 220, 70), QColor(80, 140, 255)};
 
@@ -73,7 +56,7 @@ CalibrationPanel::CalibrationPanel(Document* doc, Viewport* viewport, CameraPane
     });
     layout->addWidget(method_);
     layout->addWidget(pages_);
-    QPushButton* ground = button("addGroundPlane", tr("Add ground plane"),
+    QPushButton* ground = make_named_button("addGroundPlane", tr("Add ground plane"),
                                  tr("Add the ground (y = 0) as a real proxy, sized to what "
                                     "the matched camera sees of it"));
     connect(ground, &QPushButton::clicked, this, [this] { addGroundPlane(); });
@@ -107,9 +90,9 @@ void CalibrationPanel::setMethod(Method m) {
 QWidget* CalibrationPanel::makeRectanglePage() {
     auto* page = new QWidget;
     auto* form = new QFormLayout(page);
-    rectWidth_ = spin(0.001, 1000, 0.297, 3, tr(" m"), tr("Length of the edge from corner 1 to 2"));
-    rectHeight_ = spin(0.001, 1000, 0.210, 3, tr(" m"), tr("Length of the edge from corner 2 to 3"));
-    rectFocal_ = spin(0, 1e5, 0, 1, tr(" px"),
+    rectWidth_ = make_number_field(0.001, 1000, 0.297, 3, tr(" m"), tr("Length of the edge from corner 1 to 2"));
+    rectHeight_ = make_number_field(0.001, 1000, 0.210, 3, tr(" m"), tr("Length of the edge from corner 2 to 3"));
+    rectFocal_ = make_number_field(0, 1e5, 0, 1, tr(" px"),
                       tr("Focal length in pixels of the photo; 0 estimates it from the "
                          "rectangle's perspective (it must be seen at an angle)"));
     rectFocal_->setSpecialValueText(tr("estimate"));
@@ -120,10 +103,10 @@ QWidget* CalibrationPanel::makeRectanglePage() {
     form->addRow(tr("Height"), rectHeight_);
     form->addRow(tr("Focal length"), rectFocal_);
     auto* row = new QHBoxLayout;
-    QPushButton* pick = button("rectanglePick", tr("Click corners"),
+    QPushButton* pick = make_named_button("rectanglePick", tr("Click corners"),
                                tr("Click the rectangle's four corners in the photo, in order "
                                   "around it; corner 1 becomes the world origin"));
-    QPushButton* apply = button("rectangleApply", tr("Apply"),
+    QPushButton* apply = make_named_button("rectangleApply", tr("Apply"),
                                 tr("Match the camera to the clicked corners"));
     connect(pick, &QPushButton::clicked, this, [this] { startPicking(Target::Corners); });
     connect(apply, &QPushButton::clicked, this, [this] { applyRectangle(); });
@@ -146,7 +129,7 @@ QWidget* CalibrationPanel::makeVanishingPage() {
         tr("Drag two or more segments along the ground direction at right angles to X")};
     auto* row = new QHBoxLayout;
     for (int axis : {0, 2, 1}) {
-        QPushButton* b = button(names[axis], texts[axis], tips[axis]);
+        QPushButton* b = make_named_button(names[axis], texts[axis], tips[axis]);
         b->setStyleSheet(QStringLiteral("color: %1").arg(kAxisColour[axis].name()));
         connect(b, &QPushButton::clicked, this, [this, axis] {
             startPicking(axis == 0 ? Target::X : axis == 1 ? Target::Y : Target::Z);
@@ -155,35 +138,35 @@ QWidget* CalibrationPanel::makeVanishingPage() {
     }
     form->addRow(row);
     auto* row2 = new QHBoxLayout;
-    QPushButton* origin = button("vanishingOrigin", tr("Click origin"),
+    QPushButton* origin = make_named_button("vanishingOrigin", tr("Click origin"),
                                  tr("Click a point on the ground: the world origin"));
-    QPushButton* clear = button("vanishingClear", tr("Clear"), tr("Remove the drawn lines"));
+    QPushButton* clear = make_named_button("vanishingClear", tr("Clear"), tr("Remove the drawn lines"));
     connect(origin, &QPushButton::clicked, this, [this] { startPicking(Target::Origin); });
     connect(clear, &QPushButton::clicked, this, [this] { clearPicks(); });
     row2->addWidget(origin);
     row2->addWidget(clear);
     form->addRow(row2);
-    cameraHeight_ = spin(0.01, 1000, 1.6, 3, tr(" m"), tr("Camera height above the ground (scale)"));
+    cameraHeight_ = make_number_field(0.01, 1000, 1.6, 3, tr(" m"), tr("Camera height above the ground (scale)"));
     cameraHeight_->setObjectName("vanishingHeight");
     form->addRow(tr("Camera height"), cameraHeight_);
-    distance_ = spin(0, 1e4, 0, 3, tr(" m"),
+    distance_ = make_number_field(0, 1e4, 0, 3, tr(" m"),
                      tr("Scale from a known distance between two ground points instead of the "
                         "camera height (0: use the camera height)"));
     distance_->setSpecialValueText(tr("use camera height"));
     distance_->setObjectName("vanishingDistance");
-    QPushButton* ends = button("vanishingDistanceEnds", tr("Click ends"),
+    QPushButton* ends = make_named_button("vanishingDistanceEnds", tr("Click ends"),
                                tr("Click the two ground points the known distance separates"));
     connect(ends, &QPushButton::clicked, this, [this] { startPicking(Target::Distance); });
     auto* distRow = new QHBoxLayout;
     distRow->addWidget(distance_, 1);
     distRow->addWidget(ends);
     form->addRow(tr("Or distance"), distRow);
-    vertical_ = spin(0, 1e4, 0, 3, tr(" m"),
+    vertical_ = make_number_field(0, 1e4, 0, 3, tr(" m"),
                      tr("Scale from a known vertical length (a box edge, a door frame, a "
                         "person) instead of the camera height (0: not used)"));
     vertical_->setSpecialValueText(tr("not used"));
     vertical_->setObjectName("vanishingVertical");
-    QPushButton* footTop = button("vanishingVerticalEnds", tr("Click foot, top"),
+    QPushButton* footTop = make_named_button("vanishingVerticalEnds", tr("Click foot, top"),
                                   tr("Click the vertical length's foot on the ground, then its "
                                      "top straight above it"));
     connect(footTop, &QPushButton::clicked, this, [this] { startPicking(Target::Vertical); });
@@ -196,12 +179,12 @@ QWidget* CalibrationPanel::makeVanishingPage() {
     freePrincipal_->setToolTip(tr("Needs lines along all three directions that pin it down; "
                                   "otherwise it stays at the image centre"));
     form->addRow(freePrincipal_);
-    vanFocal_ = spin(0, 1e5, 0, 1, tr(" px"),
+    vanFocal_ = make_number_field(0, 1e5, 0, 1, tr(" px"),
                      tr("Focal length in pixels; 0 takes it from two vanishing points"));
     vanFocal_->setSpecialValueText(tr("from the lines"));
     vanFocal_->setObjectName("vanishingFocal");
     form->addRow(tr("Focal length"), vanFocal_);
-    QPushButton* apply = button("vanishingApply", tr("Apply"),
+    QPushButton* apply = make_named_button("vanishingApply", tr("Apply"),
                                 tr("Match the camera to the drawn lines"));
     connect(apply, &QPushButton::clicked, this, [this] { applyVanishing(); });
     form->addRow(apply);
