@@ -40,7 +40,8 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
     QElapsedTimer clock;
     clock.start();
     qint64 last = 0, worst = 0;
-    int ticks = 0, frames = 0, busy = 0;
+    int ticks = 0, frames = 0, busy = 0, ticksAfterStroke = 0, busyAfterStroke = 0;
+    bool afterStroke = false;
     QTimer timer;
     timer.setTimerType(Qt::PreciseTimer);
     QObject::connect(&timer, &QTimer::timeout, [&] {
@@ -49,6 +50,8 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
         last = now;
         ++ticks;
         busy += !w.renderer()->idle();
+        ticksAfterStroke += afterStroke;
+        busyAfterStroke += afterStroke && !w.renderer()->idle();
     });
     QObject::connect(w.renderer(), &RenderController::frameReady, [&] { ++frames; });
     timer.start(intervalMs);
@@ -60,7 +63,10 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
     Q_EMIT ior->sliderPressed();
     for (int i = 0; i < 40; ++i) {
         if (i < 20) ior->setValue(110 + 5 * i);
-        if (i == 20) Q_EMIT ior->sliderReleased();
+        if (i == 20) {
+            Q_EMIT ior->sliderReleased();
+            afterStroke = true;
+        }
         if (i > 20 && i % 5 == 0) {
             Project q = w.document()->project();
             q.objects.back().transform.translation.x += 0.05f;
@@ -72,11 +78,13 @@ void ResponsivenessTest::uiTimerNeverWaitsMoreThan50msWhileRenderingAndEditing()
     std::printf(
         "UI timer: %d ticks (%d while rendering), %d frames shown, worst lateness %.1f ms\n", ticks,
         busy, frames, double(worst) / 1e6);
-    // The figure only means something if the renderer worked throughout (during the stroke
-    // each slider step renders one pass and then waits for the next step).
+    // The figure only means something if the renderer worked throughout. During the stroke
+    // each slider step renders one pass and then waits for the next step (how long depends on
+    // the machine's speed), so the share is taken after it: moves restart a refinement.
     QVERIFY(frames >= 1);
     QVERIFY(ticks > 100);
-    QVERIFY2(busy >= ticks * 3 / 4, qPrintable(QString("busy %1 of %2 ticks").arg(busy).arg(ticks)));
+    QVERIFY2(busyAfterStroke >= ticksAfterStroke * 3 / 4,
+             qPrintable(QString("busy %1 of %2 ticks after the stroke").arg(busyAfterStroke).arg(ticksAfterStroke)));
     QVERIFY2(worst < 50 * 1000000LL, qPrintable(QString("worst %1 ms").arg(worst / 1e6)));
 }
 
