@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "image/image_io.h"
 
@@ -41,10 +42,24 @@ int stride(const Image& image, int max_width) {
 
 }  // namespace
 
-QImage to_display(const Image& image, float exposure, int max_width) {
+QImage to_display(const Image& image, float exposure, int max_width, const DisplayTransform* view) {
     const int step = stride(image, max_width);
     QImage out(image.width() / step, image.height() / step, QImage::Format_RGB32);
     const float scale = std::exp2(exposure);
+    if (view && !view->is_standard()) {
+        std::vector<vec3> row_in(size_t(out.width())), row_out(size_t(out.width()));
+        for (int y = 0; y < out.height(); ++y) {
+            for (int x = 0; x < out.width(); ++x)
+                row_in[size_t(x)] = image.at(x * step + step / 2, y * step + step / 2) * scale;
+            view->apply(row_in.data(), row_out.data(), row_in.size());
+            auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
+            for (int x = 0; x < out.width(); ++x) {
+                const vec3 c = row_out[size_t(x)] * 255.0f + 0.5f;
+                row[x] = qRgb(int(c.x), int(c.y), int(c.z));
+            }
+        }
+        return out;
+    }
     for (int y = 0; y < out.height(); ++y) {
         auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
         for (int x = 0; x < out.width(); ++x) {

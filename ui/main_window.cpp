@@ -7,6 +7,7 @@
 #include <QCheckBox>
 #include <QDockWidget>
 #include <QKeySequence>
+#include <QComboBox>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
@@ -408,6 +409,15 @@ void MainWindow::createToolbar() {
     exposureLabel_->setMinimumWidth(60);
     exposureLabel_->setToolTip(tr("Display exposure in stops (EV)"));
     bar->addWidget(exposureLabel_);
+    bar->addWidget(new QLabel(tr(" View ")));
+    viewBox_ = new QComboBox;
+    viewBox_->setObjectName("viewTransform");
+    for (const std::string& v : available_views()) viewBox_->addItem(QString::fromStdString(v));
+    viewBox_->setToolTip(tr("View transform of the viewport and of PNG/JPEG/TIFF exports, kept in the project: "
+                            "Standard leaves an untouched photo pixel as it came in; Filmic rolls off "
+                            "highlights of HDR plates"));
+    connect(viewBox_, &QComboBox::textActivated, this, [this](const QString& v) { setDisplayView(v); });
+    bar->addWidget(viewBox_);
     connect(doc_, &Document::changed, this, [this] { showDisplaySettings(); });
     showDisplaySettings();
 }

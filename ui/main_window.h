@@ -17,6 +17,7 @@ class QLabel;
 class QMenu;
 class QProgressBar;
 class QSlider;
+class QComboBox;
 class QToolButton;
 
 namespace dp::ui {
@@ -67,6 +68,9 @@ public:
     /// (setExportAppliesExposure).
     void setDisplayExposure(float stops);
     float displayExposure() const;
+    /// The view transform of the viewport and of PNG/JPEG/TIFF exports: the project's
+    /// `display.view`, set as one undoable edit (the toolbar's View box).
+    void setDisplayView(const QString& view);
     /// PNG / JPEG exports at the display exposure (on) or at 0 EV, the render as it is (off,
     /// the default). File > Apply Display Exposure to Exports.
     void setExportAppliesExposure(bool on);
@@ -206,6 +210,7 @@ private:
     std::vector<std::string> renderedPaths_;  ///< the file paths of the last render asked for
     QSlider* exposure_ = nullptr;
     QLabel* exposureLabel_ = nullptr;
+    QComboBox* viewBox_ = nullptr;
     int exposureKey_ = -1;  ///< merge key of the slider stroke under way (-1: none)
     QMenu* recentMenu_ = nullptr;
     QActionGroup *viewGroup_ = nullptr, *gizmoGroup_ = nullptr;

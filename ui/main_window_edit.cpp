@@ -101,6 +101,13 @@ void MainWindow::setDisplayExposure(float stops) {
     doc_->edit(tr("Display exposure"), p, exposureKey_);
 }
 
+void MainWindow::setDisplayView(const QString& view) {
+    if (!doc_->isOpen() || doc_->project().display.view == view.toStdString()) return;
+    Project p = doc_->project();
+    p.display.view = view.toStdString();
+    doc_->edit(tr("View transform"), p);
+}
+
 float MainWindow::displayExposure() const {
     return doc_->project().display.exposure;
 }
@@ -114,6 +121,17 @@ void MainWindow::showDisplaySettings() {
     }
     exposureLabel_->setText(tr("%1%2 EV").arg(stops >= 0 ? "+" : "").arg(stops, 0, 'f', 1));
     if (viewport_->exposure() != stops) viewport_->setExposure(stops);
+    const DisplaySettings& display = doc_->project().display;
+    {
+        const QSignalBlocker block(viewBox_);
+        const QString view = QString::fromStdString(display.view);
+        if (viewBox_->findText(view) < 0) viewBox_->addItem(view);  // a view this machine's config lacks
+        viewBox_->setCurrentText(view);
+    }
+    ViewSettings view;
+    view.view = display.view;
+    view.look = display.look;
+    viewport_->setView(view);
     renderer_->setDisplayExposure(stops);  // the noise target is judged at it
 }
 

@@ -5,6 +5,7 @@
 #include <QDragEnterEvent>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QInputDialog>
 #include <QMenu>
 #include <QMimeData>
 #include <QProgressBar>
@@ -19,6 +20,7 @@
 #include "document.h"
 #include "error_reporter.h"
 #include "geometry/mesh.h"
+#include "image/display_transform.h"
 #include "image/image_io.h"
 #include "main_window.h"
 #include "mesh_files.h"
@@ -104,8 +106,24 @@ bool MainWindow::saveProjectAs(const QString& path) {
 }
 
 bool MainWindow::newProject(const QString& photo, const QString& probe, bool mirrorBall) {
+    std::string layer;
     try {
-        load_image(photo.toStdString(), "photograph");
+        ImageLoadReport plate;
+        load_image(photo.toStdString(), "photograph", &plate);
+        if (plate.layers.size() > 1) {
+            // A multilayer plate (a Blender or Nuke render): the user says which layer is the photo.
+            QStringList names;
+            for (const std::string& l : plate.layers) names << (l.empty() ? tr("(main)") : QString::fromStdString(l));
+            const int current = int(std::find(plate.layers.begin(), plate.layers.end(), plate.layer) - plate.layers.begin());
+            bool ok = false;
+            const QString chosen = QInputDialog::getItem(this, tr("Layer of the photo"),
+                                                         tr("%1 holds several layers; which is the photo?")
+                                                             .arg(QFileInfo(photo).fileName()),
+                                                         names, current, false, &ok);
+            if (!ok) return false;
+            const int index = int(names.indexOf(chosen));
+            layer = index >= 0 ? plate.layers[size_t(index)] : plate.layer;
+        }
         ImageLoadReport report;
         load_image(probe.toStdString(), "light probe", &report);
         if (!report.linear_source)
@@ -119,6 +137,7 @@ bool MainWindow::newProject(const QString& photo, const QString& probe, bool mir
     Project p;
     p.base_dir = QFileInfo(photo).absolutePath().toStdString();
     p.photo.path = QFileInfo(photo).absoluteFilePath().toStdString();
+    p.photo.layer = layer;
     p.probe.path = QFileInfo(probe).absoluteFilePath().toStdString();
     p.probe.format = mirrorBall ? ProbeSpec::Format::MirrorBall : ProbeSpec::Format::LatLong;
     p.camera.eye = vec3(0, 1.5f, 4.5f);
@@ -181,19 +200,28 @@ bool MainWindow::writeExport(const QString& path, const RenderFrame& f) {
     const QString suffix = QFileInfo(path).suffix().toLower();
     std::vector<std::string> warnings;
     try {
-        if (suffix == "png" || suffix == "jpg" || suffix == "jpeg") {
+        if (suffix == "png" || suffix == "jpg" || suffix == "jpeg" || suffix == "tif" || suffix == "tiff") {
             Image image = f.update.image;
             if (const size_t n = replace_non_finite(image))
                 warnings.push_back(std::to_string(n) + " NaN/Inf values replaced by 0");
-            // The render as it is (0 EV) unless asked for the display's exposure.
-            save_ldr(path.toStdString(), image,
-                     exportAppliesExposure() ? doc_->project().display.exposure : 0.0f);
+            for (size_t i = 0; i < image.size(); ++i) image[i] = glm::max(image[i], vec3(0.0f));
+            // Through the viewport's view transform; the render as it is (0 EV) unless asked for
+            // the display's exposure.
+            ViewSettings view;
+            view.view = doc_->project().display.view;
+            view.look = doc_->project().display.look;
+            view.exposure = exportAppliesExposure() ? doc_->project().display.exposure : 0.0f;
+            ImageWriteOptions options;
+            options.metadata = read_image_metadata(doc_->project().resolve(doc_->project().photo.path).string());
+            options.metadata.emplace_back("diffphoton:passes", std::to_string(f.update.stats.passes));
+            options.metadata.emplace_back("diffphoton:seed", std::to_string(doc_->project().render.seed));
+            save_display_image(path.toStdString(), image, DisplayTransform(view), options);
         } else if (suffix == "exr") {
             RenderUpdate u = f.update;
             warnings = save_render_exr(path.toStdString(), u, *f.photo, true);
         } else {
             throw InputError(path.toStdString(), "export",
-                             "unknown format (use .png, .jpg or .exr)");
+                             "unknown format (use .png, .jpg, .tif or .exr)");
         }
     } catch (const std::exception& e) {
         error(tr("Cannot export"), QString::fromUtf8(e.what()));
@@ -316,7 +344,7 @@ void MainWindow::newDialog(const QString& photo, const QString& probe) {
 void MainWindow::exportDialog() {
     const QString f =
         QFileDialog::getSaveFileName(this, tr("Export image"), QString(),
-                                     tr("PNG (*.png);;OpenEXR with layers (*.exr);;JPEG (*.jpg)"));
+                                     tr("PNG (*.png);;OpenEXR with layers (*.exr);;JPEG (*.jpg);;TIFF, 16 bits (*.tif)"));
     if (!f.isEmpty()) exportImage(f);
 }
 

@@ -65,6 +65,19 @@ void Viewport::setExposure(float stops) {
     rebuildImage();
 }
 
+void Viewport::setView(const ViewSettings& view) {
+    if (view.view == view_.view && view.look == view_.look) return;
+    view_ = view;
+    view_.exposure = 0;
+    transform_.reset();
+    try {
+        if (!(view_.view == "Standard" && view_.look.empty())) transform_ = std::make_shared<const DisplayTransform>(view_);
+    } catch (const std::exception&) {
+        transform_.reset();  // an unknown view (a project from another machine's config) shows Standard
+    }
+    rebuildImage();
+}
+
 void Viewport::setOverlays(const OverlayOptions& o) {
     overlays_ = o;
     overlays_.selected = doc_->selected();
@@ -93,7 +106,7 @@ void Viewport::rebuildImage() {
     if (!frame_) {
         shown_ = QImage();
     } else if (mode_ == ViewMode::Photo && frame_->photo) {
-        shown_ = to_display(*frame_->photo, exposure_, kDisplayMaxWidth);
+        shown_ = to_display(*frame_->photo, exposure_, kDisplayMaxWidth, transform_.get());
     } else if (mode_ == ViewMode::Delta) {
         shown_ = to_false_colour(frame_->dL(), exposure_, kDisplayMaxWidth);
     } else {
@@ -105,7 +118,7 @@ void Viewport::rebuildImage() {
             image = denoised_.get();
             showingDenoised_ = true;
         }
-        shown_ = to_display(*image, exposure_, kDisplayMaxWidth);
+        shown_ = to_display(*image, exposure_, kDisplayMaxWidth, transform_.get());
     }
     update();
 }

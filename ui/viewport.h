@@ -41,6 +41,10 @@ public:
     void setViewMode(ViewMode mode);
     void setExposure(float stops);
     float exposure() const { return exposure_; }
+    /// The view transform pictures are shown through (the project's display.view and look;
+    /// exposure comes from setExposure). An unknown view shows Standard.
+    void setView(const ViewSettings& view);
+    const ViewSettings& view() const { return view_; }
     void setOverlays(const OverlayOptions& o);
     OverlayOptions overlays() const { return overlays_; }
     void setGizmoMode(GizmoMode mode);
@@ -116,6 +120,8 @@ protected:
     QSize renderSize_;
     ViewMode mode_ = ViewMode::Augmented;
     float exposure_ = 0;
+    ViewSettings view_;
+    std::shared_ptr<const DisplayTransform> transform_;  ///< null: the built-in Standard
     OverlayOptions overlays_;
     GizmoMode gizmo_ = GizmoMode::Translate;
     double zoom_ = 1;

@@ -15,27 +15,35 @@ namespace dp::cli {
 
 namespace {
 
-Image load_input(const std::string& path, const std::string& field) {
+Image load_input(const std::string& path, const std::string& field, const ImageLoadOptions& options = {},
+                 ImageLoadReport* loaded = nullptr) {
     ImageLoadReport report;
-    Image image = load_image(path, field, &report);
+    Image image = load_image(path, field, &report, options);
     if (report.non_finite_replaced > 0)
         warn(path + ": " + std::to_string(report.non_finite_replaced) +
              " NaN/Inf values replaced by 0");
+    for (const std::string& w : report.warnings) warn(path + ": " + w);
+    if (loaded) *loaded = std::move(report);
     return image;
 }
 
 struct ConvertOptions {
     std::string input, output;
     float exposure = 0;
+    ImageLoadOptions read;
+    OutputFormat format;
 };
 
 int run_convert(const ConvertOptions& o) {
-    if (check_output_path(o.output, "output") != ImageKind::Ldr)
-        throw InputError(o.output, "output", "convert writes PNG or JPEG (.png, .jpg, .jpeg)");
+    check_output_path(o.output, "output");
     std::error_code ec;
     if (std::filesystem::equivalent(o.input, o.output, ec))
         throw InputError(o.output, "output", "is the input image itself: choose another output");
-    write_image(o.output, load_input(o.input, "input"), o.exposure);
+    const DisplayTransform view = output_view(o.format, o.exposure);
+    ImageLoadReport report;
+    Image image = load_input(o.input, "input", o.read, &report);
+    // The plate's camera and exposure data travel with what is made of it.
+    write_image(o.output, std::move(image), view, write_options(o.format, report.metadata));
     return 0;
 }
 
@@ -100,10 +108,14 @@ int run_compare(const CompareOptions& o) {
 
 Command add_convert_command(CLI::App& app) {
     auto o = std::make_shared<ConvertOptions>();
-    CLI::App* sub = app.add_subcommand("convert", "Convert an HDR image (EXR) to PNG/JPEG");
-    sub->add_option("input", o->input, "Input image (EXR, HDR or LDR)")->required();
-    sub->add_option("output", o->output, "Output .png, .jpg or .jpeg")->required();
+    CLI::App* sub = app.add_subcommand("convert", "Convert an image: EXR/HDR to PNG/JPEG/TIFF through a view, or between formats");
+    sub->add_option("input", o->input, "Input image (EXR, HDR, TIFF, PNG, JPEG, ...)")->required();
+    sub->add_option("output", o->output, "Output .png, .jpg, .jpeg, .tif, .tiff or .exr")->required();
     sub->add_option("--exposure", o->exposure, "Exposure in stops")->check(kFinite);
+    sub->add_option("--layer", o->read.layer, "Layer of a multilayer input (e.g. ViewLayer.Combined, dL)");
+    sub->add_option("--colorspace", o->read.colorspace,
+                    "How the input's values are read: auto (default), srgb, linear, or an OpenColorIO colour space");
+    add_output_format_options(sub, o->format);
     return {sub, [o] { return run_convert(*o); }};
 }
 

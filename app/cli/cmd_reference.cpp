@@ -43,7 +43,7 @@ int run_reference(const ReferenceCliOptions& o) {
             std::cerr << "error: interrupted; nothing written\n";
             return kInterruptedExit;
         }
-        write_image(o.output, std::move(image), o.exposure);
+        write_image(o.output, std::move(image), output_view({}, o.exposure, project_view(loaded.project)));
         std::printf("wrote %s  spp %d  seconds %.2f\n", o.output.c_str(), o.spp,
                     progress.elapsed());
         return 0;

@@ -33,6 +33,7 @@ struct RenderOptions {
     uint64_t seed = 0;
     float exposure = 0;
     bool layers = false, denoise = false;
+    OutputFormat format;
     CLI::Option *passes_opt = nullptr, *time_opt = nullptr, *photons_opt = nullptr,
                 *seed_opt = nullptr, *threads_opt = nullptr, *pixel_opt = nullptr;
 };
@@ -67,16 +68,31 @@ Denoised denoise_result(const RenderScene& scene, const RenderUpdate& u, bool wi
     return d;
 }
 
-void write_result(const RenderOptions& o, ImageKind kind, const RenderScene& scene, RenderUpdate& u) {
+/// What an output's header says of how it was made, and the plate's camera data.
+std::vector<std::pair<std::string, std::string>> render_metadata(const LoadedScene& loaded, const RenderUpdate& u,
+                                                                 const std::string& project_path) {
+    auto m = read_image_metadata(loaded.project.resolve(loaded.project.photo.path).string());
+    m.emplace_back("diffphoton:project", std::filesystem::path(project_path).filename().string());
+    m.emplace_back("diffphoton:passes", std::to_string(u.stats.passes));
+    m.emplace_back("diffphoton:seed", std::to_string(loaded.settings.seed));
+    m.emplace_back("diffphoton:photons_per_pass", std::to_string(loaded.settings.photons_per_pass));
+    return m;
+}
+
+void write_result(const RenderOptions& o, ImageKind kind, const LoadedScene& loaded, RenderUpdate& u) {
+    const RenderScene& scene = *loaded.scene;
+    const ImageWriteOptions options = write_options(o.format, render_metadata(loaded, u, o.project));
     std::optional<Denoised> denoised;
     if (o.denoise) denoised = denoise_result(scene, u, kind == ImageKind::Exr);
     if (kind == ImageKind::Ldr) {
-        write_image(o.output, denoised ? std::move(denoised->image) : std::move(u.image), o.exposure);
+        write_image(o.output, denoised ? std::move(denoised->image) : std::move(u.image),
+                    output_view(o.format, o.exposure, project_view(loaded.project)), options);
         return;
     }
     std::vector<ExrLayer> extra;
     if (denoised) extra = {{"denoised", &denoised->image}, {"dL_denoised", &denoised->dL}};
-    for (const std::string& w : save_render_exr(o.output, u, scene.photo(), o.layers, extra))
+    if (o.format.bits != 0) throw InputError(o.output, "--bits", "an EXR holds half (--half) or 32-bit floats");
+    for (const std::string& w : save_render_exr(o.output, u, scene.photo(), o.layers, extra, options))
         warn(o.output + ": " + w);
 }
 
@@ -87,6 +103,9 @@ int run_render(const RenderOptions& o) {
     if (!o.output.empty()) kind = check_output_path(o.output, "--output");
     if (o.layers && kind != ImageKind::Exr)
         throw InputError(o.output, "--layers", "layers can only be written to an EXR file");
+    if (o.format.bits != 0 && kind == ImageKind::Exr)
+        throw InputError(o.output, "--bits", "an EXR holds half (--half) or 32-bit floats");
+    if (o.format.half && kind != ImageKind::Exr) throw InputError(o.output, "--half", "only EXR outputs are half floats");
     int px = 0, py = 0;
     if (debug) parse_pixel(o.pixel, px, py);
     if (debug && !o.output.empty()) warn("--output is ignored with --pixel; nothing is written");
@@ -150,7 +169,7 @@ int run_render(const RenderOptions& o) {
             warn("interrupted: writing the " + std::to_string(last->stats.passes) +
                  " passes done so far");
         const double render_s = progress.elapsed();
-        write_result(o, kind, *scene, *last);
+        write_result(o, kind, loaded, *last);
         const RenderStats& st = last->stats;
         const double skipped =
             st.pixels_total ? 1.0 - double(st.pixels_gathered) / double(st.pixels_total) : 0.0;
@@ -170,7 +189,8 @@ Command add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     CLI::App* sub = app.add_subcommand("render", "Render the virtual objects into the photo");
     sub->add_option("project", o->project, "Project file (JSON)")->required();
-    sub->add_option("-o,--output", o->output, "Output image: .exr (linear) or .png/.jpg (sRGB)");
+    sub->add_option("-o,--output", o->output,
+                    "Output image: .exr (linear, layered) or .png/.jpg/.tif (through the project's display view)");
     o->passes_opt =
         sub->add_option("--passes", o->passes, "Number of passes (overrides the project)")
             ->check(kPositive);
@@ -186,8 +206,9 @@ Command add_render_command(CLI::App& app) {
     sub->add_flag("--denoise", o->denoise,
                   "Denoise the change with Open Image Denoise: EXR gets layers denoised and "
                   "dL_denoised beside the raw image; PNG/JPEG is the denoised image");
-    sub->add_option("--exposure", o->exposure, "PNG/JPEG only: exposure in stops")
+    sub->add_option("--exposure", o->exposure, "PNG/JPEG/TIFF only: exposure in stops")
         ->check(kFinite);
+    add_output_format_options(sub, o->format);
     sub->add_option("--method", o->method,
                     "differential (photon mapping of the change), standard (two independent "
                     "path-traced simulations, without and with the objects; one sample per pixel "

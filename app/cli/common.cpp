@@ -86,11 +86,11 @@ ImageKind check_output_path(const std::string& path, const std::string& option) 
     ImageKind kind;
     if (ext == ".exr") {
         kind = ImageKind::Exr;
-    } else if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") {
+    } else if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff") {
         kind = ImageKind::Ldr;
     } else {
         throw InputError(path, option,
-                         "unknown output format '" + ext + "' (use .exr, .png, .jpg or .jpeg)");
+                         "unknown output format '" + ext + "' (use .exr, .png, .jpg, .jpeg, .tif or .tiff)");
     }
     check_output_folder(path, option);
     return kind;
@@ -136,16 +136,71 @@ size_t sanitize(Image& image, const std::string& path, const std::string& layer)
     return replaced;
 }
 
-void write_image(const std::string& path, Image image, float exposure) {
+void add_output_format_options(CLI::App* sub, OutputFormat& f) {
+    sub->add_option("--view", f.view,
+                    "View transform of PNG/JPEG/TIFF outputs: Standard (exact sRGB, the default), Raw, or a "
+                    "view of the OpenColorIO config (Filmic, Filmic Log, False Color with Blender's)");
+    sub->add_option("--look", f.look, "OpenColorIO look applied before the view (e.g. \"Filmic - High Contrast\")");
+    sub->add_option("--bits", f.bits, "Bits per channel: PNG 8 or 16, TIFF 8, 16 or 32 (32: linear float)")
+        ->check(CLI::IsMember({8, 16, 32}));
+    sub->add_flag("--half", f.half, "EXR outputs in half floats (16 bits) instead of 32-bit floats");
+    sub->add_option("--quality", f.quality, "JPEG quality, 1 to 100")->check(CLI::Range(1, 100));
+}
+
+ImageWriteOptions write_options(const OutputFormat& f, std::vector<std::pair<std::string, std::string>> metadata) {
+    ImageWriteOptions options;
+    options.format = f.bits == 8    ? SampleFormat::U8
+                     : f.bits == 16 ? SampleFormat::U16
+                     : f.bits == 32 ? SampleFormat::Float
+                     : f.half       ? SampleFormat::Half
+                                    : SampleFormat::Default;
+    options.jpeg_quality = f.quality;
+    options.metadata = std::move(metadata);
+    return options;
+}
+
+DisplayTransform output_view(const OutputFormat& f, float exposure, const ViewSettings& fallback) {
+    ViewSettings settings = fallback;
+    if (!f.view.empty()) settings.view = f.view;
+    if (!f.look.empty() || !f.view.empty()) settings.look = f.look;
+    settings.exposure = exposure;
+    try {
+        return DisplayTransform(settings);
+    } catch (const InputError& e) {
+        throw InputError("", "--" + e.field(), e.what());
+    }
+}
+
+ViewSettings project_view(const Project& project) {
+    ViewSettings v;
+    v.view = project.display.view;
+    v.look = project.display.look;
+    return v;
+}
+
+void write_image(const std::string& path, Image image, const DisplayTransform& view, const ImageWriteOptions& options) {
     ImageKind kind = check_output_path(path, "output");
     check_output_space(path, "output", output_bytes(kind, image.width(), image.height()));
     sanitize(image, path, "main");
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     if (kind == ImageKind::Exr) {
-        save_exr(path, {{"", &image}});
+        if (options.format != SampleFormat::Default && options.format != SampleFormat::Half &&
+            options.format != SampleFormat::Float)
+            throw InputError(path, "--bits", "an EXR holds half (--half) or 32-bit floats");
+        save_exr(path, {{"", &image}}, options);
         return;
     }
+    if (ext == ".jpg" || ext == ".jpeg") {
+        if (options.format != SampleFormat::Default && options.format != SampleFormat::U8)
+            throw InputError(path, "--bits", "a JPEG holds 8 bits per channel");
+    } else if (ext == ".png" && options.format != SampleFormat::Default && options.format != SampleFormat::U8 &&
+               options.format != SampleFormat::U16) {
+        throw InputError(path, "--bits", "a PNG holds 8 or 16 bits per channel");
+    }
+    if (options.format == SampleFormat::Half) throw InputError(path, "--half", "only EXR outputs are half floats");
     for (size_t i = 0; i < image.size(); ++i) image[i] = glm::max(image[i], vec3(0.0f));
-    save_ldr(path, image, exposure);
+    save_display_image(path, image, view, options);
 }
 
 namespace {

@@ -9,7 +9,9 @@
 #include <tbb/task_arena.h>
 
 #include "base/threads.h"
+#include "image/display_transform.h"
 #include "image/image.h"
+#include "image/image_io.h"
 #include "assets/render_scene.h"
 #include "scene/project.h"
 
@@ -55,7 +57,8 @@ LoadedScene load_scene(const std::string& project_path, const std::function<void
 enum class ImageKind { Exr, Ldr };
 
 /// Checks an output path before any work is done, so a typo does not cost a render: the
-/// extension must be .exr, .png, .jpg or .jpeg and the folder must exist and be writable.
+/// extension must be .exr, .png, .jpg, .jpeg, .tif or .tiff and the folder must exist and be
+/// writable.
 /// Throws InputError naming the path and `option`.
 ImageKind check_output_path(const std::string& path, const std::string& option);
 /// The folder part of check_output_path, for files of any kind.
@@ -70,9 +73,28 @@ void check_output_space(const std::string& path, const std::string& option, doub
 /// Replaces NaN/Inf channels by 0 and warns (naming `path` and `layer`) if there were any.
 size_t sanitize(Image& image, const std::string& path, const std::string& layer);
 
-/// Writes `image` (after sanitize) as a single-layer EXR, or as 8-bit sRGB with `exposure`
-/// stops and negative values clamped to 0 for PNG/JPEG.
-void write_image(const std::string& path, Image image, float exposure);
+/// How an output image is encoded (`--view`, `--look`, `--bits`, `--half`, `--quality`).
+struct OutputFormat {
+    std::string view, look;  ///< "" : the project's display view (or Standard)
+    int bits = 0;            ///< PNG 8 or 16, TIFF 8, 16 or 32 (linear float); 0: the format's default
+    bool half = false;       ///< EXR in half floats
+    int quality = 95;        ///< JPEG
+};
+/// Adds the OutputFormat options to a command.
+void add_output_format_options(CLI::App* sub, OutputFormat& format);
+/// The writer's options for `format` with `metadata` (name, value) for the file's header.
+ImageWriteOptions write_options(const OutputFormat& format,
+                                std::vector<std::pair<std::string, std::string>> metadata = {});
+/// The view for a display output: `format`'s, else `fallback`'s (a project's display), with
+/// `exposure` stops. Throws InputError for an unknown view or look.
+DisplayTransform output_view(const OutputFormat& format, float exposure, const ViewSettings& fallback = {});
+
+/// The project's display view and look (exposure 0: outputs are at 0 EV unless asked).
+ViewSettings project_view(const Project& project);
+
+/// Writes `image` (after sanitize) as a single-layer EXR, or as PNG/JPEG/TIFF through `view`
+/// (exposure included) with negative values clamped to 0.
+void write_image(const std::string& path, Image image, const DisplayTransform& view, const ImageWriteOptions& options = {});
 
 /// Ctrl-C: the first one asks long commands to stop (they check interrupted()), a second one
 /// kills the process as usual, removing the temporary file of an output being written (the

@@ -34,8 +34,9 @@ fs::file_time_type modified(const fs::path& path) {
 
 /// Loads an image, noting replaced NaN/Inf in the cache entry.
 static Image load_noted(const fs::path& path, const std::string& field, ImageLoadReport& report,
-                        std::vector<std::string>& warnings, size_t& non_finite) {
-    Image img = load_image(path.string(), field, &report);
+                        std::vector<std::string>& warnings, size_t& non_finite, const ImageLoadOptions& options = {}) {
+    Image img = load_image(path.string(), field, &report, options);
+    for (const std::string& w : report.warnings) warnings.push_back(field + ": " + w);
     non_finite = report.non_finite_replaced;
     if (report.non_finite_replaced > 0)
         warnings.push_back(shorten_path(path.string()) + ": " + std::to_string(report.non_finite_replaced) +
@@ -115,7 +116,8 @@ void AssetLibrary::report(const std::string& key, SceneAssets& assets) {
 namespace {
 
 std::string photo_key(const Project& p) {
-    return "photo|" + p.resolve(p.photo.path).string() + "|" + std::to_string(p.photo.exposure);
+    return "photo|" + p.resolve(p.photo.path).string() + "|" + std::to_string(p.photo.exposure) + "|" +
+           p.photo.colorspace + "|" + p.photo.layer;
 }
 
 std::string probe_key(const Project& p) {
@@ -129,8 +131,17 @@ std::shared_ptr<const Image> AssetLibrary::photo(const Project& p) {
     const fs::path path = p.resolve(p.photo.path);
     return cached<Image>(photo_key(p), path, [&](Entry& e) {
         ImageLoadReport report;
-        Image img = load_noted(path, "photo.path", report, e.warnings, e.non_finite);
+        ImageLoadOptions options;
+        options.colorspace = p.photo.colorspace;
+        options.layer = p.photo.layer;
+        Image img = load_noted(path, "photo.path", report, e.warnings, e.non_finite, options);
         e.linear = report.linear_source;
+        if (report.window_differs)
+            e.warnings.push_back("photo.path: its data window (" + std::to_string(report.data_width) + "x" +
+                                 std::to_string(report.data_height) + " at " + std::to_string(report.data_x) + ", " +
+                                 std::to_string(report.data_y) +
+                                 ") differs from its display window: the photo is the display window, black "
+                                 "outside the data");
         check_clipped_photo(report.clipped, img.size(), e.warnings);
         const float gain = std::exp2(p.photo.exposure);
         if (gain != 1.0f)

@@ -1,4 +1,4 @@
-// OpenEXR reading and writing: the main colour of any EXR, and the named layers of ours.
+// OpenEXR's RGBA interface for what OpenImageIO hands over raw: luminance/chroma EXRs.
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -38,10 +38,6 @@ WindowSize window_size(const Imath::Box2i& dw, const std::string& path,
     if (w <= 0 || h <= 0) throw InputError(path, field, "image has zero size");
     check_image_size(path, field, w, h);  // a corrupt header can claim any data window
     return {int(w), int(h)};
-}
-
-std::string channel_name(const std::string& layer, const char* component) {
-    return layer.empty() ? std::string(component) : layer + "." + component;
 }
 
 std::string list_channels(const Imf::ChannelList& channels) {
@@ -127,88 +123,5 @@ Image load_exr_main(const std::string& path, const std::string& field) {
 }
 
 }  // namespace image_io_detail
-
-Image load_exr_layer(const std::string& path, const std::string& layer) {
-    image_io_detail::check_image_file(path, "");
-    try {
-        Imf::InputFile file(path.c_str());
-        const Imf::ChannelList& channels = file.header().channels();
-        std::array<std::string, 3> names = {channel_name(layer, "R"), channel_name(layer, "G"),
-                                            channel_name(layer, "B")};
-        bool complete = true;
-        for (const std::string& name : names) complete &= channels.findChannel(name) != nullptr;
-        if (!complete) {
-            std::set<std::string> layers;
-            channels.layers(layers);
-            std::string present = channels.findChannel("R") ? "\"\" (main)" : "";
-            for (const std::string& l : layers) present += (present.empty() ? "" : ", ") + l;
-            throw InputError(path, "",
-                             "EXR has no layer \"" + layer + "\" with R, G, B channels (layers: " +
-                                 (present.empty() ? "none" : present) + ")");
-        }
-        return read_channels(file, names, path, "");
-    } catch (const InputError&) {
-        throw;
-    } catch (const std::bad_alloc&) {
-        throw;  // out of memory is said as such, not as a corrupt file
-    } catch (const std::exception& e) {
-        throw_unreadable(path, "", e.what());
-    }
-}
-
-void save_exr(const std::string& path, const std::vector<ExrLayer>& layers) {
-    if (layers.empty()) throw std::invalid_argument("save_exr '" + shorten_path(path) + "': no layers given");
-    std::set<std::string> names;
-    for (const ExrLayer& layer : layers) {
-        if (!layer.image || layer.image->empty())
-            throw std::invalid_argument("save_exr '" + shorten_path(path) + "': layer \"" + layer.name +
-                                        "\" has no image");
-        if (layer.image->width() != layers[0].image->width() ||
-            layer.image->height() != layers[0].image->height())
-            throw std::invalid_argument("save_exr '" + shorten_path(path) + "': layer \"" + layer.name +
-                                        "\" differs in size from layer \"" + layers[0].name +
-                                        "\"");
-        if (layer.alpha && (layer.alpha->width() != layer.image->width() ||
-                            layer.alpha->height() != layer.image->height()))
-            throw std::invalid_argument("save_exr '" + shorten_path(path) + "': the alpha of layer \"" +
-                                        layer.name + "\" differs in size from it");
-        if (!names.insert(layer.name).second)
-            throw std::invalid_argument("save_exr '" + shorten_path(path) + "': layer \"" + layer.name +
-                                        "\" given twice");
-    }
-    image_io_detail::check_output_folder(path);
-
-    const int width = layers[0].image->width(), height = layers[0].image->height();
-    Imf::Header header(width, height);
-    header.compression() = Imf::ZIP_COMPRESSION;  // lossless, so reads are bit-exact
-    Imf::FrameBuffer frame;
-    for (const ExrLayer& layer : layers) {
-        // OpenEXR only reads from the slices while writing; its interface is not const-correct.
-        char* base = const_cast<char*>(reinterpret_cast<const char*>(layer.image->data()));
-        const char* components[3] = {"R", "G", "B"};
-        for (size_t c = 0; c < 3; ++c) {
-            const std::string name = channel_name(layer.name, components[c]);
-            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-            frame.insert(name, Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(vec3),
-                                          sizeof(vec3) * size_t(width)));
-        }
-        if (layer.alpha) {
-            const std::string name = channel_name(layer.name, "A");
-            header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-            frame.insert(name, Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(layer.alpha->data())),
-                                          sizeof(vec3), sizeof(vec3) * size_t(width)));
-        }
-    }
-    // Into a temporary file renamed over `path`: a killed render never leaves a broken EXR.
-    write_atomically(path, [&](const std::string& temp) {
-        try {
-            Imf::OutputFile file(temp.c_str(), header);
-            file.setFrameBuffer(frame);
-            file.writePixels(height);
-        } catch (const std::exception& e) {
-            throw std::runtime_error("cannot write EXR '" + shorten_path(path) + "': " + e.what());
-        }
-    });
-}
 
 }  // namespace dp

@@ -5,6 +5,7 @@
 
 #include "base/error.h"
 #include "image/image.h"
+#include "image/image_io.h"
 
 // Helpers shared by the image_io*.cpp files; not part of the public image API.
 namespace dp::image_io_detail {
@@ -27,6 +28,10 @@ bool header_size(const std::string& path, int64_t& width, int64_t& height, bool*
 /// Loads the main colour of an EXR: R, G, B (missing ones read as 0), else Y as grey, else
 /// luminance/chroma. Values are returned as stored, non-finite ones included.
 Image load_exr_main(const std::string& path, const std::string& field);
+
+/// Decodes any format OpenImageIO reads, as load_image documents (options, report).
+Image load_with_oiio(const std::string& path, const std::string& field, const ImageLoadOptions& options,
+                     ImageLoadReport& report);
 
 /// Throws std::runtime_error naming `path` when the folder it would be written to is missing;
 /// output folders are never created implicitly, so a mistyped path fails loudly.

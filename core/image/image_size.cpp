@@ -147,9 +147,15 @@ bool exr_size(const std::string& path, int64_t& w, int64_t& h) {
         Imf::Xdr::read<Imf::StreamIO>(in, version);
         Imf::Header header;
         header.readFrom(in, version);
-        const Imath::Box2i dw = header.dataWindow();
+        // The image loads as its display window; a data window too large to decode is what the
+        // caller's size check must see, though (OpenImageIO allocates by it).
+        const Imath::Box2i dw = header.dataWindow(), display = header.displayWindow();
         w = int64_t(dw.max.x) - dw.min.x + 1;
         h = int64_t(dw.max.y) - dw.min.y + 1;
+        if (w <= 0 || h <= 0) return false;
+        if (uint64_t(w) * uint64_t(h) > max_decoded_image_pixels()) return true;
+        w = int64_t(display.max.x) - display.min.x + 1;
+        h = int64_t(display.max.y) - display.min.y + 1;
         return w > 0 && h > 0;
     } catch (const std::exception&) {
         return false;

@@ -7,7 +7,8 @@
 namespace dp {
 
 std::vector<std::string> save_render_exr(const std::string& path, RenderUpdate& update, const Image& photo,
-                                         bool with_layers, const std::vector<ExrLayer>& extra) {
+                                         bool with_layers, const std::vector<ExrLayer>& extra,
+                                         const ImageWriteOptions& options) {
     std::vector<std::string> warnings;
     auto clean = [&](Image& image, const std::string& layer) {
         if (const size_t n = replace_non_finite(image))
@@ -33,7 +34,7 @@ std::vector<std::string> save_render_exr(const std::string& path, RenderUpdate& 
         layers.push_back({"catcher", &catcher});
     }
     layers.insert(layers.end(), extra.begin(), extra.end());
-    save_exr(path, layers);
+    save_exr(path, layers, options);
     return warnings;
 }
 

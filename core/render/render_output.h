@@ -17,6 +17,7 @@ namespace dp {
 /// place; one warning per layer that had NaN/Inf is returned, for the front end to show.
 /// `extra` layers (e.g. "denoised", "dL_denoised") are written after those, as given.
 std::vector<std::string> save_render_exr(const std::string& path, RenderUpdate& update, const Image& photo,
-                                         bool with_layers, const std::vector<ExrLayer>& extra = {});
+                                         bool with_layers, const std::vector<ExrLayer>& extra = {},
+                                         const ImageWriteOptions& options = {});
 
 }  // namespace dp

@@ -108,6 +108,11 @@ inline const char* material_source_name(MaterialSource s) { return kMaterialSour
 struct PhotoSpec {
     std::string path;
     float exposure = 0.0f;  ///< stops; linear pixel values are multiplied by 2^exposure
+    /// How the file's values are read: "" (automatic: float data linear, integer data sRGB or
+    /// its ICC profile), "srgb", "linear", or a colour space of the OpenColorIO config.
+    std::string colorspace;
+    /// The layer of a multilayer plate ("" : the plain R, G, B, or a lone "...Combined").
+    std::string layer;
     bool operator==(const PhotoSpec&) const = default;
 };
 
@@ -176,6 +181,10 @@ struct RenderSettings {
 /// How the studio shows the render; never changes what is rendered.
 struct DisplaySettings {
     float exposure = 0.0f;  ///< stops applied to the viewport (and to exports only when asked)
+    /// The view transform of the viewport and of PNG/JPEG/TIFF exports (display_transform.h):
+    /// "Standard" keeps an untouched photo pixel as it came in; "Filmic" for HDR plates.
+    std::string view = "Standard";
+    std::string look;  ///< "" or an OpenColorIO look
     bool operator==(const DisplaySettings&) const = default;
 };
 

@@ -386,6 +386,8 @@ J write_project(const Project& p) {
     J doc;
     doc["schema_version"] = p.schema_version;
     doc["photo"] = J{{"path", p.photo.path}, {"exposure", num(p.photo.exposure)}};
+    if (!p.photo.colorspace.empty()) doc["photo"]["colorspace"] = p.photo.colorspace;
+    if (!p.photo.layer.empty()) doc["photo"]["layer"] = p.photo.layer;
     doc["probe"] =
         J{{"path", p.probe.path},
           {"format", p.probe.format == ProbeSpec::Format::LatLong ? "latlong" : "mirrorball"},
@@ -431,6 +433,8 @@ J write_project(const Project& p) {
     render["low_discrepancy"] = s.low_discrepancy;
     doc["render"] = render;
     doc["display"] = J{{"exposure", num(p.display.exposure)}};
+    if (p.display.view != DisplaySettings{}.view) doc["display"]["view"] = p.display.view;
+    if (!p.display.look.empty()) doc["display"]["look"] = p.display.look;
     return doc;
 }
 
@@ -454,9 +458,11 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     Project p;
     p.base_dir = std::move(base_dir);
     const json& photo = r.required(doc, "", "photo");
-    r.object(photo, "photo", {"path", "exposure"});
+    r.object(photo, "photo", {"path", "exposure", "colorspace", "layer"});
     p.photo.path = r.string(r.required(photo, "photo", "path"), "photo.path");
     if (auto* e = r.optional(photo, "exposure")) p.photo.exposure = r.real(*e, "photo.exposure");
+    if (auto* c = r.optional(photo, "colorspace")) p.photo.colorspace = r.string(*c, "photo.colorspace");
+    if (auto* l = r.optional(photo, "layer")) p.photo.layer = r.string(*l, "photo.layer");
 
     const json& probe = r.required(doc, "", "probe");
     r.object(probe, "probe",
@@ -501,9 +507,11 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     });
     if (auto* s = r.optional(doc, "render")) p.render = parse_render(r, *s);
     if (auto* d = r.optional(doc, "display")) {
-        r.object(*d, "display", {"exposure"});
+        r.object(*d, "display", {"exposure", "view", "look"});
         if (auto* e = r.optional(*d, "exposure"))
             p.display.exposure = r.real(*e, "display.exposure");
+        if (auto* v = r.optional(*d, "view")) p.display.view = r.string(*v, "display.view");
+        if (auto* l = r.optional(*d, "look")) p.display.look = r.string(*l, "display.look");
     }
     return p;
 }

@@ -114,7 +114,7 @@ TEST(ImageIo, LuminanceOnlyExrLoadsAsGrey) {
     for (int i = 0; i < w * h; ++i) EXPECT_EQ(loaded[i], vec3(y[i])) << "pixel " << i;
 }
 
-TEST(ImageIo, ExrWithAnOffsetDataWindowLoadsTheWindowPixels) {
+TEST(ImageIo, ExrWithAnOffsetDataWindowLoadsItsDataInsideTheDisplayWindow) {
     TempDir dir;
     const Imath::Box2i display(Imath::V2i(0, 0), Imath::V2i(19, 9));
     const Imath::Box2i window(Imath::V2i(5, 3), Imath::V2i(12, 8));
@@ -134,7 +134,15 @@ TEST(ImageIo, ExrWithAnOffsetDataWindowLoadsTheWindowPixels) {
         file.setFrameBuffer(frame);
         file.writePixels(6);
     }
-    EXPECT_TRUE(bit_identical(load_image(path), image));
+    const Image loaded = load_image(path);
+    ASSERT_EQ(loaded.width(), 20);
+    ASSERT_EQ(loaded.height(), 10);
+    Image window_pixels(8, 6);
+    for (int y = 0; y < 6; ++y)
+        for (int x = 0; x < 8; ++x) window_pixels.at(x, y) = loaded.at(5 + x, 3 + y);
+    EXPECT_TRUE(bit_identical(window_pixels, image));
+    EXPECT_EQ(loaded.at(4, 3), vec3(0.0f));  // outside the data window
+    EXPECT_EQ(loaded.at(19, 9), vec3(0.0f));
 }
 
 TEST(ImageIo, LuminanceChromaExrLoadsInColour) {
