@@ -3,6 +3,7 @@
 // off by default, toggled with H over the augmented view and never drawn over the photo.
 #include <QAction>
 #include <QApplication>
+#include <QComboBox>
 #include <QFile>
 #include <QImage>
 #include <QJsonDocument>
@@ -29,6 +30,7 @@ private Q_SLOTS:
     void exposureIsKeptInTheProjectUndoableAndSaved();
     void exportsAreNotBakedWithTheExposureUnlessAsked();
     void overlaysAreNeverOverThePhotoAndHTogglesThemOverTheAugmentedView();
+    void theViewTransformIsPickedInTheToolbarKeptInTheProjectAndUsedByExports();
 
 private:
     void press(QWidget* target, int key, Qt::KeyboardModifiers modifiers = {});
@@ -180,6 +182,38 @@ void DisplayTest::overlaysAreNeverOverThePhotoAndHTogglesThemOverTheAugmentedVie
     // Shift+H hides the selected object now.
     press(v, Qt::Key_H, Qt::ShiftModifier);
     QVERIFY(!w_->document()->project().objects[1].visible);
+}
+
+void DisplayTest::theViewTransformIsPickedInTheToolbarKeptInTheProjectAndUsedByExports() {
+    auto* box = w_->findChild<QComboBox*>("viewTransform");
+    QVERIFY(box);
+    QCOMPARE(box->currentText(), QString("Standard"));
+    if (box->findText("Filmic") < 0) QSKIP("no OpenColorIO config with a Filmic view on this machine");
+    QVERIFY(test::wait_refined(*w_));
+    const QString standardExport = dir_->filePath("standard.png");
+    QVERIFY(test::export_and_wait(*w_, standardExport));
+    press(w_->viewport(), Qt::Key_1);  // the photo: its pixels change with the view only
+    const QImage standard = grabViewport();
+
+    // Open the box with a click and walk down to Filmic with the keyboard, as a person would.
+    QTest::mouseClick(box, Qt::LeftButton);
+    QWidget* popup = QApplication::activePopupWidget();
+    QVERIFY(popup);
+    for (int i = box->currentIndex(); i < box->findText("Filmic"); ++i) QTest::keyClick(popup, Qt::Key_Down);
+    QTest::keyClick(popup, Qt::Key_Return);
+    QCOMPARE(w_->document()->project().display.view, std::string("Filmic"));
+    QCOMPARE(w_->viewport()->view().view, std::string("Filmic"));
+    const QImage filmic = grabViewport();
+    QVERIFY(filmic != standard);
+    QVERIFY(test::wait_refined(*w_));
+    const QString filmicExport = dir_->filePath("filmic.png");
+    QVERIFY(test::export_and_wait(*w_, filmicExport));
+    QVERIFY(QImage(filmicExport) != QImage(standardExport));
+
+    press(w_->viewport(), Qt::Key_Z, Qt::ControlModifier);  // one undo step back to Standard
+    QCOMPARE(w_->document()->project().display.view, std::string("Standard"));
+    QCOMPARE(box->currentText(), QString("Standard"));
+    QVERIFY(grabViewport() == standard);
 }
 
 QTEST_MAIN(DisplayTest)
