@@ -60,7 +60,7 @@ TEST(VanishingCalibrationMonteCarlo, TheStatedUncertaintyCoversTheErrorInAboutNi
 TEST(VanishingCalibrationMonteCarlo, WeakLinesClickedAsPreciselyAsStatedNeverGiveASilentlyWrongFocalLength) {
     // Only a box's short edges, clicked at 2 px and said to be (--click-sigma 2): some draws
     // are far off, each must warn. Said to be 0.5 px, nine segments leave five residuals to
-    // reveal the sloppier clicks, and by chance they sometimes do not: about 1 draw in 1000
+    // reveal the sloppier clicks, and by chance they sometimes do not: about 1 draw in 500
     // is then off by more than 20 % silently (docs/calibration.md), which no check of the
     // result can prevent, only an honest click precision.
     const DrawStats s = monte_carlo(box_edges(), kDraws, 2.0, 0.05, 0.5,
