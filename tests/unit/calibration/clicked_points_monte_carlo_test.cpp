@@ -28,10 +28,13 @@ struct Coverage {
     }
 };
 
-/// `n` draws of `solve` on the image points of `world` seen by `scene`'s camera, each
+/// A calibration from the clicked image points of the world points, in their order.
+using Solve = std::function<CalibrationResult(const std::vector<ImagePoint>&)>;
+
+/// kDraws draws of `solve` on the image points of `world` seen by `scene`'s camera, each
 /// coordinate moved by Gaussian noise of kClickNoise px (seeded: reproducible).
-Coverage monte_carlo(const LineScene& scene, const std::vector<glm::dvec3>& world,
-                     const std::function<CalibrationResult(const std::vector<ImagePoint>&)>& solve) {
+Coverage coverage_of_clicks(const LineScene& scene, const std::vector<glm::dvec3>& world,
+                            const Solve& solve) {
     std::mt19937 rng(20240601);
     std::normal_distribution<double> gauss(0.0, kClickNoise);
     const glm::dvec3 centre(scene.camera().position());
@@ -72,16 +75,16 @@ TEST(ClickedPointsMonteCarlo, ARectanglesStatedUncertaintyCoversTheErrorInAboutN
     const LineScene scene = ground_lines();
     const std::vector<glm::dvec3> corners = {{0, 0, 0}, {0.6, 0, 0}, {0.6, 0, 0.4}, {0, 0, 0.4}};
     // The focal length from the rectangle itself: focal length, rotation and position.
-    const Coverage free = monte_carlo(scene, corners, [&](const std::vector<ImagePoint>& c) {
+    const Coverage estimated = coverage_of_clicks(scene, corners, [&](const auto& c) {
         return calibrate_rectangle(c, 0.6, 0.4, scene.width, scene.height, std::nullopt, "r");
     });
-    report("rectangle_focal_estimated", free);
-    expect_about_95(free.rate(free.focal), "focal length");
-    expect_about_95(free.rate(free.rotation), "rotation");
-    expect_about_95(free.rate(free.position), "position");
+    report("rectangle_focal_estimated", estimated);
+    expect_about_95(estimated.rate(estimated.focal), "focal length");
+    expect_about_95(estimated.rate(estimated.rotation), "rotation");
+    expect_about_95(estimated.rate(estimated.position), "position");
     // The focal length given: the pose alone.
     const Intrinsics k = Intrinsics::centred(scene.width, scene.height, scene.truth.fx);
-    const Coverage given = monte_carlo(scene, corners, [&](const std::vector<ImagePoint>& c) {
+    const Coverage given = coverage_of_clicks(scene, corners, [&](const auto& c) {
         return calibrate_rectangle(c, 0.6, 0.4, scene.width, scene.height, k, "r");
     });
     report("rectangle_focal_given", given);
@@ -99,15 +102,15 @@ TEST(ClickedPointsMonteCarlo, KnownPointsStatedUncertaintyCoversTheErrorInAboutN
         for (size_t i = 0; i < world.size(); ++i) p.push_back({world[i], c[i]});
         return p;
     };
-    const Coverage free = monte_carlo(scene, world, [&](const std::vector<ImagePoint>& c) {
+    const Coverage estimated = coverage_of_clicks(scene, world, [&](const auto& c) {
         return calibrate_points(pairs(c), scene.width, scene.height, std::nullopt, "p");
     });
-    report("points_intrinsics_estimated", free);
-    expect_about_95(free.rate(free.focal), "focal length");
-    expect_about_95(free.rate(free.rotation), "rotation");
-    expect_about_95(free.rate(free.position), "position");
+    report("points_intrinsics_estimated", estimated);
+    expect_about_95(estimated.rate(estimated.focal), "focal length");
+    expect_about_95(estimated.rate(estimated.rotation), "rotation");
+    expect_about_95(estimated.rate(estimated.position), "position");
     const Intrinsics k = Intrinsics::centred(scene.width, scene.height, scene.truth.fx);
-    const Coverage given = monte_carlo(scene, world, [&](const std::vector<ImagePoint>& c) {
+    const Coverage given = coverage_of_clicks(scene, world, [&](const auto& c) {
         return calibrate_points(pairs(c), scene.width, scene.height, k, "p");
     });
     report("points_focal_given", given);
