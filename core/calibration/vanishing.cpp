@@ -419,8 +419,8 @@ constexpr double kFocalRangeChi2 = 16.0;
 /// A warning when a focal length 20 % away (see kFocalRange), with the rotation (and a freed
 /// principal point) refitted, fits the lines within 4 sigma of the best fit. The covariance
 /// behind the 5 % rule is the cost's curvature at the optimum; with short or few lines the cost
-/// rises much more slowly on one side (a longer focal flattens the perspective the lines
-/// show), and that side alone can leave 20 % unexcluded while the curvature promises 5 %.
+/// is far from quadratic across 20 % and rises more slowly on one side (which one depends on
+/// the lines), and that side alone can leave 20 % unexcluded while the curvature promises 5 %.
 std::optional<std::string> focal_range_warning(const LineProblem& p, const LineFit& fit,
                                                const std::array<glm::dvec3, 3>& vp) {
     const LineCamera& cam = fit.camera();

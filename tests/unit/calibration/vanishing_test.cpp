@@ -177,8 +177,8 @@ TEST(VanishingCalibration, TheUncertaintyIsStatedForFocalRotationAndPosition) {
 
 TEST(VanishingCalibration, AFocalLengthTwentyPercentOffThatFitsTheLinesAsWellWarnsWhateverTheCurvatureSays) {
     // A box's X and Z edges alone, at sizes around where the focal length's stated uncertainty
-    // crosses 5 %: the cost rises more slowly towards a longer focal length than its curvature
-    // at the optimum says, so the 5 % rule alone would pass some of them silently.
+    // crosses 5 %: the cost rises more slowly on one side than its curvature at the optimum
+    // says, so the 5 % rule alone would pass some of them silently.
     int curvature_silent = 0;
     for (double scale = 0.8; scale <= 1.2; scale += 0.05) {
         LineScene scene = box_edges(scale);
