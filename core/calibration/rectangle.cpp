@@ -130,8 +130,10 @@ CalibrationResult calibrate_rectangle(const std::vector<ImagePoint>& corners, do
                                               double(std::max(image_width, image_height)));
         if (f <= 0)
             throw InputError(source, "focal",
-                             "the rectangle is seen too nearly face-on to tell the focal length; "
-                             "give the focal length (or pick a rectangle seen at an angle)");
+                             "the corners show too little perspective to tell the focal "
+                             "length: the rectangle is seen too nearly face-on, or too small "
+                             "for the precision of the clicks; give the focal length (or pick "
+                             "a larger rectangle seen at an angle)");
         k.fx = k.fy = f;
         warnings.push_back("focal length estimated from the rectangle alone: check it against "
                            "the lens if you know it");

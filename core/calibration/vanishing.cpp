@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <opencv2/core.hpp>
 
 #include "base/error.h"
@@ -407,6 +408,44 @@ Uncertainty line_fit_uncertainty(const LineProblem& p, const LineFit& fit, const
     return u;
 }
 
+/// A focal length found 20 % too long or too short is a wrong camera that must not pass
+/// silently: the true one would then be the found one times these factors.
+constexpr double kFocalRange[2] = {1.0 / 1.2, 1.0 / 0.8};
+/// The cost rise, in click-noise variances, that rules such a focal length out: 16 = 4 sigma
+/// for one parameter, the margin the 5 % rule of add_quality_warnings gives 20 % where the
+/// cost is quadratic.
+constexpr double kFocalRangeChi2 = 16.0;
+
+/// A warning when a focal length 20 % away (see kFocalRange), with the rotation (and a freed
+/// principal point) refitted, fits the lines within 4 sigma of the best fit. The covariance
+/// behind the 5 % rule is the cost's curvature at the optimum; with short or few lines the cost
+/// is far from quadratic across 20 % and rises more slowly on one side (which one depends on
+/// the lines), and that side alone can leave 20 % unexcluded while the curvature promises 5 %.
+std::optional<std::string> focal_range_warning(const LineProblem& p, const LineFit& fit,
+                                               const std::array<glm::dvec3, 3>& vp) {
+    const LineCamera& cam = fit.camera();
+    const double allowed = fit.cost + kFocalRangeChi2 * fit.sigma * fit.sigma;
+    for (const double factor : kFocalRange) {
+        const double f = factor * cam.f;
+        // From the fitted rotation and from the directions' own vanishing points at f: the
+        // profile must not miss its minimum, or the check would pass for want of a fit.
+        const std::vector<LineCamera> from = {{cam.R, f, cam.c},
+                                              {rotation_from_vps(vp, p.ax, f, cam.c), f, cam.c}};
+        const LineFit at_f = fit_lines(p.ax, from, false, fit.params.free_pp, p.size, p.click);
+        if (at_f.cost <= allowed) {
+            char buf[400];
+            std::snprintf(buf, sizeof(buf),
+                          "the focal length is uncertain: fx %.0f px (%+.0f %%) fits the lines "
+                          "within the click noise almost as well as fx %.0f px; give the focal "
+                          "length if it is known (EXIF, the lens), or draw longer lines farther "
+                          "apart",
+                          f, 100 * (factor - 1), cam.f);
+            return std::string(buf);
+        }
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 glm::dvec3 vanishing_point(const std::vector<LineSegment>& segments) {
@@ -450,6 +489,10 @@ CalibrationResult calibrate_vanishing(const VanishingInput& in, int width, int h
     for (std::string& w : calib::scale_warnings(fit.camera().R, r.intrinsics, in, fit.sigma))
         r.warnings.push_back(std::move(w));
     add_quality_warnings(r);
+    // Only where the 5 % rule was silent: one warning about the focal length is enough.
+    if (p.free_focal && r.uncertainty.fx <= 0.05 * r.intrinsics.fx)
+        if (std::optional<std::string> w = focal_range_warning(p, fit, vp))
+            r.warnings.push_back(std::move(*w));
     return r;
 }
 

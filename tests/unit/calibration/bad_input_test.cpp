@@ -62,7 +62,7 @@ TEST(RectangleInput, AFaceOnRectangleGivesNoFocalLength) {
     // An axis-aligned rectangle in the image: no perspective to measure.
     EXPECT_INPUT_ERROR(calibrate_rectangle({{100, 100}, {300, 100}, {300, 200}, {100, 200}}, 2, 1,
                                            640, 480, std::nullopt, "r"),
-                       "too nearly face-on");
+                       "seen too nearly face-on, or too small");
 }
 
 TEST(PointsInput, TooFewOrDegeneratePointsAreRejected) {

@@ -87,11 +87,11 @@ inline LineScene long_ground_lines() {
     return s;
 }
 
-/// Only the edges of a 0.8 x 0.28 x 0.6 m box: 60 to 210 px, close together.
-inline LineScene box_edges() {
+/// Only the edges of a 0.8 x 0.28 x 0.6 m box (times `scale`): 60 to 210 px, close together.
+inline LineScene box_edges(double scale = 1.0) {
     LineScene s;
     s.truth = oblique_camera();
-    const double x0 = 0, x1 = 0.8, z0 = -0.4, z1 = 0.2, h = 0.28;
+    const double x0 = 0, x1 = 0.8 * scale, z0 = -0.4 * scale, z1 = 0.2 * scale, h = 0.28 * scale;
     s.x = {{{x0, 0, z1}, {x1, 0, z1}}, {{x0, h, z1}, {x1, h, z1}}, {{x0, h, z0}, {x1, h, z0}}};
     s.z = {{{x1, 0, z0}, {x1, 0, z1}}, {{x1, h, z0}, {x1, h, z1}}, {{x0, h, z0}, {x0, h, z1}}};
     s.y = {{{x0, 0, z1}, {x0, h, z1}}, {{x1, 0, z1}, {x1, h, z1}}, {{x1, 0, z0}, {x1, h, z0}}};

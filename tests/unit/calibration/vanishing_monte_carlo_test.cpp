@@ -57,9 +57,14 @@ TEST(VanishingCalibrationMonteCarlo, TheStatedUncertaintyCoversTheErrorInAboutNi
     }
 }
 
-TEST(VanishingCalibrationMonteCarlo, WeakLinesNeverGiveASilentlyWrongFocalLength) {
-    // Only a box's short edges, clicked at 2 px: some draws are far off, each must warn.
-    const DrawStats s = monte_carlo(box_edges(), kDraws, 2.0, 0.05, 0.5);
+TEST(VanishingCalibrationMonteCarlo, WeakLinesClickedAsPreciselyAsStatedNeverGiveASilentlyWrongFocalLength) {
+    // Only a box's short edges, clicked at 2 px and said to be (--click-sigma 2): some draws
+    // are far off, each must warn. Said to be 0.5 px, nine segments leave five residuals to
+    // reveal the sloppier clicks, and by chance they sometimes do not: about 1 draw in 500
+    // is then off by more than 20 % silently (docs/calibration.md), which no check of the
+    // result can prevent, only an honest click precision.
+    const DrawStats s = monte_carlo(box_edges(), kDraws, 2.0, 0.05, 0.5,
+                                    [](VanishingInput& in) { in.click_sigma_px = 2.0; });
     report("box_edges_2px", s);
     EXPECT_GT(s.outliers, 0) << "no draw over 20 %: the case no longer tests the warning";
     EXPECT_EQ(s.silent_outliers, 0);
@@ -79,4 +84,19 @@ TEST(VanishingCalibrationMonteCarlo, LinesParallelInTheImageAreSolvedUnderNoise)
     report("parallel_x_lines_given_focal", g);
     EXPECT_EQ(g.refused, 0);
     EXPECT_GE(g.rate(g.rotation_within), 0.9);
+}
+
+TEST(VanishingCalibrationMonteCarlo, GivenTheFocalLengthShortVerticalEdgesSharpenTheRotationInsteadOfOutvotingLongLines) {
+    // Fitted on their own and weighted equally, three 60 px vertical edges once tilted the
+    // camera by degrees; weighted by their length they only add what they know.
+    auto given = [](VanishingInput& in) { in.focal_px = 800; };
+    const DrawStats ground = monte_carlo(ground_lines(), kDraws, kClickNoise, 0.05, 0.5, given);
+    const DrawStats all =
+        monte_carlo(ground_lines_and_box_edges(), kDraws, kClickNoise, 0.05, 0.5, given);
+    report("ground_lines_given_focal", ground);
+    report("ground_lines_and_box_edges_given_focal", all);
+    EXPECT_EQ(all.refused, 0);
+    EXPECT_GE(all.rotation_within, ground.rotation_within);
+    EXPECT_LE(all.worst_rotation_deg, 2.0);  // never the degrees of an outvoted fit
+    expect_about_95(all.rate(all.rotation_covered), "rotation");
 }

@@ -174,3 +174,36 @@ TEST(VanishingCalibration, TheUncertaintyIsStatedForFocalRotationAndPosition) {
     EXPECT_NEAR(c.fx / u.fx, 2.0, 1e-6);
     EXPECT_NEAR(c.rotation_deg / u.rotation_deg, 2.0, 1e-6);
 }
+
+TEST(VanishingCalibration, AFocalLengthTwentyPercentOffThatFitsTheLinesAsWellWarnsWhateverTheCurvatureSays) {
+    // A box's X and Z edges alone, at sizes around where the focal length's stated uncertainty
+    // crosses 5 %: the cost rises more slowly on one side than its curvature at the optimum
+    // says, so the 5 % rule alone would pass some of them silently.
+    int curvature_silent = 0;
+    for (double scale = 0.8; scale <= 1.2; scale += 0.05) {
+        LineScene scene = box_edges(scale);
+        scene.y.clear();
+        SCOPED_TRACE("box scale " + std::to_string(scale));
+        const VanishingInput in = scene.exact();
+        const CalibrationResult r = calibrate_vanishing(in, scene.width, scene.height, "");
+        const double f = r.intrinsics.fx, sigma = r.uncertainty.point_sigma_px;
+        // The cost (sum of squared residuals) of the best camera with the focal length held.
+        auto cost_at = [&](double focal) {
+            VanishingInput held = in;
+            held.focal_px = focal;
+            const CalibrationResult c = calibrate_vanishing(held, scene.width, scene.height, "");
+            return 2.0 * double(in.x.size() + in.z.size()) * c.rms_px * c.rms_px;
+        };
+        const double best = 2.0 * double(in.x.size() + in.z.size()) * r.rms_px * r.rms_px;
+        // The true focal length 20 % away from the one found, either way.
+        bool twenty_percent_fits = false;
+        for (double truth : {f / 1.2, f / 0.8})
+            twenty_percent_fits |= cost_at(truth) - best < 16 * sigma * sigma;
+        bool warned = false;
+        for (const std::string& w : r.warnings)
+            warned |= w.find("the focal length is uncertain") != std::string::npos;
+        EXPECT_EQ(warned, twenty_percent_fits || r.uncertainty.fx > 0.05 * f);
+        curvature_silent += twenty_percent_fits && r.uncertainty.fx <= 0.05 * f;
+    }
+    EXPECT_GT(curvature_silent, 0) << "no size where only the cost itself shows the 20 %";
+}
