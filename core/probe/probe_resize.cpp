@@ -22,7 +22,7 @@ struct Overlap {
 /// interval add up to its measure except for rounding.
 template <class Measure>
 std::vector<std::vector<Overlap>> overlaps(int in, int out, Measure measure) {
-    std::vector<std::vector<Overlap>> result(size_t(out));
+    std::vector<std::vector<Overlap>> result(static_cast<size_t>(out));
     const double scale = double(in) / double(out);
     for (int o = 0; o < out; ++o) {
         const double a = o * scale, b = o + 1 == out ? double(in) : (o + 1) * scale;
@@ -54,7 +54,7 @@ Image shrink_latlong(const Image& src, int width, int height) {
     });
 
     Image out(width, height);
-    std::vector<dvec3> row_sum(size_t(width));
+    std::vector<dvec3> row_sum(static_cast<size_t>(width));
     for (int y = 0; y < height; ++y) {
         std::fill(row_sum.begin(), row_sum.end(), dvec3(0));
         double band = 0;
