@@ -33,10 +33,12 @@ TEST(ProbeMemory, AProbeSharesAFiniteImageAndCopiesOneWithNaNs) {
     EXPECT_NE(&copied.image(), dirty_ptr.get());
     EXPECT_EQ(copied.image()[7], vec3(0));
     EXPECT_TRUE(std::isnan((*dirty_ptr)[7].x)) << "the caller's image is left as it was";
-    // Both probes sample the same pixels with the same pdf but for the one set to black.
+    // The copy samples the other pixels in the same proportions, its pixel 7 never.
+    const double ratio = copied.pixel_pmf(0) / shared.pixel_pmf(0);
+    EXPECT_GE(ratio, 1.0);
     for (size_t k = 0; k < clean->size(); ++k) {
         if (k == 7) continue;
-        EXPECT_GT(copied.pixel_pmf(k), 0.9 * shared.pixel_pmf(k)) << "pixel " << k;
+        EXPECT_NEAR(copied.pixel_pmf(k), ratio * shared.pixel_pmf(k), 1e-12) << "pixel " << k;
     }
     EXPECT_EQ(copied.pixel_pmf(7), 0.0);
 }
@@ -46,10 +48,14 @@ TEST(ProbeMemory, TheSunsTableHoldsOnlyTheSunsRows) {
     const Probe probe(sun_and_sky(w, h), glm::mat3(1), vec3(1));
     const ProbeLights lights(probe);
     ASSERT_TRUE(lights.has_sun());
-    // The sky's table: a column CDF for every row (8 bytes a pixel and a little per row); the
-    // sun's: a 2-degree disk covers a few rows of 256.
-    EXPECT_LT(lights.bytes_per_pixel(), 8.5);
-    EXPECT_GT(lights.bytes_per_pixel(), 8.0);
+    // The sky's table has the rows of the whole probe's (all but the black ground's); the sun's
+    // adds the few rows of a 2-degree disk: at most 12 of 256 at 8 bytes a pixel, and a little
+    // per row of the map.
+    const LatLongTable whole(w, h, [&](size_t k) { return probe.pixel_weight(k); });
+    const double sun_bytes = lights.bytes_per_pixel() - whole.bytes_per_pixel();
+    EXPECT_GT(whole.bytes_per_pixel(), 3.9);  // the sky's half of the rows
+    EXPECT_GT(sun_bytes, 0.0);
+    EXPECT_LT(sun_bytes, 8.0 * 12 / 256 + 24.0 / 512);
 }
 
 TEST(ProbeMemory, ATableWithEmptyRowsSamplesItsPixelsAtTheirPmf) {

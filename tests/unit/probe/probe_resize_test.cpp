@@ -42,21 +42,41 @@ vec3 brightest_direction(const Image& img) {
     return latlong_direction(u, v);
 }
 
+/// Where the light comes from on the whole: the luminance-power-weighted mean of the pixel
+/// centres' directions (a first moment of the map, which averaging within pixels keeps).
+vec3 mean_light_direction(const Image& img) {
+    const int w = img.width(), h = img.height();
+    dvec3 sum(0);
+    for (int j = 0; j < h; ++j) {
+        const double omega = std::cos(kPiD * j / h) - std::cos(kPiD * (j + 1) / h);
+        for (int i = 0; i < w; ++i)
+            sum += dvec3(latlong_direction((i + 0.5f) / float(w), (j + 0.5f) / float(h))) *
+                   (double(luminance(img.at(i, j))) * omega);
+    }
+    return vec3(sum);
+}
+
 double angle_between(const vec3& a, const vec3& b) {
     return std::acos(std::clamp(double(glm::dot(glm::normalize(a), glm::normalize(b))), -1.0, 1.0));
 }
 
-/// Checks that `small` holds the power of `big` per channel to `tolerance` (relative) and keeps
-/// its brightest direction within one pixel of `small` (the diagonal of a pixel at the horizon).
-void expect_light_kept(const Image& big, const Image& small, double tolerance) {
+/// Checks that `small` holds the power of `big` per channel to `tolerance` (relative), that its
+/// light comes from the same mean direction, and, for a map with a sun (`sun`), that its
+/// brightest direction is within one pixel of `small` (the diagonal of a pixel at the horizon).
+void expect_light_kept(const Image& big, const Image& small, double tolerance, bool sun = true) {
     const dvec3 before = power(big), after = power(small);
     for (int c = 0; c < 3; ++c) {
         EXPECT_GT(before[c], 0.0);
         EXPECT_NEAR(after[c] / before[c], 1.0, tolerance) << "channel " << c;
     }
     const double pixel = std::hypot(2 * kPiD / small.width(), kPiD / small.height());
-    EXPECT_LT(angle_between(brightest_direction(big), brightest_direction(small)), pixel)
-        << "the brightest direction moved";
+    EXPECT_LT(angle_between(mean_light_direction(big), mean_light_direction(small)), 0.5 * pixel)
+        << "the mean direction of the light moved";
+    // Without a sun the brightest pixel is a detail (a lamp, a glint) that an average over a
+    // coarser pixel may well lose to a wider bright patch.
+    if (sun)
+        EXPECT_LT(angle_between(brightest_direction(big), brightest_direction(small)), pixel)
+            << "the brightest direction moved";
     std::printf("%dx%d -> %dx%d: power ratios %.9f %.9f %.9f\n", big.width(), big.height(), small.width(),
                 small.height(), after.x / before.x, after.y / before.y, after.z / before.z);
 }
@@ -80,18 +100,19 @@ TEST(ProbeResize, ANonIntegerFactorKeepsEachChannelsPowerAndTheSunsDirection) {
     EXPECT_LT(angle_between(brightest_direction(small), sun), std::hypot(2 * kPiD / w, kPiD / h));
 }
 
-TEST(ProbeResize, RealProbesKeepTheirPowerAndTheirBrightestDirection) {
+TEST(ProbeResize, RealProbesKeepTheirPowerAndTheDirectionOfTheirLight) {
     const std::string dir = "/usr/share/blender/datafiles/studiolights/world/";
     if (!std::filesystem::exists(dir + "sunset.exr")) GTEST_SKIP() << "Blender's studio lights not installed";
     for (const char* name : {"sunset.exr", "courtyard.exr", "city.exr"}) {
         SCOPED_TRACE(name);
+        const bool sun = std::string(name) == "sunset.exr";
         const Image img = load_image(dir + name, "probe");
         ASSERT_FALSE(img.empty());
         // A third (a non-integer factor for a 1024-wide probe) and a quarter of the width.
         for (int divisor : {3, 4}) {
             int w = 0, h = 0;
             shrunk_latlong_size(img.width(), img.height(), img.width() / divisor, w, h);
-            expect_light_kept(img, shrink_latlong(img, w, h), 1e-6);
+            expect_light_kept(img, shrink_latlong(img, w, h), 1e-6, sun);
         }
     }
 }
