@@ -212,8 +212,8 @@ void limit_probe_size(Image& probe, int max_width, std::vector<std::string>& war
     if (width == probe.width() && height == probe.height()) return;
     warnings.push_back("probe.path: the " + std::to_string(probe.width()) + "x" + std::to_string(probe.height()) +
                        " probe is reduced to " + std::to_string(width) + "x" + std::to_string(height) +
-                       " on load, its light kept (probe.max_width " + std::to_string(max_width) +
-                       "; docs/project-format.md)");
+                       " on load, its light kept (max width " + std::to_string(max_width) +
+                       ": probe.max_width in docs/project-format.md)");
     probe = shrink_latlong(probe, width, height);
 }
 

@@ -158,7 +158,7 @@ TEST(ProbeSize, AWideProbeIsReducedKeepingItsLight) {
     EXPECT_NEAR(power(probe), before, 1e-6 * before);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("256x128 probe is reduced to 64x32"), std::string::npos) << warnings[0];
-    EXPECT_NE(warnings[0].find("probe.max_width 64"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("max width 64"), std::string::npos) << warnings[0];
 
     std::vector<std::string> none;
     limit_probe_size(probe, 64, none);
