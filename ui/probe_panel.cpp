@@ -7,6 +7,7 @@
 #include <QPainter>
 #include <QPushButton>
 #include <QSlider>
+#include <QSpinBox>
 #include <algorithm>
 #include <cmath>
 
@@ -74,6 +75,17 @@ ProbePanel::ProbePanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(d
     connect(resetWhiteBalance_, &QPushButton::clicked, this, [this] { resetWhiteBalance(); });
     balance->addWidget(resetWhiteBalance_);
     form->addRow(tr("White balance"), balanceRow);
+    maxWidth_ = new QSpinBox;
+    maxWidth_->setObjectName("probeMaxWidth");
+    maxWidth_->setRange(0, kMaxProbeMaxWidth);
+    maxWidth_->setSingleStep(1024);
+    maxWidth_->setSuffix(tr(" px"));
+    maxWidth_->setSpecialValueText(tr("automatic"));
+    maxWidth_->setKeyboardTracking(false);  // one edit (and one reload) per value, not per digit
+    maxWidth_->setToolTip(tr("The widest the probe is kept: a wider one is shrunk on load with its light "
+                             "kept. Automatic: 8192, less on a machine with little memory"));
+    connect(maxWidth_, &QSpinBox::valueChanged, this, [this] { applyMaxWidth(); });
+    form->addRow(tr("Max width"), maxWidth_);
     connect(doc_, &Document::changed, this, [this] { refresh(); });
     refresh();
 }
@@ -82,7 +94,8 @@ void ProbePanel::loadPreview() {
     const Project& p = doc_->project();
     // The probe as the renderer sees it: a mirror ball unwrapped with its field of view.
     const QString key = QString::fromStdString(p.resolve(p.probe.path).string()) + "|" +
-                        QString::number(int(p.probe.format)) + "|" + QString::number(p.probe.mirror_ball_fov_deg);
+                        QString::number(int(p.probe.format)) + "|" + QString::number(p.probe.mirror_ball_fov_deg) +
+                        "|" + QString::number(p.probe.max_width);
     if (key == previewKey_) return;
     previewKey_ = key;
     previewImage_ = QImage();
@@ -122,6 +135,7 @@ void ProbePanel::refresh() {
                                          .arg(double(wb.y), 0, 'f', 3)
                                          .arg(double(wb.z), 0, 'f', 3));
     resetWhiteBalance_->setEnabled(!neutral);
+    maxWidth_->setValue(probe.max_width);
     if (!previewImage_.isNull()) {
         // The probe's rotation turns the map: show it shifted by the same angle.
         QImage shown(previewImage_.size(), previewImage_.format());
@@ -155,6 +169,17 @@ void ProbePanel::applySliders() {
     if (exposure_->value() != shown)
         p.probe.intensity = std::exp2(float(exposure_->value()) / 10.0f);
     doc_->edit(tr("Adjust probe"), p, strokeKey_);
+}
+
+void ProbePanel::applyMaxWidth() {
+    if (refreshing_) return;
+    Project p = doc_->project();
+    // Between "automatic" (0) and the narrowest width the format takes, the narrowest.
+    const int value = maxWidth_->value();
+    const int width = value == 0 ? 0 : std::max(value, kMinProbeMaxWidth);
+    if (width == p.probe.max_width) return;
+    p.probe.max_width = width;
+    doc_->edit(tr("Set probe max width"), p);
 }
 
 void ProbePanel::resetWhiteBalance() {

@@ -6,6 +6,7 @@
 class QLabel;
 class QPushButton;
 class QSlider;
+class QSpinBox;
 
 namespace dp::ui {
 
@@ -13,7 +14,8 @@ class Document;
 
 /// The light probe: a preview of the lat-long map (drag across it to turn the probe), rotation
 /// about the vertical axis, exposure (the probe's intensity in stops) and its white balance
-/// (set by the grey card's "Match colour too", shown here with a reset).
+/// (set by the grey card's "Match colour too", shown here with a reset) and the widest the probe
+/// is kept (probe.max_width, automatic by default).
 class ProbePanel : public QWidget {
     Q_OBJECT
 public:
@@ -33,6 +35,7 @@ private:
     void refresh();
     void loadPreview();
     void applySliders();
+    void applyMaxWidth();
 
     Document* doc_;
     QLabel* preview_;
@@ -40,6 +43,7 @@ private:
     QLabel *rotationValue_, *tiltXValue_, *tiltZValue_, *exposureValue_;
     QLabel* whiteBalance_;
     QPushButton* resetWhiteBalance_;
+    QSpinBox* maxWidth_;  ///< 0 shows "automatic"
     QString previewKey_;
     QImage previewImage_;
     QPointF sun_;  ///< brightest point of the probe, as fractions of its width and height

@@ -27,7 +27,7 @@ namespace {
 
 struct RenderOptions {
     std::string project, output, pixel, method = "differential";
-    int passes = 0, pass = 1, threads = 0, focus_after = 0, samples_per_pass = 1;
+    int passes = 0, pass = 1, threads = 0, focus_after = 0, samples_per_pass = 1, probe_max_width = 0;
     double time_s = 0;
     int64_t photons = 0;
     uint64_t seed = 0;
@@ -35,7 +35,8 @@ struct RenderOptions {
     bool layers = false, denoise = false;
     OutputFormat format;
     CLI::Option *passes_opt = nullptr, *time_opt = nullptr, *photons_opt = nullptr,
-                *seed_opt = nullptr, *threads_opt = nullptr, *pixel_opt = nullptr;
+                *seed_opt = nullptr, *threads_opt = nullptr, *pixel_opt = nullptr,
+                *probe_max_width_opt = nullptr;
 };
 
 void apply_overrides(const RenderOptions& o, Project& p) {
@@ -47,6 +48,7 @@ void apply_overrides(const RenderOptions& o, Project& p) {
     if (o.photons_opt->count()) p.render.photons_per_pass = o.photons;
     if (o.seed_opt->count()) p.render.seed = o.seed;
     if (o.threads_opt->count()) p.render.threads = o.threads;
+    if (o.probe_max_width_opt->count()) p.probe.max_width = o.probe_max_width;
 }
 
 /// The denoised augmented photo and change (docs/method-notes.md, "Denoising"): only the
@@ -202,6 +204,11 @@ Command add_render_command(CLI::App& app) {
     o->seed_opt = sub->add_option("--seed", o->seed, "Random seed")->check(kSeed);
     o->threads_opt = sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")
                          ->check(kNonNegative);
+    o->probe_max_width_opt =
+        sub->add_option("--probe-max-width", o->probe_max_width,
+                        "Shrink a wider probe to this width on load, its light kept (overrides "
+                        "the project's probe.max_width)")
+            ->check(CLI::Range(kMinProbeMaxWidth, kMaxProbeMaxWidth));
     sub->add_flag("--layers", o->layers, "EXR only: also write layers dL, alpha and shadow");
     sub->add_flag("--denoise", o->denoise,
                   "Denoise the change with Open Image Denoise: EXR gets layers denoised and "

@@ -10,9 +10,11 @@
 #include "assets/scene_checks.h"
 #include "base/error.h"
 #include "base/euler.h"
+#include "base/memory.h"
 #include "base/text.h"
 #include "image/image_io.h"
 #include "probe/probe.h"
+#include "probe/probe_resize.h"
 
 namespace dp {
 
@@ -122,7 +124,7 @@ std::string photo_key(const Project& p) {
 
 std::string probe_key(const Project& p) {
     return "probe|" + p.resolve(p.probe.path).string() + "|" + std::to_string(int(p.probe.format)) + "|" +
-           std::to_string(p.probe.mirror_ball_fov_deg);
+           std::to_string(p.probe.mirror_ball_fov_deg) + "|" + std::to_string(probe_max_width(p.probe));
 }
 
 }  // namespace
@@ -204,18 +206,26 @@ std::shared_ptr<const Image> AssetLibrary::probe(const Project& p) {
             const int h = std::max(16, probe.height() / 2);
             probe = unwrap_mirror_ball(probe, 2 * h, h, p.probe.mirror_ball_fov_deg);
         }
-        limit_probe_size(probe, kMaxProbeWidth, e.warnings);
+        limit_probe_size(probe, probe_max_width(p.probe), e.warnings);
         return probe;
     });
 }
 
+int probe_max_width(const ProbeSpec& spec) {
+    if (spec.max_width > 0) return spec.max_width;
+    static const int automatic = automatic_probe_max_width(physical_memory_bytes(), kProbeBytesPerPixel);
+    return automatic;
+}
+
 void limit_probe_size(Image& probe, int max_width, std::vector<std::string>& warnings) {
-    if (probe.width() <= max_width) return;
-    const int width = max_width, height = std::max(1, max_width / 2);
+    int width = 0, height = 0;
+    shrunk_latlong_size(probe.width(), probe.height(), max_width, width, height);
+    if (width == probe.width() && height == probe.height()) return;
     warnings.push_back("probe.path: the " + std::to_string(probe.width()) + "x" + std::to_string(probe.height()) +
                        " probe is reduced to " + std::to_string(width) + "x" + std::to_string(height) +
-                       " on load (the lighting needs no more; docs/project-format.md)");
-    probe = resample(probe, width, height);
+                       " on load, its light kept (max width " + std::to_string(max_width) +
+                       ": probe.max_width in docs/project-format.md)");
+    probe = shrink_latlong(probe, width, height);
 }
 
 std::shared_ptr<const LitProbe> AssetLibrary::lit_probe(const Project& p) {
@@ -233,7 +243,7 @@ std::shared_ptr<const LitProbe> AssetLibrary::lit_probe(const Project& p) {
         for (auto& [k, lit] : lit_probes_)
             if (k == key) return lit;
     }
-    auto lit = std::make_shared<const LitProbe>(*latlong, euler_xyz_deg(p.probe.rotation_deg), gain);
+    auto lit = std::make_shared<const LitProbe>(latlong, euler_xyz_deg(p.probe.rotation_deg), gain);
     std::lock_guard<std::mutex> lock(mutex_);
     constexpr size_t kKept = 4;
     if (lit_probes_.size() >= kKept) lit_probes_.erase(lit_probes_.begin());

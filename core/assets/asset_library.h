@@ -9,6 +9,7 @@
 #include "assets/render_scene.h"
 #include "geometry/mesh.h"
 #include "image/image.h"
+#include "probe/probe.h"
 #include "scene/project.h"
 
 namespace dp {
@@ -71,12 +72,23 @@ private:
     std::vector<std::pair<std::string, std::shared_ptr<const LitProbe>>> lit_probes_;  ///< newest last
 };
 
-/// The widest lat-long probe a scene keeps: the photon emission's CDF and the sun/sky split need
-/// no more (a 32768-wide probe would take 21 GB); wider ones are reduced on load, with a warning.
+/// The widest lat-long probe a scene keeps by default: the photon emission's distribution and
+/// the sun/sky split need no more (a 32768-wide probe would take 15 GB); wider ones are reduced
+/// on load, with a warning. `probe.max_width` in the project sets another width.
 inline constexpr int kMaxProbeWidth = 8192;
 
-/// Reduces a lat-long `probe` wider than `max_width` to max_width x max_width / 2, averaging
-/// (the light it holds is kept), and says so in `warnings`. Leaves smaller probes alone.
+/// Bytes a probe takes per pixel once loaded: its image (12, shared by the file's cache and
+/// every rotation or gain of it), the alias table of Probe::sample (8) and the sky's table of
+/// ProbeLights (8; the sun's holds only the sun's rows).
+inline constexpr double kProbeBytesPerPixel = 12 + Probe::kTableBytesPerPixel + 8;
+
+/// The width a probe is limited to for `spec`: its max_width, or automatically kMaxProbeWidth,
+/// halved while a probe that wide would take over a quarter of this machine's memory.
+int probe_max_width(const ProbeSpec& spec);
+
+/// Reduces a lat-long `probe` wider than `max_width` to max_width wide, its height scaled alike,
+/// by shrink_latlong (the light it holds is kept exactly), and says so in `warnings`. Leaves
+/// smaller probes alone.
 void limit_probe_size(Image& probe, int max_width, std::vector<std::string>& warnings);
 
 /// A scene for `project` at `width` x `height` (0: the photo's size): the photo resampled and the

@@ -47,6 +47,9 @@ SceneAssets load_assets(const Project& project);
 struct LitProbe {
     LitProbe(Image latlong, const glm::mat3& rotation, const vec3& gain)
         : probe(std::move(latlong), rotation, gain), lights(probe) {}
+    /// Sharing the decoded map with the asset cache (and the other LitProbes of the file).
+    LitProbe(std::shared_ptr<const Image> latlong, const glm::mat3& rotation, const vec3& gain)
+        : probe(std::move(latlong), rotation, gain), lights(probe) {}
     LitProbe(const LitProbe&) = delete;
     LitProbe& operator=(const LitProbe&) = delete;
     Probe probe;

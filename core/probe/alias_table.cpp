@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "probe/alias_build.h"
 #include "probe/probe.h"
 
 namespace dp {
@@ -16,37 +17,15 @@ AliasTable::AliasTable(const std::vector<double>& weights) {
     prob_.assign(n, 1.0);
     alias_.resize(n);
     for (size_t i = 0; i < n; ++i) alias_[i] = uint32_t(i);
-
-    auto clean = [](double w) { return std::isfinite(w) && w > 0 ? w : 0.0; };
-    double total = 0;
-    for (double w : weights) total += clean(w);
-    if (!(total > 0) || !std::isfinite(total)) return;  // empty-ish table: total_ stays 0
-    total_ = total;
-    for (size_t i = 0; i < n; ++i) pmf_[i] = clean(weights[i]) / total;
-
-    // Vose's method. Everything stays in double so that a sun 1e6 times the sky (or far more)
-    // keeps exact probabilities for the faint pixels.
-    std::vector<double> scaled(n);
-    std::vector<uint32_t> small, large;
-    small.reserve(n);
-    large.reserve(n);
-    for (size_t i = 0; i < n; ++i) {
-        scaled[i] = pmf_[i] * double(n);
-        (scaled[i] < 1.0 ? small : large).push_back(uint32_t(i));
-    }
-    while (!small.empty() && !large.empty()) {
-        uint32_t s = small.back(), l = large.back();
-        small.pop_back();
-        prob_[s] = scaled[s];
-        alias_[s] = l;
-        // (a + b) - 1 rather than a - (1 - b): Vose's recommended order, less cancellation.
-        scaled[l] = (scaled[l] + scaled[s]) - 1.0;
-        if (scaled[l] < 1.0) {
-            large.pop_back();
-            small.push_back(l);
-        }
-    }
-    // Leftovers are 1 up to rounding; they keep prob 1 and alias themselves.
+    total_ = build_alias_table(
+        n, [&](size_t i) { return weights[i]; },
+        [&](size_t i, double prob, uint32_t alias) {
+            prob_[i] = prob;
+            alias_[i] = alias;
+        });
+    if (total_ <= 0) return;  // empty-ish table
+    for (size_t i = 0; i < n; ++i)
+        pmf_[i] = std::isfinite(weights[i]) && weights[i] > 0 ? weights[i] / total_ : 0.0;
 }
 
 size_t AliasTable::sample(double u) const { return sample(u, nullptr); }

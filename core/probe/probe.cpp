@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <numbers>
 #include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "probe/alias_build.h"
 
 namespace dp {
 
@@ -54,14 +57,40 @@ size_t latlong_pixel(const vec3& dir, int width, int height) {
     return size_t(j) * size_t(width) + size_t(i);
 }
 
-Probe::Probe(Image latlong, const glm::mat3& rotation, const vec3& gain)
-    : image_(std::move(latlong)),
-      rotation_(rotation),
-      inverse_rotation_(glm::inverse(rotation)),
-      gain_(gain) {
-    for (size_t k = 0; k < image_.size(); ++k)
-        if (!is_finite(image_[k])) image_[k] = vec3(0);
+struct Probe::InverseTable {
+    std::once_flag once;
+    LatLongTable table;
+};
 
+Probe::Probe() { build(); }
+
+Probe::Probe(Image latlong, const glm::mat3& rotation, const vec3& gain)
+    : rotation_(rotation), inverse_rotation_(glm::inverse(rotation)), gain_(gain) {
+    for (size_t k = 0; k < latlong.size(); ++k)
+        if (!is_finite(latlong[k])) latlong[k] = vec3(0);
+    image_ = std::make_shared<const Image>(std::move(latlong));
+    build();
+}
+
+Probe::Probe(std::shared_ptr<const Image> latlong, const glm::mat3& rotation, const vec3& gain)
+    : rotation_(rotation), inverse_rotation_(glm::inverse(rotation)), gain_(gain) {
+    if (!latlong) latlong = std::make_shared<const Image>();
+    const Image& img = *latlong;
+    bool finite = true;
+    for (size_t k = 0; k < img.size() && finite; ++k) finite = is_finite(img[k]);
+    if (finite) {
+        image_ = std::move(latlong);
+    } else {
+        Image copy = img;
+        for (size_t k = 0; k < copy.size(); ++k)
+            if (!is_finite(copy[k])) copy[k] = vec3(0);
+        image_ = std::make_shared<const Image>(std::move(copy));
+    }
+    build();
+}
+
+void Probe::build() {
+    inverse_ = std::make_shared<InverseTable>();
     const int w = width(), h = height();
     rows_.resize(size_t(std::max(h, 0)));
     for (int j = 0; j < h; ++j) {
@@ -69,31 +98,29 @@ Probe::Probe(Image latlong, const glm::mat3& rotation, const vec3& gain)
         const double cos_top = std::cos(kPiD * j / h), cos_bottom = std::cos(kPiD * (j + 1) / h);
         rows_[j] = Row{cos_top, cos_bottom - cos_top, row_solid_angle(j, w, h)};
     }
+    // Straight into the compact table: no per-pixel array of weights or pmf is kept, even
+    // while building (an 8k probe has 33 million pixels).
+    columns_.resize(image_->size());
+    total_power_ = build_alias_table(
+        columns_.size(), [&](size_t k) { return pixel_weight(k); },
+        [&](size_t k, double prob, uint32_t alias) { columns_[k] = Column{float(prob), alias}; });
+}
 
-    std::vector<double> weights(image_.size());
-    for (size_t k = 0; k < weights.size(); ++k) weights[k] = pixel_weight(k);
-    const AliasTable table(weights);
-    weights = {};
-    total_power_ = table.total();
+const LatLongTable& Probe::inverse_table() const {
+    std::call_once(inverse_->once, [&] {
+        inverse_->table = LatLongTable(width(), height(), [&](size_t k) { return pixel_weight(k); });
+    });
+    return inverse_->table;
+}
 
-    pdf_.resize(image_.size());
-    pixels_.resize(image_.size());
-    for (size_t k = 0; k < pdf_.size(); ++k) {
-        // pmf / Omega rounded once, so that sample() and pdf() agree bit for bit.
-        pdf_[k] = float(pixel_pmf(k) / rows_[k / size_t(w)].solid_angle);
-        const vec3 radiance = pixel_radiance(k);
-        pixels_[k] = PixelData{{radiance.x, radiance.y, radiance.z}, pdf_[k]};
-    }
-    columns_.resize(image_.size());
-    for (size_t k = 0; k < columns_.size(); ++k)
-        columns_[k] = Column{table.prob(k), table.alias(k)};
-    std::vector<double> all(image_.size());
-    for (size_t k = 0; k < all.size(); ++k) all[k] = pixel_weight(k);
-    table_ = LatLongTable(w, h, all);
+float Probe::pixel_pdf(size_t pixel) const {
+    // pmf / Omega = (luminance * Omega / total) / Omega: the solid angle cancels.
+    const double lum = luminance(dvec3((*image_)[pixel]) * dvec3(gain_));
+    return lum > 0 && total_power_ > 0 ? float(lum / total_power_) : 0.0f;
 }
 
 double Probe::pixel_weight(size_t pixel) const {
-    const double lum = luminance(dvec3(image_[pixel]) * dvec3(gain_));
+    const double lum = luminance(dvec3((*image_)[pixel]) * dvec3(gain_));
     return lum > 0 ? lum * rows_[pixel / size_t(width())].solid_angle : 0.0;
 }
 
@@ -103,13 +130,15 @@ double Probe::pixel_pmf(size_t pixel) const {
 }
 
 double Probe::pixel_solid_angle(int row) const {
+    // The same number as row_solid_angle gives, computed once per row.
+    if (row >= 0 && size_t(row) < rows_.size()) return rows_[size_t(row)].solid_angle;
     return row_solid_angle(row, width(), height());
 }
 
-vec3 Probe::pixel_radiance(size_t pixel) const { return image_[pixel] * gain_; }
+vec3 Probe::pixel_radiance(size_t pixel) const { return (*image_)[pixel] * gain_; }
 
 vec3 Probe::radiance(const vec3& dir) const {
-    if (image_.empty()) return vec3(0);
+    if (image_->empty()) return vec3(0);
     return pixel_radiance(latlong_pixel(to_probe(dir), width(), height()));
 }
 
@@ -130,9 +159,10 @@ ProbeSample Probe::sample(float u0, float u1, float u2) const {
     const size_t column = std::min(size_t(scaled), n - 1);
     const double frac = std::min(scaled - double(column), kOneMinusEpsilon);
     const Column& c = columns_[column];
-    const bool keep = frac < c.prob;
+    const double prob = double(c.prob);
+    const bool keep = frac < prob;
     const size_t pixel = keep ? column : size_t(c.alias);
-    const double rest = keep ? frac / c.prob : (frac - c.prob) / (1.0 - c.prob);
+    const double rest = keep ? frac / prob : (frac - prob) / (1.0 - prob);
     const double x_in_pixel = std::clamp(rest, 0.0, kOneMinusEpsilon);
 
     const uint32_t w = uint32_t(width());
@@ -146,17 +176,16 @@ ProbeSample Probe::sample(float u0, float u1, float u2) const {
     const float phi = float(2 * kPiD * ((i + x_in_pixel) / w - 0.5));
     const vec3 d(sin_theta * std::sin(phi), float(cos_theta), -sin_theta * std::cos(phi));
 
-    const PixelData& p = pixels_[pixel];
     s.dir = glm::normalize(to_world(d));
-    s.radiance = vec3(p.radiance[0], p.radiance[1], p.radiance[2]);
-    s.pdf = p.pdf;
+    s.radiance = pixel_radiance(pixel);
+    s.pdf = pixel_pdf(pixel);
     s.pixel = pixel;
     return s;
 }
 
 ProbeSample Probe::sample_table(const LatLongTable& table, vec2 u) const {
     ProbeSample s;
-    if (table.empty() || image_.empty()) {
+    if (table.empty() || image_->empty()) {
         s.dir = glm::normalize(to_world(vec3(0, 1, 0)));
         s.radiance = vec3(0);
         return s;
@@ -170,18 +199,17 @@ ProbeSample Probe::sample_table(const LatLongTable& table, vec2 u) const {
     const float sin_theta = float(std::sqrt(std::max(0.0, (1 - cos_theta) * (1 + cos_theta))));
     const float phi = float(2 * kPiD * ((double(i) + pick.fx) / w - 0.5));
     const vec3 d(sin_theta * std::sin(phi), float(cos_theta), -sin_theta * std::cos(phi));
-    const PixelData& p = pixels_[pick.pixel];
     s.dir = glm::normalize(to_world(d));
-    s.radiance = vec3(p.radiance[0], p.radiance[1], p.radiance[2]);
+    s.radiance = pixel_radiance(pick.pixel);
     // The full table's pdf is the probe's own, rounded as pdf() rounds it.
-    s.pdf = &table == &table_ ? p.pdf : float(table.pmf(pick.pixel) / row.solid_angle);
+    s.pdf = &table == &inverse_->table ? pixel_pdf(pick.pixel) : float(table.pmf(pick.pixel) / row.solid_angle);
     s.pixel = pick.pixel;
     return s;
 }
 
 float Probe::pdf(const vec3& dir) const {
-    if (total_power_ <= 0 || pdf_.empty()) return 0;
-    return pdf_[latlong_pixel(to_probe(dir), width(), height())];
+    if (total_power_ <= 0 || columns_.empty()) return 0;
+    return pixel_pdf(latlong_pixel(to_probe(dir), width(), height()));
 }
 
 }  // namespace dp

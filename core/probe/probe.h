@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,17 +64,23 @@ struct ProbeSample {
 /// solid angle within the pixel.
 class Probe {
 public:
-    Probe() = default;
+    /// A black probe of no pixels.
+    Probe();
     /// `rotation` maps probe space to world space; `gain` scales radiance per channel. Pixels
     /// with a non-finite channel are set to 0; pixels of negative luminance are never sampled.
     Probe(Image latlong, const glm::mat3& rotation, const vec3& gain);
+    /// As above, sharing `latlong` rather than copying it where it holds no NaN/Inf (a decoded
+    /// probe never does): several probes of one file (rotations, gains) and the file's cache then
+    /// hold one copy of its pixels.
+    Probe(std::shared_ptr<const Image> latlong, const glm::mat3& rotation, const vec3& gain);
     /// The same scale on every channel.
     Probe(Image latlong, const glm::mat3& rotation, float intensity)
         : Probe(std::move(latlong), rotation, vec3(intensity)) {}
 
-    const Image& image() const { return image_; }
-    int width() const { return image_.width(); }
-    int height() const { return image_.height(); }
+    /// The lat-long map as given (before the gain).
+    const Image& image() const { return *image_; }
+    int width() const { return image_->width(); }
+    int height() const { return image_->height(); }
 
     /// Radiance arriving from world direction `dir` (nearest pixel; piecewise constant).
     vec3 radiance(const vec3& dir) const;
@@ -91,7 +98,9 @@ public:
     /// (columns) CDFs: a monotone map of the unit square, so stratified or low-discrepancy
     /// points stay evenly spread over a bright region such as the sun's disk. u.x picks the
     /// column, u.y the row.
-    ProbeSample sample_inverse(vec2 u) const { return sample_table(table_, u); }
+    /// Its tables are built on the first call (the renderer samples by sample() and by
+    /// ProbeLights), so that a probe that is never inverted does not carry them.
+    ProbeSample sample_inverse(vec2 u) const { return sample_table(inverse_table(), u); }
     /// A direction from `table` (a distribution over this probe's pixels, such as a part of
     /// it): its pixel by inversion, uniform in solid angle inside the pixel; the pdf is the
     /// table's pmf over the pixel's solid angle.
@@ -100,7 +109,8 @@ public:
     double pixel_weight(size_t pixel) const;
     /// Solid-angle pdf of sample() and sample_inverse() for a world direction.
     float pdf(const vec3& dir) const;
-    /// Probability that sample() picks pixel `pixel`.
+    /// Probability that sample() picks pixel `pixel` (its table realizes it to float precision:
+    /// each alias coin is a float).
     double pixel_pmf(size_t pixel) const;
     /// Sum over pixels of luminance(L_j) * Omega_j (zero for a black probe).
     double total_luminance_power() const { return total_power_; }
@@ -108,23 +118,18 @@ public:
     vec3 to_world(const vec3& probe_dir) const { return rotation_ * probe_dir; }
     vec3 to_probe(const vec3& world_dir) const { return inverse_rotation_ * world_dir; }
 
-private:
-    Image image_;
-    glm::mat3 rotation_{1.0f}, inverse_rotation_{1.0f};
-    vec3 gain_{1.0f};
+    /// Bytes this probe keeps per pixel beyond the image it shares: the alias table sample()
+    /// reads (the table of sample_inverse() adds 8 more once built).
+    static constexpr size_t kTableBytesPerPixel = 8;
 
+private:
     /// One column of the alias table: the coin that sample() flips once it has picked the
-    /// column. Only the coin decides the direction, so it is kept apart from the per-pixel data
-    /// in a 16-byte entry: the table sample() reads first is as small as it can be while keeping
-    /// the double-precision coins, and so more likely to stay in cache.
-    struct alignas(16) Column {
-        double prob = 1;     ///< keep the column's own pixel when the in-column fraction is below
+    /// column. 8 bytes: a float coin keeps each pixel's probability to 2^-24 of itself (so a
+    /// sky pixel a million times fainter than the sun keeps its own), and everything else
+    /// sample() returns is computed from the image and the row.
+    struct Column {
+        float prob = 1;      ///< keep the column's own pixel when the in-column fraction is below
         uint32_t alias = 0;  ///< pixel picked otherwise
-    };
-    /// What sample() returns for a pixel besides the direction, in one 16-byte entry.
-    struct alignas(16) PixelData {
-        float radiance[3] = {0, 0, 0};  ///< image * gain
-        float pdf = 0;                  ///< solid-angle pdf, as pdf() returns it
     };
     /// Per-row constants, so that no call evaluates trigonometry for the band.
     struct Row {
@@ -132,13 +137,22 @@ private:
         double cos_span = 0;     ///< cos theta at the lower edge minus cos_top
         double solid_angle = 0;  ///< pixel_solid_angle(row)
     };
+    /// The pmf again as a LatLongTable for sample_inverse(), made on first use (thread-safe).
+    struct InverseTable;
 
+    void build();
+    /// Solid-angle pdf of a pixel as sample() and pdf() return it: pmf / Omega, which is the
+    /// pixel's luminance over the total power, rounded once so that both agree bit for bit.
+    float pixel_pdf(size_t pixel) const;
+    const LatLongTable& inverse_table() const;
+
+    std::shared_ptr<const Image> image_ = std::make_shared<const Image>();
+    glm::mat3 rotation_{1.0f}, inverse_rotation_{1.0f};
+    vec3 gain_{1.0f};
     // Read at random once per call: huge pages spare most lookups a TLB miss as well.
-    std::vector<Column, HugePageAllocator<Column>> columns_;        ///< one per pixel, row-major
-    std::vector<PixelData, HugePageAllocator<PixelData>> pixels_;  ///< row-major
-    std::vector<float, HugePageAllocator<float>> pdf_;  ///< per pixel, compact for pdf()
+    std::vector<Column, HugePageAllocator<Column>> columns_;  ///< one per pixel, row-major
     std::vector<Row> rows_;
-    LatLongTable table_;  ///< the pixel pmf again, for sample_inverse()
+    std::shared_ptr<InverseTable> inverse_;
     double total_power_ = 0;
 };
 

@@ -1,7 +1,4 @@
 #pragma once
-#include <cstdint>
-#include <vector>
-
 #include "probe/latlong_table.h"
 #include "probe/probe.h"
 
@@ -33,12 +30,14 @@ public:
     /// The pdf of the light that owns direction dir (the sun's table where dir is in the sun,
     /// the sky's elsewhere): the one other strategy that can draw dir.
     float pdf(const vec3& dir) const;
+    /// Bytes the two tables hold per probe pixel.
+    double bytes_per_pixel() const { return sun_.bytes_per_pixel() + sky_.bytes_per_pixel(); }
 
 private:
     const Probe* probe_ = nullptr;
+    /// The sun's table keeps only the sun's rows; a pixel is the sun's where its pmf there is
+    /// positive, so no per-pixel owner or pdf is stored.
     LatLongTable sun_, sky_;
-    std::vector<uint8_t> in_sun_;  ///< per probe pixel
-    std::vector<float> pdf_;       ///< per probe pixel: its owner's pdf
     double sun_share_ = 0;
 };
 

@@ -116,6 +116,10 @@ struct PhotoSpec {
     bool operator==(const PhotoSpec&) const = default;
 };
 
+/// The range of `probe.max_width`: narrower probes lose the sun's shape and the sky's
+/// gradients; the widest is the decoding limit's (2^29 pixels at 2:1).
+inline constexpr int kMinProbeMaxWidth = 64, kMaxProbeMaxWidth = 32768;
+
 struct ProbeSpec {
     enum class Format { LatLong, MirrorBall };
     std::string path;
@@ -129,6 +133,9 @@ struct ProbeSpec {
     /// Mirror ball only: vertical field of view (degrees) of the camera that photographed the
     /// ball, cropped so the ball fills the image; 0 reads it as an orthographic view.
     float mirror_ball_fov_deg = 0.0f;
+    /// The widest the lat-long map is kept (a wider one is shrunk on load, its light kept);
+    /// 0: automatic (8192, less on a machine with little memory).
+    int max_width = 0;
     /// What the probe's radiance is multiplied by, per channel: intensity * white_balance.
     vec3 gain() const { return intensity * white_balance; }
     bool operator==(const ProbeSpec&) const = default;

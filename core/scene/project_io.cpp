@@ -397,6 +397,8 @@ J write_project(const Project& p) {
     if (p.probe.white_balance != vec3(1.0f))
         doc["probe"]["white_balance"] = vec<J>(p.probe.white_balance);
     doc["probe"]["mirror_ball_fov_deg"] = num(p.probe.mirror_ball_fov_deg);
+    // Automatic is left out, as a neutral white balance is.
+    if (p.probe.max_width > 0) doc["probe"]["max_width"] = p.probe.max_width;
     doc["camera"] = write_camera<J>(p.camera);
     doc["real"] = J::array();
     for (const RealProxy& r : p.real) {
@@ -467,7 +469,7 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     const json& probe = r.required(doc, "", "probe");
     r.object(probe, "probe",
              {"path", "format", "rotation_deg", "intensity", "white_balance",
-              "mirror_ball_fov_deg"});
+              "mirror_ball_fov_deg", "max_width"});
     p.probe.path = r.string(r.required(probe, "probe", "path"), "probe.path");
     if (auto* f = r.optional(probe, "format")) {
         p.probe.format =
@@ -491,6 +493,8 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
                 "must be in [0, 180) degrees, 0 for an orthographic view (got " +
                     shortest_decimal(p.probe.mirror_ball_fov_deg) + ")");
     }
+    if (auto* e = r.optional(probe, "max_width"))
+        p.probe.max_width = int(r.integer(*e, "probe.max_width", kMinProbeMaxWidth, kMaxProbeMaxWidth));
 
     p.camera = parse_camera(r, r.required(doc, "", "camera"));
 

@@ -3,6 +3,7 @@
 #include <QApplication>
 #include <QDir>
 #include <QProcess>
+#include <QSpinBox>
 #include <QTemporaryDir>
 #include <QTest>
 #include <QToolButton>
@@ -24,6 +25,7 @@ class PipelineTest : public QObject {
 private Q_SLOTS:
     void aMirrorBallProjectRendersInTheStudioBitForBitAsOnTheCommandLine();
     void assetWarningsAreShownInTheStatusBar();
+    void aNonTwoToOneProbeAndItsShrinkingAreShownInTheAssetWarnings();
     void aSettingsEditRendersAgainWithoutBuildingAScene();
 };
 
@@ -116,6 +118,39 @@ void PipelineTest::assetWarningsAreShownInTheStatusBar() {
     // A project whose files are clean clears the indicator.
     QVERIFY(w.openProject(test::write_small_sample(dir.path())));
     QTRY_VERIFY_WITH_TIMEOUT(!warnings->isVisibleTo(&w), 30000);
+}
+
+void PipelineTest::aNonTwoToOneProbeAndItsShrinkingAreShownInTheAssetWarnings() {
+    QTemporaryDir dir;
+    // A 3:1 "lat-long" (a cropped panorama, say): read all the same, with a warning.
+    Project p = load_project(test::write_small_sample(dir.path()).toStdString());
+    const Image wide(384, 128, vec3(0.8f, 0.9f, 1.0f));
+    const std::string probe = QDir(dir.path()).filePath("wide.exr").toStdString();
+    save_exr(probe, {{"", &wide}});
+    p.probe.path = probe;
+    const QString project = QDir(dir.path()).filePath("wide.json");
+    save_project(p, project.toStdString());
+
+    RecordingReporter reporter;
+    MainWindow w(test::test_options(&reporter, dir.filePath("recovery")));
+    auto* warnings = w.findChild<QToolButton*>("assetWarnings");
+    QVERIFY(warnings);
+    QVERIFY(w.openProject(project));
+    QTRY_VERIFY_WITH_TIMEOUT(warnings->toolTip().contains("not 2:1"), 30000);
+    QVERIFY2(warnings->toolTip().contains("384x128"), qPrintable(warnings->toolTip()));
+    QVERIFY(warnings->isVisibleTo(&w));
+
+    // The probe panel's max width: the probe is shrunk on load, and the window says so.
+    auto* maxWidth = w.findChild<QSpinBox*>("probeMaxWidth");
+    QVERIFY(maxWidth);
+    QCOMPARE(maxWidth->value(), 0);  // automatic
+    maxWidth->setValue(96);
+    QCOMPARE(w.document()->project().probe.max_width, 96);
+    QTRY_VERIFY_WITH_TIMEOUT(warnings->toolTip().contains("reduced to 96x32"), 30000);
+    // A width below the format's least is taken as the least.
+    maxWidth->setValue(10);
+    QCOMPARE(w.document()->project().probe.max_width, kMinProbeMaxWidth);
+    QVERIFY2(reporter.errors.isEmpty(), qPrintable(reporter.errors.join("\n")));
 }
 
 void PipelineTest::aSettingsEditRendersAgainWithoutBuildingAScene() {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <unistd.h>
 
@@ -140,19 +141,40 @@ TEST_F(AssetLibraryTest, AClippedPhotoIsSaidBeyondAVisibleShare) {
 TEST(ProbeSize, AWideProbeIsReducedKeepingItsLight) {
     Image probe(256, 128, vec3(1.0f));
     probe.at(100, 30) = vec3(4096.0f);  // a one-pixel sun
-    double before = 0;
-    for (size_t i = 0; i < probe.size(); ++i) before += probe[i].x;
+    // The light is the power, radiance times each pixel's solid angle (a band of the sphere).
+    auto power = [](const Image& img) {
+        double sum = 0;
+        for (int j = 0; j < img.height(); ++j)
+            for (int i = 0; i < img.width(); ++i)
+                sum += img.at(i, j).x * (std::cos(M_PI * j / img.height()) - std::cos(M_PI * (j + 1) / img.height())) /
+                       img.width();
+        return sum;
+    };
+    const double before = power(probe);
     std::vector<std::string> warnings;
     limit_probe_size(probe, 64, warnings);
     EXPECT_EQ(probe.width(), 64);
     EXPECT_EQ(probe.height(), 32);
-    double after = 0;
-    for (size_t i = 0; i < probe.size(); ++i) after += probe[i].x;
-    EXPECT_NEAR(after * 16, before, 1e-3 * before);  // the mean radiance is kept, the sun too
+    EXPECT_NEAR(power(probe), before, 1e-6 * before);
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_NE(warnings[0].find("256x128 probe is reduced to 64x32"), std::string::npos) << warnings[0];
+    EXPECT_NE(warnings[0].find("max width 64"), std::string::npos) << warnings[0];
 
     std::vector<std::string> none;
     limit_probe_size(probe, 64, none);
     EXPECT_TRUE(none.empty());
+}
+
+TEST_F(AssetLibraryTest, TheProjectsMaxWidthShrinksTheProbeOnLoadAndSaysSo) {
+    write("probe.exr", Image(300, 150, vec3(2.0f)));
+    AssetLibrary library;
+    EXPECT_EQ(library.probe(project_)->width(), 300);  // automatic: far below 8192
+    EXPECT_FALSE(warned(library, "reduced"));
+    project_.probe.max_width = 100;
+    const auto small = library.probe(project_);
+    EXPECT_EQ(small->width(), 100);
+    EXPECT_EQ(small->height(), 50);
+    EXPECT_TRUE(warned(library, "the 300x150 probe is reduced to 100x50 on load, its light kept"));
+    // The lit probe is built from the shrunk map, sharing it with the cache.
+    EXPECT_EQ(&library.lit_probe(project_)->probe.image(), small.get());
 }

@@ -125,6 +125,24 @@ TEST_F(ProjectIo, TheProbesWhiteBalanceRoundTripsAndIsLeftOutWhenNeutral) {
               vec3(1.0f));
 }
 
+TEST_F(ProjectIo, TheProbesMaxWidthRoundTripsAndIsLeftOutWhenAutomatic) {
+    const char* text = R"({"schema_version": 1, "photo": {"path": "p.png"},
+        "probe": {"path": "probe.exr", "max_width": 2048},
+        "camera": {"model": "lookat", "eye": [0, 1, 4], "target": [0, 0.5, 0]}})";
+    Project a = load_project(write("mw.json", text));
+    EXPECT_EQ(a.probe.max_width, 2048);
+    const std::string saved = (dir_ / "saved.json").string();
+    save_project(a, saved);
+    EXPECT_NE(read(saved).find("\"max_width\": 2048"), std::string::npos) << read(saved);
+    EXPECT_EQ(load_project(saved), a);
+
+    // Automatic (0) is not written: the file stays readable by builds that know no max_width.
+    a.probe.max_width = 0;
+    save_project(a, saved);
+    EXPECT_EQ(read(saved).find("max_width"), std::string::npos);
+    EXPECT_EQ(load_project(saved).probe.max_width, 0);
+}
+
 TEST_F(ProjectIo, ProgrammaticProjectRoundTripsBitExactly) {
     Project a;
     a.photo.path = "photo.exr";
