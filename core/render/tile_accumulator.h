@@ -4,13 +4,16 @@
 #include <memory>
 #include <vector>
 
+#include "base/fixed_sum.h"
 #include "base/math.h"
+#include "image/image.h"
 #include "render/camera_gather.h"
 
 namespace dp {
 
-/// Per-pixel sums of the pass samples, in double (shadow and caustic photons nearly cancel, and
-/// a long render adds thousands of passes), kept per tile and allocated when a tile is first
+/// Per-pixel sums of the pass samples, exact and order-independent in 128-bit fixed point
+/// (FixedSum: shadow and caustic photons nearly cancel, a long render adds thousands of passes,
+/// and passes summed in separate processes must merge to the same bits), kept per tile and allocated when a tile is first
 /// touched: a pass that changes a few pixels costs a few tiles, not the frame. Every live tile
 /// counts every pass (an untouched pixel's sample is zero); a tile stopped by adaptive sampling
 /// keeps the count it had. The odd passes' luminance is summed apart, so that the difference
@@ -41,6 +44,14 @@ public:
     int tiles_x() const { return tiles_x_; }
     uint32_t tile_of(size_t pixel) const;
 
+    /// Adds another accumulator's sums and passes (render shards of one frame: same size, no
+    /// tile stopped in either). The result is bit for bit the accumulator of both pass sets.
+    void merge(const TileAccumulator& other);
+    /// Sets the number of passes summed (reading a saved accumulator).
+    void set_passes(int passes) { passes_ = passes; }
+    /// True when adaptive sampling stopped no tile.
+    bool none_stopped() const;
+
     /// Means over the passes of the pixel's tile (zero before the first pass or if untouched).
     dvec3 mean_pixel_change(size_t pixel) const;
     dvec3 mean_dL(size_t pixel) const;
@@ -53,12 +64,18 @@ public:
     /// infinite before both halves hold a pass.
     double error2(size_t pixel, double base = 0, double ceiling = INFINITY) const;
 
-private:
+    /// One pixel's sums, per channel.
     struct PixelSums {
-        dvec3 pixel_change{0}, dL{0};
-        double alpha = 0;
-        double odd_luminance = 0;  ///< luminance of pixel_change summed over odd passes
+        FixedSum pixel_change[3], dL[3];
+        FixedSum alpha;
+        FixedSum odd_luminance;  ///< luminance of pixel_change summed over odd passes
     };
+    /// A touched tile's sums (tile x tile entries, row-major), null if untouched.
+    const PixelSums* tile_sums(uint32_t tile) const { return blocks_[tile].get(); }
+    /// The tile's sums, allocated (zero) if it was untouched.
+    PixelSums* touch(uint32_t tile);
+
+private:
     const PixelSums* sums(size_t pixel) const;
 
     int width_ = 0, height_ = 0, tile_ = 8, tiles_x_ = 0;
@@ -67,5 +84,13 @@ private:
     size_t touched_ = 0;
     int passes_ = 0;
 };
+
+/// The photo plus each touched pixel's mean change (untouched pixels keep the photo's bits, as
+/// do pixels whose mean is not finite): the augmented photograph.
+Image accumulated_image(const Image& photo, const TileAccumulator& sums);
+/// The mean signed change of radiance of each pixel.
+Image accumulated_dL(const TileAccumulator& sums);
+/// The mean coverage of each pixel by virtual objects (grey RGB).
+Image accumulated_alpha(const TileAccumulator& sums);
 
 }  // namespace dp
