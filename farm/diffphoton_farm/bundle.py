@@ -6,6 +6,7 @@ import hashlib
 import io
 import json
 import os
+import shutil
 import tarfile
 import tempfile
 from pathlib import Path
@@ -85,11 +86,12 @@ def unpack_bundle(data, digest, root=None):
         for member in tar.getmembers():
             if not member.isfile() or member.name.startswith("/") or ".." in Path(member.name).parts:
                 raise ValueError(f"bundle {digest}: unexpected entry {member.name!r}")
-        tar.extractall(staging)
+        try:
+            tar.extractall(staging, filter="data")
+        except TypeError:  # a Python without extraction filters (before 3.11.4); checked above
+            tar.extractall(staging)
     try:
         os.rename(staging, target)
     except OSError:  # another process unpacked it first
-        import shutil
-
         shutil.rmtree(staging, ignore_errors=True)
     return str(project)

@@ -15,14 +15,19 @@ class ShardFailed(RuntimeError):
     """diffphoton exited with an error on a shard (the task is retried elsewhere)."""
 
 
+# Loaded here, not in the child: between fork and exec a threaded process should do no more than
+# one system call.
+try:
+    _LIBC = ctypes.CDLL("libc.so.6", use_errno=True) if sys.platform.startswith("linux") else None
+except OSError:
+    _LIBC = None
+_PR_SET_PDEATHSIG = 1
+
+
 def _die_with_parent():
     # A worker killed with SIGKILL cannot stop its child; the kernel does it for us, so a lost
     # worker's diffphoton does not keep the machine busy with a shard rendered again elsewhere.
-    if sys.platform.startswith("linux"):
-        try:
-            ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-        except OSError:
-            pass
+    _LIBC.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
 
 
 def render_shard(binary, begin, end, project=None, bundle=None, bundle_digest=None, args=(), parts_dir=None):
@@ -39,7 +44,7 @@ def render_shard(binary, begin, end, project=None, bundle=None, bundle_digest=No
     os.close(fd)
     command = [binary, "render", project, "--pass-range", f"{begin}:{end}", "-o", out, *args]
     try:
-        done = subprocess.run(command, capture_output=True, text=True, preexec_fn=_die_with_parent)
+        done = subprocess.run(command, capture_output=True, text=True, preexec_fn=_die_with_parent if _LIBC else None)
         if done.returncode != 0:
             raise ShardFailed(f"passes {begin}:{end}: {' '.join(command)} exited with {done.returncode}: "
                               f"{done.stderr.strip()[-2000:]}")
