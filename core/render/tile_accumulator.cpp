@@ -26,11 +26,12 @@ const TileAccumulator::PixelSums* TileAccumulator::sums(size_t pixel) const {
 
 TileAccumulator::PixelSums* TileAccumulator::touch(uint32_t tile) {
     std::unique_ptr<PixelSums[]>& block = blocks_[tile];
-    if (!block) {
-        block = std::make_unique<PixelSums[]>(size_t(tile_) * tile_);
-        ++touched_;
-    }
+    if (!block) block = std::make_unique<PixelSums[]>(size_t(tile_) * tile_);
     return block.get();
+}
+
+size_t TileAccumulator::tiles_touched() const {
+    return size_t(std::count_if(blocks_.begin(), blocks_.end(), [](const auto& b) { return bool(b); }));
 }
 
 size_t TileAccumulator::add_tile(uint32_t tile, bool odd, const SampleResult* samples) {

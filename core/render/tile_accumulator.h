@@ -37,7 +37,8 @@ public:
     int passes() const { return passes_; }
     int tile_passes(uint32_t tile) const { return stopped_after_[tile] ? stopped_after_[tile] : passes_; }
     size_t tiles() const { return blocks_.size(); }
-    size_t tiles_touched() const { return touched_; }
+    /// Tiles holding sums (counted, not kept: add_tile runs on many tiles at once).
+    size_t tiles_touched() const;
     int width() const { return width_; }
     int height() const { return height_; }
     int tile_size() const { return tile_; }
@@ -81,7 +82,6 @@ private:
     int width_ = 0, height_ = 0, tile_ = 8, tiles_x_ = 0;
     std::vector<std::unique_ptr<PixelSums[]>> blocks_;
     std::vector<int> stopped_after_;  ///< 0 while live
-    size_t touched_ = 0;
     int passes_ = 0;
 };
 

@@ -62,7 +62,7 @@ def _client(scheduler, workers, connect_timeout):
 
 def render(project, output, passes, shard, scheduler=None, workers=None, binary=None, bundle=False,
            render_args=(), shard_threads=None, parts_dir=None, retries=3, connect_timeout=5.0,
-           progress=sys.stderr, on_shard_done=None, keep_parts=None):
+           progress=sys.stderr, on_shard_done=None):
     """Renders `passes` passes of `project` in shards of `shard` passes on Dask and merges them
     into the EXR `output`: bit for bit `diffphoton render project --passes N --adaptive off`.
 
@@ -107,10 +107,12 @@ def render(project, output, passes, shard, scheduler=None, workers=None, binary=
             for b, e in ranges
         ]
         range_of = {f.key: r for f, r in zip(futures, ranges)}
+        pending = as_completed(futures, loop=client.loop)
+        del futures  # as_completed holds them now: each is let go once its shard is here
         parts = {}
         if progress:
             _bar(0, len(ranges), started, progress)
-        for future in as_completed(futures):
+        for future in pending:
             b, e = range_of[future.key]
             try:
                 result = future.result()
@@ -120,6 +122,9 @@ def render(project, output, passes, shard, scheduler=None, workers=None, binary=
                 path = scratch / f"shard-{b:08d}-{e:08d}.dpp"
                 path.write_bytes(result)
                 result = str(path)
+            # Released, so that a worker lost later does not make the scheduler render a shard
+            # we already hold again.
+            future.release()
             parts[(b, e)] = result
             if progress:
                 _bar(len(parts), len(ranges), started, progress)
@@ -131,10 +136,6 @@ def render(project, output, passes, shard, scheduler=None, workers=None, binary=
                                capture_output=True, text=True)
         if merge.returncode != 0:
             raise FarmError(f"merge failed ({merge.returncode}): {merge.stderr.strip()}")
-        if keep_parts:
-            Path(keep_parts).mkdir(parents=True, exist_ok=True)
-            for p in paths:
-                shutil.copy(p, keep_parts)
         return {"shards": len(ranges), "passes": passes, "render_s": rendered - started,
                 "total_s": time.monotonic() - started}
     finally:
