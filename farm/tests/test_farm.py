@@ -28,6 +28,8 @@ from diffphoton_farm import FarmError, plan_shards, render  # noqa: E402
 from diffphoton_farm.cli import main as farm_main  # noqa: E402
 
 BINARY = os.environ.get("DIFFPHOTON", "diffphoton")
+if os.sep in BINARY:
+    BINARY = os.path.abspath(BINARY)  # the renders run in a scratch folder
 PASSES = 12
 PROJECT = """{
   "schema_version": 1,
