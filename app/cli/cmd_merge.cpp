@@ -52,7 +52,8 @@ int run_merge(const MergeOptions& o) {
         throw InputError("", "", "passes " + ranges_text(gaps) +
                                      " are in no shard; render them, or pass --allow-gaps for the mean of the "
                                      "passes there are");
-    if (!gaps.empty()) warn("passes " + ranges_text(gaps) + " are in no shard: the image is the mean of the others");
+    if (!gaps.empty())
+        warn("passes " + ranges_text(gaps) + " are in no shard: the image is the mean of the others");
 
     // The photo the change is added to comes from the project, which must still read the files
     // the shards were rendered against.
@@ -65,7 +66,8 @@ int run_merge(const MergeOptions& o) {
     if (photo.width() != first.width || photo.height() != first.height)
         throw InputError(project, "", "its photo is not the shards' frame size");
     refuse_overwriting_inputs(o.output, "--output", loaded.project, project);
-    check_output_space(o.output, "--output", output_bytes(ImageKind::Exr, first.width, first.height, o.layers ? 4 : 1));
+    check_output_space(o.output, "--output",
+                       output_bytes(ImageKind::Exr, first.width, first.height, o.layers ? 4 : 1));
 
     TileAccumulator sums = std::move(shards[0].sums);
     for (size_t i = 1; i < shards.size(); ++i) {

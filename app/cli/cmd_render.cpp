@@ -48,7 +48,8 @@ void apply_overrides(const RenderOptions& o, Project& p) {
     if (o.seed_opt->count()) p.render.seed = o.seed;
     if (o.threads_opt->count()) p.render.threads = o.threads;
     if (o.adaptive == "off") p.render.adaptive_threshold = 0;
-    if (o.adaptive == "on" && p.render.adaptive_threshold == 0) p.render.adaptive_threshold = RenderSettings{}.adaptive_threshold;
+    if (o.adaptive == "on" && p.render.adaptive_threshold == 0)  // on, where the project had it off
+        p.render.adaptive_threshold = RenderSettings{}.adaptive_threshold;
 }
 
 /// `--pass-range`: a shard of the passes, written as exact sums for `merge` (render_shard.h).

@@ -27,8 +27,10 @@ void parse_pass_range(const std::string& text, int& begin, int& end) {
         out = std::stoi(part);
         return true;
     };
-    if (colon == std::string::npos || !number(text.substr(0, colon), begin) || !number(text.substr(colon + 1), end))
-        throw InputError("", "--pass-range", "expected A:B, two whole numbers (passes A to B-1, from 0), got '" + text + "'");
+    if (colon == std::string::npos || !number(text.substr(0, colon), begin) ||
+        !number(text.substr(colon + 1), end))
+        throw InputError("", "--pass-range",
+                         "expected A:B, two whole numbers (passes A to B-1, from 0), got '" + text + "'");
     if (end <= begin)
         throw InputError("", "--pass-range", "the range " + text + " is empty (B must be greater than A)");
 }

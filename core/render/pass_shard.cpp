@@ -132,7 +132,8 @@ ProjectFingerprint fingerprint_project(const Project& project) {
     nlohmann::json doc = to_json(project);
     // What does not change a pass's samples, or what the shard's header states apart.
     if (doc.contains("render"))
-        for (const char* key : {"passes", "time_budget_s", "threads", "seed", "adaptive_threshold", "adaptive_min_passes"})
+        for (const char* key :
+             {"passes", "time_budget_s", "threads", "seed", "adaptive_threshold", "adaptive_min_passes"})
             doc["render"].erase(key);
     doc.erase("display");
     Fingerprint files;
@@ -251,8 +252,9 @@ void check_mergeable(const std::vector<ShardHeader>& shards, const std::vector<s
             throw InputError(p, "", "written by another version of the renderer ('" + h.engine_version +
                                         "', not '" + first.engine_version + "' of " + paths[0] + ")");
         if (h.project_hash != first.project_hash)
-            throw InputError(p, "", "belongs to another project (or another version of its files) than " + paths[0] +
-                                        " (project " + h.project_path + " against " + first.project_path + ")");
+            throw InputError(p, "",
+                             "belongs to another project (or another version of its files) than " + paths[0] +
+                                 " (project " + h.project_path + " against " + first.project_path + ")");
         if (h.seed != first.seed)
             throw InputError(p, "", "was rendered with seed " + std::to_string(h.seed) + ", " + paths[0] +
                                         " with seed " + std::to_string(first.seed));
@@ -269,8 +271,9 @@ void check_mergeable(const std::vector<ShardHeader>& shards, const std::vector<s
         const ShardHeader& a = shards[order[k - 1]];
         const ShardHeader& b = shards[order[k]];
         if (b.pass_begin < a.pass_end)
-            throw InputError(paths[order[k]], "", "its passes " + range(b) + " overlap those of " + paths[order[k - 1]] +
-                                                      " (" + range(a) + "); a pass must be counted once");
+            throw InputError(paths[order[k]], "",
+                             "its passes " + range(b) + " overlap those of " + paths[order[k - 1]] +
+                                 " (" + range(a) + "); a pass must be counted once");
     }
 }
 

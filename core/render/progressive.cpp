@@ -396,7 +396,9 @@ void ProgressiveRenderer::render_single_pass(int pass, Image& pixel_change, Imag
 
 // Before the first pass there is no accumulator (its size comes with the frame plan): the photo
 // and zero layers of the photo's size.
-Image ProgressiveRenderer::image() const { return planned_ ? accumulated_image(scene_->photo(), sums_) : scene_->photo(); }
+Image ProgressiveRenderer::image() const {
+    return planned_ ? accumulated_image(scene_->photo(), sums_) : scene_->photo();
+}
 
 Image ProgressiveRenderer::dL_layer() const {
     return planned_ ? accumulated_dL(sums_) : Image(scene_->photo().width(), scene_->photo().height());
