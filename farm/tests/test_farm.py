@@ -93,6 +93,13 @@ class FarmTest(unittest.TestCase):
         render(self.project, out, PASSES, 4, workers=2, binary=BINARY, bundle=True, progress=None)
         self.assert_same_as_single(out)
 
+    def test_shards_written_to_a_shared_folder_merge_to_the_same_image(self):
+        out, parts = self.dir / "parts.exr", self.dir / "parts"
+        parts.mkdir()
+        render(self.project, out, PASSES, 5, workers=2, binary=BINARY, parts_dir=str(parts), progress=None)
+        self.assert_same_as_single(out)
+        self.assertEqual(len(list(parts.glob("shard-*.dpp"))), 3)
+
     def test_a_worker_killed_mid_shard_is_replaced_and_the_image_is_unchanged(self):
         out = self.dir / "killed.exr"
         killed = []
