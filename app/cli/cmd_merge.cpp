@@ -39,13 +39,21 @@ int run_merge(const MergeOptions& o) {
             throw InputError(o.output, "--output", "is one of the shards being merged");
 
     // Everything is read and checked before anything is written: a refused merge writes nothing.
-    std::vector<Shard> shards;
+    // Each shard is summed as soon as it is read and checked against those before, so a merge
+    // holds one shard besides the sum, not all of them.
     std::vector<ShardHeader> headers;
+    std::vector<std::string> read;
+    TileAccumulator sums;
     for (const std::string& part : o.parts) {
-        shards.push_back(read_shard(part));
-        headers.push_back(shards.back().header);
+        Shard shard = read_shard(part);
+        headers.push_back(shard.header);
+        read.push_back(part);
+        check_mergeable(headers, read);
+        if (headers.size() == 1)
+            sums = std::move(shard.sums);
+        else
+            sums.merge(shard.sums);
     }
-    check_mergeable(headers, o.parts);
     const ShardHeader& first = headers[0];
     const std::vector<std::pair<int, int>> gaps = shard_gaps(headers);
     if (!gaps.empty() && !o.allow_gaps)
@@ -69,17 +77,12 @@ int run_merge(const MergeOptions& o) {
     check_output_space(o.output, "--output",
                        output_bytes(ImageKind::Exr, first.width, first.height, o.layers ? 4 : 1));
 
-    TileAccumulator sums = std::move(shards[0].sums);
-    for (size_t i = 1; i < shards.size(); ++i) {
-        sums.merge(shards[i].sums);
-        shards[i].sums = TileAccumulator();  // the memory back as soon as it is summed
-    }
     RenderUpdate update;
     update.image = accumulated_image(photo, sums);
     update.dL = accumulated_dL(sums);
     update.alpha = accumulated_alpha(sums);
     for (const std::string& w : save_render_exr(o.output, update, photo, o.layers)) warn(o.output + ": " + w);
-    std::printf("wrote %s  shards %zu  passes %d  seed %llu\n", o.output.c_str(), shards.size(), sums.passes(),
+    std::printf("wrote %s  shards %zu  passes %d  seed %llu\n", o.output.c_str(), headers.size(), sums.passes(),
                 static_cast<unsigned long long>(first.seed));
     return 0;
 }
