@@ -66,3 +66,24 @@ for f in "$oidn_dir"/lib/*.so*; do
     exit 1
   fi
 done
+
+# The Dask runner (farm/, docs/farm.md): dask.distributed from PyPI and the farm package itself,
+# for whatever python3 is on PATH (its tests run with it). Debian's python3 refuses installs into
+# the system's site-packages (PEP 668) unless told to.
+root="$(cd "$(dirname "$0")/.." && pwd)"
+if python3 -c "import distributed, diffphoton_farm" 2>/dev/null; then
+  echo "install-deps: dask.distributed and diffphoton-farm present for $(command -v python3)"
+else
+  if ! python3 -m pip --version >/dev/null 2>&1; then
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    ${sudo:-} apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive ${sudo:-} apt-get install -y -qq --no-install-recommends python3-pip
+  fi
+  pip_flags=(--quiet)
+  if [ -f "$(python3 -c 'import sysconfig; print(sysconfig.get_path("stdlib"))')/EXTERNALLY-MANAGED" ]; then
+    pip_flags+=(--break-system-packages)
+  fi
+  echo "install-deps: installing dask[distributed] and farm/ (diffphoton-farm) for $(command -v python3)"
+  python3 -m pip install "${pip_flags[@]}" "$root/farm"
+  rm -rf "$root/farm/build" "$root"/farm/*.egg-info
+fi

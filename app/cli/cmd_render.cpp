@@ -19,6 +19,7 @@
 #include "render/render_output.h"
 #include "render/session.h"
 #include "render_pixel.h"
+#include "render_shard.h"
 #include "render_sink.h"
 
 namespace dp::cli {
@@ -26,7 +27,7 @@ namespace dp::cli {
 namespace {
 
 struct RenderOptions {
-    std::string project, output, pixel, method = "differential";
+    std::string project, output, pixel, method = "differential", pass_range, adaptive;
     int passes = 0, pass = 1, threads = 0, focus_after = 0, samples_per_pass = 1, probe_max_width = 0;
     double time_s = 0;
     int64_t photons = 0;
@@ -35,7 +36,7 @@ struct RenderOptions {
     bool layers = false, denoise = false;
     OutputFormat format;
     CLI::Option *passes_opt = nullptr, *time_opt = nullptr, *photons_opt = nullptr,
-                *seed_opt = nullptr, *threads_opt = nullptr, *pixel_opt = nullptr,
+                *seed_opt = nullptr, *threads_opt = nullptr, *pixel_opt = nullptr, *range_opt = nullptr,
                 *probe_max_width_opt = nullptr;
 };
 
@@ -49,6 +50,30 @@ void apply_overrides(const RenderOptions& o, Project& p) {
     if (o.seed_opt->count()) p.render.seed = o.seed;
     if (o.threads_opt->count()) p.render.threads = o.threads;
     if (o.probe_max_width_opt->count()) p.probe.max_width = o.probe_max_width;
+    if (o.adaptive == "off") p.render.adaptive_threshold = 0;
+    if (o.adaptive == "on" && p.render.adaptive_threshold == 0)  // on, where the project had it off
+        p.render.adaptive_threshold = RenderSettings{}.adaptive_threshold;
+}
+
+/// `--pass-range`: a shard of the passes, written as exact sums for `merge` (render_shard.h).
+/// Refuses what would make its passes depend on passes it does not render.
+int run_shard(const RenderOptions& o) {
+    if (o.adaptive == "on")
+        throw InputError("", "--adaptive", "a shard's passes must not depend on passes it does not render: "
+                                           "--pass-range renders without adaptive sampling");
+    if (o.method != "differential")
+        throw InputError("", "--pass-range", "only --method differential renders shards");
+    if (o.focus_after > 0) throw InputError("", "--focus-after", "cannot be used with --pass-range");
+    if (o.denoise) throw InputError("", "--denoise", "shards hold sums, not images; denoise the merged image");
+    if (o.layers) throw InputError("", "--layers", "shards hold every layer's sums; pass --layers to merge");
+    if (o.pixel_opt->count()) throw InputError("", "--pixel", "cannot be used with --pass-range");
+    ShardRequest r;
+    r.project = o.project;
+    r.output = o.output;
+    parse_pass_range(o.pass_range, r.pass_begin, r.pass_end);
+    r.threads = o.threads;
+    r.edit = [&o](Project& p) { apply_overrides(o, p); };
+    return render_shard(r);
 }
 
 /// The denoised augmented photo and change (docs/method-notes.md, "Denoising"): only the
@@ -99,6 +124,7 @@ void write_result(const RenderOptions& o, ImageKind kind, const LoadedScene& loa
 }
 
 int run_render(const RenderOptions& o) {
+    if (o.range_opt->count()) return run_shard(o);
     const bool debug = o.pixel_opt->count() > 0;
     if (!debug && o.output.empty()) throw CLI::RequiredError("--output");
     ImageKind kind = ImageKind::Exr;
@@ -199,6 +225,16 @@ Command add_render_command(CLI::App& app) {
     o->time_opt = sub->add_option("--time", o->time_s, "Render for this many seconds instead")
                       ->check(kTimeBudget)
                       ->excludes(o->passes_opt);
+    o->range_opt = sub->add_option("--pass-range", o->pass_range,
+                                   "A:B: render only passes A to B-1 (counted from 0) and write their exact "
+                                   "sums to a .dpp shard for `diffphoton merge` (docs/farm.md); implies "
+                                   "--adaptive off")
+                       ->excludes(o->passes_opt)
+                       ->excludes(o->time_opt);
+    sub->add_option("--adaptive", o->adaptive,
+                    "on/off: adaptive sampling (stop converged tiles; default: the project's). Off "
+                    "renders every tile in every pass, as merged shards do")
+        ->check(CLI::IsMember({"on", "off"}));
     o->photons_opt = sub->add_option("--photons", o->photons, "Photons per pass")
                          ->check(kPositive);
     o->seed_opt = sub->add_option("--seed", o->seed, "Random seed")->check(kSeed);

@@ -18,6 +18,9 @@ Command add_info_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_convert_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
+/// `merge`: render shards (render --pass-range) summed into one image, bit for bit the single
+/// render's (cmd_merge.cpp, docs/farm.md).
+Command add_merge_command(CLI::App& app);
 /// `export blender`: the project as a self-contained Python script for Blender Cycles.
 Command add_export_command(CLI::App& app);
 /// Time against error of both methods on benchmark scenes.

@@ -63,7 +63,7 @@ int run(int argc, char** argv) {
     std::vector<Command> commands = {
         add_render_command(app),    add_info_command(app),    add_reference_command(app),
         add_convert_command(app),   add_compare_command(app), add_make_test_image_command(app),
-        add_bench_command(app),   add_export_command(app),
+        add_bench_command(app),   add_export_command(app),  add_merge_command(app),
         add_calibrate_command(app),
     };
     if (argc > 1 && unknown_command(app, argv[1])) return kExitBadInput;

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include "base/rng.h"
 #include "base/sobol.h"
@@ -78,6 +79,14 @@ bool ProgressiveRenderer::ensure_plan(const std::atomic<bool>* cancel) {
     diffuse_samples_ = dp::camera_diffuse_samples(photons_per_pass_, near);
     planned_ = true;
     return true;
+}
+
+void ProgressiveRenderer::start_at_pass(int first) {
+    if (first < 1) throw std::logic_error("start_at_pass: passes count from 1");
+    if (settings_.adaptive_threshold > 0)
+        throw std::logic_error("start_at_pass: adaptive sampling makes a pass depend on the passes before");
+    if (stats_.passes > 0) throw std::logic_error("start_at_pass: passes were already rendered");
+    first_pass_ = first;
 }
 
 float ProgressiveRenderer::radius_for_pass(int pass) const {
@@ -288,7 +297,7 @@ bool ProgressiveRenderer::shade_tiles(int pass, const PassMaps& maps, const Pass
 bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     const auto t0 = std::chrono::steady_clock::now();
     if (!ensure_plan(cancel)) return false;
-    const int pass = stats_.passes + 1;
+    const int pass = first_pass_ + stats_.passes;
     RenderStats st = stats_;
     PassMaps maps;
     const PhotonStats photon_stats = build_pass_maps(pass, maps, cancel, &st);
@@ -309,7 +318,7 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     sums_.finish_pass();
     update_convergence();
     st.accumulate_s = seconds_since(t);
-    st.passes = pass;
+    st.passes = stats_.passes + 1;  // passes rendered here (pass - first_pass_ + 1)
     st.seconds += seconds_since(t0);
     st.photons_emitted += photon_stats.emitted;
     st.photons_stored += photon_stats.stored_real + photon_stats.stored_caustic;
@@ -385,33 +394,18 @@ void ProgressiveRenderer::render_single_pass(int pass, Image& pixel_change, Imag
         });
 }
 
+// Before the first pass there is no accumulator (its size comes with the frame plan): the photo
+// and zero layers of the photo's size.
 Image ProgressiveRenderer::image() const {
-    Image out = scene_->photo();
-    for (uint32_t t = 0; t < sums_.tiles(); ++t) {
-        if (!sums_.touched(t)) continue;
-        for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) {
-            if (sums_.untouched(i)) return;  // untouched pixels stay bit-exact
-            const vec3 v = out[i] + vec3(sums_.mean_pixel_change(i));
-            if (is_finite(v)) out[i] = v;
-        });
-    }
-    return out;
+    return planned_ ? accumulated_image(scene_->photo(), sums_) : scene_->photo();
 }
 
 Image ProgressiveRenderer::dL_layer() const {
-    Image out(scene_->photo().width(), scene_->photo().height());
-    for (uint32_t t = 0; t < sums_.tiles(); ++t)
-        if (sums_.touched(t))
-            for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) { out[i] = vec3(sums_.mean_dL(i)); });
-    return out;
+    return planned_ ? accumulated_dL(sums_) : Image(scene_->photo().width(), scene_->photo().height());
 }
 
 Image ProgressiveRenderer::alpha_layer() const {
-    Image out(scene_->photo().width(), scene_->photo().height());
-    for (uint32_t t = 0; t < sums_.tiles(); ++t)
-        if (sums_.touched(t))
-            for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) { out[i] = vec3(float(sums_.mean_alpha(i))); });
-    return out;
+    return planned_ ? accumulated_alpha(sums_) : Image(scene_->photo().width(), scene_->photo().height());
 }
 
 Image shadow_matte(const Image& photo, const Image& dL) {

@@ -51,6 +51,12 @@ public:
 
     const RenderStats& stats() const override { return stats_; }
 
+    /// Makes the next pass rendered pass `first` (1-based) instead of pass 1: a render shard
+    /// that sums passes first.. of a frame. Its accumulator then holds only its own passes.
+    /// Passes are independent only without adaptive sampling, so this throws
+    /// std::logic_error if adaptive sampling is on or a pass was already rendered.
+    void start_at_pass(int first);
+
     /// Photo plus the mean change: the augmented photograph (linear, may be negative only
     /// where the estimate is; clamp for display).
     Image image() const override;
@@ -114,6 +120,7 @@ private:
     bool planned_ = false;
     int diffuse_samples_ = 2;
     TileAccumulator sums_;
+    int first_pass_ = 1;  ///< the index of this renderer's first pass (start_at_pass)
     float ceiling_ = 0;  ///< pixel luminance clamped here when errors are estimated
     RenderStats stats_;
 };

@@ -4,13 +4,16 @@
 #include <memory>
 #include <vector>
 
+#include "base/fixed_sum.h"
 #include "base/math.h"
+#include "image/image.h"
 #include "render/camera_gather.h"
 
 namespace dp {
 
-/// Per-pixel sums of the pass samples, in double (shadow and caustic photons nearly cancel, and
-/// a long render adds thousands of passes), kept per tile and allocated when a tile is first
+/// Per-pixel sums of the pass samples, exact and order-independent in 128-bit fixed point
+/// (FixedSum: shadow and caustic photons nearly cancel, a long render adds thousands of passes,
+/// and passes summed in separate processes must merge to the same bits), kept per tile and allocated when a tile is first
 /// touched: a pass that changes a few pixels costs a few tiles, not the frame. Every live tile
 /// counts every pass (an untouched pixel's sample is zero); a tile stopped by adaptive sampling
 /// keeps the count it had. The odd passes' luminance is summed apart, so that the difference
@@ -34,12 +37,21 @@ public:
     int passes() const { return passes_; }
     int tile_passes(uint32_t tile) const { return stopped_after_[tile] ? stopped_after_[tile] : passes_; }
     size_t tiles() const { return blocks_.size(); }
-    size_t tiles_touched() const { return touched_; }
+    /// Tiles holding sums (counted, not kept: add_tile runs on many tiles at once).
+    size_t tiles_touched() const;
     int width() const { return width_; }
     int height() const { return height_; }
     int tile_size() const { return tile_; }
     int tiles_x() const { return tiles_x_; }
     uint32_t tile_of(size_t pixel) const;
+
+    /// Adds another accumulator's sums and passes (render shards of one frame: same size, no
+    /// tile stopped in either). The result is bit for bit the accumulator of both pass sets.
+    void merge(const TileAccumulator& other);
+    /// Sets the number of passes summed (reading a saved accumulator).
+    void set_passes(int passes) { passes_ = passes; }
+    /// True when adaptive sampling stopped no tile.
+    bool none_stopped() const;
 
     /// Means over the passes of the pixel's tile (zero before the first pass or if untouched).
     dvec3 mean_pixel_change(size_t pixel) const;
@@ -53,19 +65,32 @@ public:
     /// infinite before both halves hold a pass.
     double error2(size_t pixel, double base = 0, double ceiling = INFINITY) const;
 
-private:
+    /// One pixel's sums, per channel.
     struct PixelSums {
-        dvec3 pixel_change{0}, dL{0};
-        double alpha = 0;
-        double odd_luminance = 0;  ///< luminance of pixel_change summed over odd passes
+        FixedSum pixel_change[3], dL[3];
+        FixedSum alpha;
+        FixedSum odd_luminance;  ///< luminance of pixel_change summed over odd passes
     };
+    /// A touched tile's sums (tile x tile entries, row-major), null if untouched.
+    const PixelSums* tile_sums(uint32_t tile) const { return blocks_[tile].get(); }
+    /// The tile's sums, allocated (zero) if it was untouched.
+    PixelSums* touch(uint32_t tile);
+
+private:
     const PixelSums* sums(size_t pixel) const;
 
     int width_ = 0, height_ = 0, tile_ = 8, tiles_x_ = 0;
     std::vector<std::unique_ptr<PixelSums[]>> blocks_;
     std::vector<int> stopped_after_;  ///< 0 while live
-    size_t touched_ = 0;
     int passes_ = 0;
 };
+
+/// The photo plus each touched pixel's mean change (untouched pixels keep the photo's bits, as
+/// do pixels whose mean is not finite): the augmented photograph.
+Image accumulated_image(const Image& photo, const TileAccumulator& sums);
+/// The mean signed change of radiance of each pixel.
+Image accumulated_dL(const TileAccumulator& sums);
+/// The mean coverage of each pixel by virtual objects (grey RGB).
+Image accumulated_alpha(const TileAccumulator& sums);
 
 }  // namespace dp

@@ -1,0 +1,280 @@
+#include "render/pass_shard.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "base/atomic_file.h"
+#include "base/error.h"
+#include "base/rng.h"
+#include "scene/project_io.h"
+
+namespace dp {
+
+namespace {
+
+constexpr char kMagic[8] = {'D', 'P', 'S', 'H', 'A', 'R', 'D', '1'};
+constexpr char kEnd[8] = {'D', 'P', 'S', 'H', 'E', 'N', 'D', '\n'};
+/// A header longer than this is not a shard's (it is a few hundred bytes).
+constexpr uint64_t kMaxHeader = 1 << 20;
+
+/// FNV-1a over bytes, two lanes with different offsets for a 128-bit fingerprint; not a
+/// cryptographic hash: it tells a project's versions apart, it does not resist forgery.
+struct Fingerprint {
+    uint64_t a = 0xcbf29ce484222325ull, b = 0x84222325cbf29ce4ull;
+    void add(const void* data, size_t n) {
+        const auto* p = static_cast<const unsigned char*>(data);
+        for (size_t i = 0; i < n; ++i) {
+            a = (a ^ p[i]) * 0x100000001b3ull;
+            b = (b ^ p[i]) * 0x100000001b3ull;
+        }
+    }
+    void add(const std::string& s) {
+        const uint64_t n = s.size();
+        add(&n, sizeof n);  // length first: "ab"+"c" and "a"+"bc" differ
+        add(s.data(), s.size());
+    }
+    uint64_t digest64() const { return mix64(a ^ mix64(b)); }
+    std::string hex() const {
+        char buf[33];
+        std::snprintf(buf, sizeof buf, "%016llx%016llx", static_cast<unsigned long long>(mix64(a)),
+                      static_cast<unsigned long long>(mix64(b ^ 0x5bd1e995ull)));
+        return buf;
+    }
+};
+
+void put_u64(std::string& out, uint64_t v) {
+    for (int i = 0; i < 8; ++i) out.push_back(char((v >> (8 * i)) & 0xff));
+}
+void put_u32(std::string& out, uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(char((v >> (8 * i)) & 0xff));
+}
+
+/// Reads little-endian integers from a file's bytes, refusing to read past the end.
+class Reader {
+public:
+    Reader(const std::string& path, const std::string& bytes) : path_(path), bytes_(bytes) {}
+    uint64_t u64() { return le(8); }
+    uint32_t u32() { return uint32_t(le(4)); }
+    std::string take(size_t n) {
+        need(n);
+        std::string s = bytes_.substr(pos_, n);
+        pos_ += n;
+        return s;
+    }
+    size_t pos() const { return pos_; }
+    size_t left() const { return bytes_.size() - pos_; }
+    [[noreturn]] void fail(const std::string& why) const { throw InputError(path_, "", why); }
+
+private:
+    void need(size_t n) const {
+        if (left() < n) fail("truncated: the shard file ends early (" + std::to_string(bytes_.size()) + " bytes)");
+    }
+    uint64_t le(int n) {
+        need(size_t(n));
+        uint64_t v = 0;
+        for (int i = 0; i < n; ++i) v |= uint64_t(static_cast<unsigned char>(bytes_[pos_ + size_t(i)])) << (8 * i);
+        pos_ += size_t(n);
+        return v;
+    }
+    const std::string& path_;
+    const std::string& bytes_;
+    size_t pos_ = 0;
+};
+
+nlohmann::json header_json(const ShardHeader& h) {
+    return {{"format", "diffphoton render shard"},
+            {"project_hash", h.project_hash},
+            {"inputs_hash", h.inputs_hash},
+            {"project", h.project_path},
+            {"seed", std::to_string(h.seed)},  // a string: JSON readers may hold numbers in doubles
+            {"passes", {h.pass_begin, h.pass_end}},
+            {"engine", h.engine_version},
+            {"adaptive", h.adaptive},
+            {"width", h.width},
+            {"height", h.height},
+            {"tile", h.tile}};
+}
+
+ShardHeader parse_header(const Reader& r, const std::string& text) {
+    ShardHeader h;
+    try {
+        const nlohmann::json j = nlohmann::json::parse(text);
+        h.project_hash = j.at("project_hash").get<std::string>();
+        h.inputs_hash = j.at("inputs_hash").get<std::string>();
+        h.project_path = j.at("project").get<std::string>();
+        h.seed = std::stoull(j.at("seed").get<std::string>());
+        h.pass_begin = j.at("passes").at(0).get<int>();
+        h.pass_end = j.at("passes").at(1).get<int>();
+        h.engine_version = j.at("engine").get<std::string>();
+        h.adaptive = j.at("adaptive").get<bool>();
+        h.width = j.at("width").get<int>();
+        h.height = j.at("height").get<int>();
+        h.tile = j.at("tile").get<int>();
+    } catch (const std::exception& e) {
+        r.fail(std::string("damaged shard header: ") + e.what());
+    }
+    if (h.pass_begin < 0 || h.pass_end <= h.pass_begin) r.fail("damaged shard header: empty pass range");
+    if (h.width <= 0 || h.height <= 0 || h.tile <= 0 || h.tile > 64 || h.width > (1 << 16) || h.height > (1 << 16))
+        r.fail("damaged shard header: impossible frame size");
+    return h;
+}
+
+std::string range(const ShardHeader& h) { return std::to_string(h.pass_begin) + ":" + std::to_string(h.pass_end); }
+
+}  // namespace
+
+ProjectFingerprint fingerprint_project(const Project& project) {
+    nlohmann::json doc = to_json(project);
+    // What does not change a pass's samples, or what the shard's header states apart.
+    if (doc.contains("render"))
+        for (const char* key :
+             {"passes", "time_budget_s", "threads", "seed", "adaptive_threshold", "adaptive_min_passes"})
+            doc["render"].erase(key);
+    doc.erase("display");
+    Fingerprint files;
+    for (const auto& [field, path] : project_inputs(project)) {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw InputError(path.string(), field, "cannot be read");
+        files.add(field);
+        files.add(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+    }
+    Fingerprint all = files;
+    all.add(doc.dump());
+    return {all.hex(), files.hex()};
+}
+
+void write_shard(const std::string& path, const ShardHeader& header, const TileAccumulator& sums) {
+    std::string out(kMagic, sizeof kMagic);
+    const std::string text = header_json(header).dump(2);
+    put_u64(out, text.size());
+    out += text;
+    const size_t tile_pixels = size_t(sums.tile_size()) * size_t(sums.tile_size());
+    put_u32(out, uint32_t(sums.passes()));
+    put_u32(out, uint32_t(sums.tiles_touched()));
+    for (uint32_t t = 0; t < sums.tiles(); ++t) {
+        const TileAccumulator::PixelSums* block = sums.tile_sums(t);
+        if (!block) continue;
+        put_u32(out, t);
+        for (size_t k = 0; k < tile_pixels; ++k) {
+            const TileAccumulator::PixelSums& s = block[k];
+            for (const FixedSum* v : {&s.pixel_change[0], &s.pixel_change[1], &s.pixel_change[2], &s.dL[0],
+                                      &s.dL[1], &s.dL[2], &s.alpha, &s.odd_luminance}) {
+                put_u64(out, v->low());
+                put_u64(out, v->high());
+            }
+        }
+    }
+    Fingerprint f;
+    f.add(out.data(), out.size());
+    put_u64(out, f.digest64());
+    out.append(kEnd, sizeof kEnd);
+    write_file_atomically(path, out);
+}
+
+Shard read_shard(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot be read");
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Reader r(path, bytes);
+    if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+        r.fail("not a render shard (written by 'diffphoton render --pass-range')");
+    // The end marker and checksum first: a truncated or altered file is refused as such,
+    // whatever part of it is missing.
+    if (bytes.size() < sizeof kMagic + 24 || std::memcmp(bytes.data() + bytes.size() - 8, kEnd, 8) != 0)
+        r.fail("truncated: the shard file ends early (" + std::to_string(bytes.size()) + " bytes)");
+    {
+        Fingerprint f;
+        f.add(bytes.data(), bytes.size() - 16);
+        Reader tail(path, bytes);
+        tail.take(bytes.size() - 16);
+        if (tail.u64() != f.digest64()) r.fail("damaged: the shard's checksum does not match its contents");
+    }
+    r.take(sizeof kMagic);
+    const uint64_t header_size = r.u64();
+    if (header_size > kMaxHeader || header_size > r.left()) r.fail("damaged shard header: impossible length");
+    Shard shard;
+    shard.header = parse_header(r, r.take(size_t(header_size)));
+    const ShardHeader& h = shard.header;
+    shard.sums = TileAccumulator(h.width, h.height, h.tile);
+    const int passes = int(r.u32());
+    if (passes != h.pass_end - h.pass_begin) r.fail("damaged: the pass count does not match the pass range");
+    shard.sums.set_passes(passes);
+    const uint32_t touched = r.u32();
+    const size_t tile_pixels = size_t(h.tile) * size_t(h.tile);
+    if (touched > shard.sums.tiles()) r.fail("damaged: more tiles than the frame has");
+    uint32_t previous = 0;
+    for (uint32_t k = 0; k < touched; ++k) {
+        const uint32_t t = r.u32();
+        if (t >= shard.sums.tiles() || (k > 0 && t <= previous)) r.fail("damaged: tiles out of order");
+        previous = t;
+        TileAccumulator::PixelSums* block = shard.sums.touch(t);
+        for (size_t i = 0; i < tile_pixels; ++i) {
+            TileAccumulator::PixelSums& s = block[i];
+            for (FixedSum* v : {&s.pixel_change[0], &s.pixel_change[1], &s.pixel_change[2], &s.dL[0], &s.dL[1],
+                                &s.dL[2], &s.alpha, &s.odd_luminance}) {
+                const uint64_t low = r.u64();
+                *v = FixedSum::from_bits(low, r.u64());
+            }
+        }
+    }
+    if (r.left() != 16) r.fail("damaged: unexpected bytes after the tiles");
+    return shard;
+}
+
+std::vector<std::pair<int, int>> shard_gaps(const std::vector<ShardHeader>& shards) {
+    std::vector<std::pair<int, int>> ranges;
+    for (const ShardHeader& h : shards) ranges.emplace_back(h.pass_begin, h.pass_end);
+    std::sort(ranges.begin(), ranges.end());
+    std::vector<std::pair<int, int>> gaps;
+    int covered = 0;
+    for (const auto& [b, e] : ranges) {
+        if (b > covered) gaps.emplace_back(covered, b);
+        covered = std::max(covered, e);
+    }
+    return gaps;
+}
+
+void check_mergeable(const std::vector<ShardHeader>& shards, const std::vector<std::string>& paths) {
+    if (shards.empty()) throw InputError("", "", "no shards to merge");
+    const ShardHeader& first = shards[0];
+    for (size_t i = 0; i < shards.size(); ++i) {
+        const ShardHeader& h = shards[i];
+        const std::string& p = paths[i];
+        if (h.adaptive)
+            throw InputError(p, "", "rendered with adaptive sampling, whose passes depend on each other; "
+                                    "shards cannot be merged exactly");
+        if (h.engine_version != first.engine_version)
+            throw InputError(p, "", "written by another version of the renderer ('" + h.engine_version +
+                                        "', not '" + first.engine_version + "' of " + paths[0] + ")");
+        if (h.project_hash != first.project_hash)
+            throw InputError(p, "",
+                             "belongs to another project (or another version of its files) than " + paths[0] +
+                                 " (project " + h.project_path + " against " + first.project_path + ")");
+        if (h.seed != first.seed)
+            throw InputError(p, "", "was rendered with seed " + std::to_string(h.seed) + ", " + paths[0] +
+                                        " with seed " + std::to_string(first.seed));
+        if (h.width != first.width || h.height != first.height || h.tile != first.tile)
+            throw InputError(p, "", "has another frame size than " + paths[0]);
+    }
+    // Overlaps: sorted by first pass, each range must start at or after the previous one's end.
+    std::vector<size_t> order(shards.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return shards[a].pass_begin < shards[b].pass_begin;
+    });
+    for (size_t k = 1; k < order.size(); ++k) {
+        const ShardHeader& a = shards[order[k - 1]];
+        const ShardHeader& b = shards[order[k]];
+        if (b.pass_begin < a.pass_end)
+            throw InputError(paths[order[k]], "",
+                             "its passes " + range(b) + " overlap those of " + paths[order[k - 1]] +
+                                 " (" + range(a) + "); a pass must be counted once");
+    }
+}
+
+}  // namespace dp

@@ -1,0 +1,92 @@
+# Render shards (render --pass-range) merged by `diffphoton merge` equal one render of all the
+# passes bit for bit, whatever the split and thread counts; parts that cannot be merged exactly
+# are refused with exit 2 and nothing is written.
+source "$(dirname "$0")/testlib.bash" "$@"
+make_inputs
+GLASS='{"name": "glass", "shape": {"type": "sphere", "radius": 0.3},
+        "transform": {"translation": [0.7, 0.3, 0.4]}, "material": {"type": "glass", "ior": 1.5}}'
+write_project scene.json "$BALL, $GLASS" "$FLOOR"
+
+same() {  # same A B WHAT: the two files are identical, byte for byte
+    cmp -s "$1" "$2" || fail "$3: $1 and $2 differ"
+}
+
+# The single-process renders: one and two threads give the same bits.
+run render scene.json -o single1.exr --passes 12 --adaptive off --threads 1
+expect_rc 0 "single render, one thread"
+run render scene.json -o single2.exr --passes 12 --adaptive off --threads 2
+expect_rc 0 "single render, two threads"
+same single1.exr single2.exr "single renders at one and two threads"
+run render scene.json -o layers.exr --passes 12 --adaptive off --layers
+expect_rc 0 "single render with layers"
+
+# shards SPLITS...: renders each A:B alternately with one and two threads, into shard-A-B.dpp.
+shards() {
+    local threads=1 r
+    PARTS=()
+    for r in "$@"; do
+        run render scene.json --pass-range "$r" -o "shard-${r/:/-}.dpp" --threads $threads
+        expect_rc 0 "shard $r"
+        expect_stdout "passes $r" "shard $r"
+        PARTS+=("shard-${r/:/-}.dpp")
+        threads=$((3 - threads))
+    done
+}
+
+shards 0:12
+run merge "${PARTS[@]}" -o merged1.exr
+expect_rc 0 "merge of one shard"
+expect_stdout "passes 12" "merge of one shard"
+same single1.exr merged1.exr "one shard"
+
+shards 0:5 5:12
+run merge "${PARTS[1]}" "${PARTS[0]}" -o merged2.exr
+expect_rc 0 "merge of two shards"
+same single1.exr merged2.exr "two uneven shards, merged in reverse order"
+
+shards 0:1 1:3 3:4 4:6 6:9 9:11 11:12
+run merge "${PARTS[@]}" -o merged7.exr
+expect_rc 0 "merge of seven shards"
+same single1.exr merged7.exr "seven uneven shards"
+run merge "${PARTS[@]}" -o merged7-layers.exr --layers
+expect_rc 0 "merge with layers"
+same layers.exr merged7-layers.exr "seven uneven shards, every layer"
+
+# refused WHAT TEXT PARTS...: merge exits 2 naming the problem and writes nothing.
+refused() {
+    local what=$1 text=$2
+    shift 2
+    rm -f refused.exr
+    expect_refused "$what" "$text" merge "$@" -o refused.exr
+    [ -e refused.exr ] && fail "$what: an output was written"
+    ls .refused*.exr >/dev/null 2>&1 && fail "$what: a temporary file was left"
+    true
+}
+
+shards 4:12
+refused "overlapping shards" "overlap" shard-0-5.dpp shard-4-12.dpp
+refused "a gap" "are in no shard" shard-0-1.dpp shard-3-4.dpp
+refused "missing first passes" "0:1 are in no shard" shard-1-3.dpp
+run render scene.json --pass-range 5:12 -o seed7.dpp --seed 7
+expect_rc 0 "shard with another seed"
+refused "another seed" "seed 7" shard-0-5.dpp seed7.dpp
+write_project other.json "$BALL" "$FLOOR"
+run render other.json --pass-range 5:12 -o other.dpp
+expect_rc 0 "shard of another project"
+refused "another project" "belongs to another project" shard-0-5.dpp other.dpp
+head -c 2000 shard-5-12.dpp > truncated.dpp
+refused "a truncated shard" "truncated" shard-0-5.dpp truncated.dpp
+cp shard-5-12.dpp damaged.dpp
+printf 'X' | dd of=damaged.dpp bs=1 seek=900 conv=notrunc 2>/dev/null
+refused "a damaged shard" "damaged" shard-0-5.dpp damaged.dpp
+refused "a file that is no shard" "not a render shard" shard-0-5.dpp photo.exr
+
+# What would make a shard's passes depend on passes it does not render is refused.
+expect_refused "adaptive shard" "without adaptive sampling" render scene.json --pass-range 0:4 -o a.dpp --adaptive on
+expect_refused "empty range" "is empty" render scene.json --pass-range 4:4 -o a.dpp
+expect_refused "malformed range" "expected A:B" render scene.json --pass-range 4 -o a.dpp
+expect_refused "shard to an image" ".dpp" render scene.json --pass-range 0:4 -o a.exr
+expect_refused "shard with --passes" "excludes" render scene.json --pass-range 0:4 --passes 4 -o a.dpp
+expect_refused "shard of another method" "differential" render scene.json --pass-range 0:4 --method standard -o a.dpp
+[ -e a.dpp ] && fail "a refused shard was written"
+echo "PASS"
