@@ -1,6 +1,7 @@
 // MainWindow: object edits (add, duplicate, delete, hide, on ground, G / R / S) and the
 // display (exposure per project, overlays).
 #include <QAction>
+#include <QComboBox>
 #include <QLabel>
 #include <QSignalBlocker>
 #include <QSlider>

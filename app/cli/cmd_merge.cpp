@@ -81,7 +81,11 @@ int run_merge(const MergeOptions& o) {
     update.image = accumulated_image(photo, sums);
     update.dL = accumulated_dL(sums);
     update.alpha = accumulated_alpha(sums);
-    for (const std::string& w : save_render_exr(o.output, update, photo, o.layers)) warn(o.output + ": " + w);
+    // The header render --passes N writes, so the files are equal byte for byte.
+    ImageWriteOptions options;
+    options.metadata = render_metadata(loaded.project, project, sums.passes(), first.seed);
+    for (const std::string& w : save_render_exr(o.output, update, photo, o.layers, {}, options))
+        warn(o.output + ": " + w);
     std::printf("wrote %s  shards %zu  passes %d  seed %llu\n", o.output.c_str(), headers.size(), sums.passes(),
                 static_cast<unsigned long long>(first.seed));
     return 0;

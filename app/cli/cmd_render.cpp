@@ -95,20 +95,10 @@ Denoised denoise_result(const RenderScene& scene, const RenderUpdate& u, bool wi
     return d;
 }
 
-/// What an output's header says of how it was made, and the plate's camera data.
-std::vector<std::pair<std::string, std::string>> render_metadata(const LoadedScene& loaded, const RenderUpdate& u,
-                                                                 const std::string& project_path) {
-    auto m = read_image_metadata(loaded.project.resolve(loaded.project.photo.path).string());
-    m.emplace_back("diffphoton:project", std::filesystem::path(project_path).filename().string());
-    m.emplace_back("diffphoton:passes", std::to_string(u.stats.passes));
-    m.emplace_back("diffphoton:seed", std::to_string(loaded.settings.seed));
-    m.emplace_back("diffphoton:photons_per_pass", std::to_string(loaded.settings.photons_per_pass));
-    return m;
-}
-
 void write_result(const RenderOptions& o, ImageKind kind, const LoadedScene& loaded, RenderUpdate& u) {
     const RenderScene& scene = *loaded.scene;
-    const ImageWriteOptions options = write_options(o.format, render_metadata(loaded, u, o.project));
+    const ImageWriteOptions options =
+        write_options(o.format, render_metadata(loaded.project, o.project, u.stats.passes, loaded.settings.seed));
     std::optional<Denoised> denoised;
     if (o.denoise) denoised = denoise_result(scene, u, kind == ImageKind::Exr);
     if (kind == ImageKind::Ldr) {

@@ -171,6 +171,16 @@ DisplayTransform output_view(const OutputFormat& f, float exposure, const ViewSe
     }
 }
 
+std::vector<std::pair<std::string, std::string>> render_metadata(const Project& project,
+                                                                 const std::string& project_path, int passes,
+                                                                 uint64_t seed) {
+    auto m = read_image_metadata(project.resolve(project.photo.path).string());
+    m.emplace_back("diffphoton:project", fs::path(project_path).filename().string());
+    m.emplace_back("diffphoton:passes", std::to_string(passes));
+    m.emplace_back("diffphoton:seed", std::to_string(seed));
+    return m;
+}
+
 ViewSettings project_view(const Project& project) {
     ViewSettings v;
     v.view = project.display.view;

@@ -89,6 +89,12 @@ ImageWriteOptions write_options(const OutputFormat& format,
 /// `exposure` stops. Throws InputError for an unknown view or look.
 DisplayTransform output_view(const OutputFormat& format, float exposure, const ViewSettings& fallback = {});
 
+/// What a render's output header says of how it was made (project file name, passes, seed),
+/// after the plate's camera data (read_image_metadata). `render` and `merge` write the same.
+std::vector<std::pair<std::string, std::string>> render_metadata(const Project& project,
+                                                                 const std::string& project_path, int passes,
+                                                                 uint64_t seed);
+
 /// The project's display view and look (exposure 0: outputs are at 0 EV unless asked).
 ViewSettings project_view(const Project& project);
 

@@ -41,6 +41,9 @@ void add_metadata(ImageSpec& spec, const ImageWriteOptions& options) {
     static const char* const kIntegers[] = {"Exif:PhotographicSensitivity", "Exif:ISOSpeedRatings",
                                             "Exif:FocalLengthIn35mmFilm", "Orientation"};
     spec.attribute("Software", "diffphoton " DP_VERSION_STRING);
+    // OpenImageIO stamps the time of writing otherwise: the same render would give other bytes
+    // (and merged shards would not equal the single render). The plate's own date is kept.
+    spec.attribute("DateTime", "");
     for (const auto& [name, value] : options.metadata) {
         if (name == "Software") continue;
         char* end = nullptr;

@@ -39,12 +39,16 @@ expect_bad "a point that is not a point" "'1,x' is not a list of numbers" -- \
 # EXIF where EXIF is required.
 run make-test-image plain.jpg --size 64 48 --value 0.5 0.5 0.5
 expect_rc 0 "make a JPEG"
-expect_bad "a photo without EXIF" "plain.jpg: the file has no EXIF data" -- exif scene.json plain.jpg
+run make-test-image plain.png --size 64 48 --value 0.5 0.5 0.5
+expect_rc 0 "make a PNG"
+expect_bad "a photo without EXIF" "plain.png: the file has no EXIF data" -- exif scene.json plain.png
+# Our JPEGs carry EXIF (the software that wrote them), but no lens.
+expect_bad "a photo without a focal length" "has no focal length" -- exif scene.json plain.jpg
 printf 'not an image\n' >garbage.jpg
 expect_bad "an unreadable photo" "garbage.jpg: cannot read the file's metadata" -- \
     exif scene.json garbage.jpg
 expect_bad "--exif with a photo without EXIF" "no EXIF data" -- \
-    rectangle scene.json $RECT --photo plain.jpg --exif --corners 10,10 50,12 48,40 12,38
+    rectangle scene.json $RECT --photo plain.png --exif --corners 10,10 50,12 48,40 12,38
 expect_bad "a missing photo" "nothing.jpg: file not found" -- exif scene.json nothing.jpg
 
 # Chessboard and fSpy input.

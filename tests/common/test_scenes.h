@@ -120,4 +120,16 @@ inline std::shared_ptr<RenderScene> build(const Project& p, Image photo, Image p
     return std::make_shared<RenderScene>(p, std::move(a));
 }
 
+/// A glass ball and a clay ball on a grey floor under a sun and sky: every path kind (caustic,
+/// shadow, bounce) in a small frame, for tests that compare whole renders bit for bit.
+inline std::shared_ptr<RenderScene> glass_and_clay_scene() {
+    Project p = look_at_project(vec3(0, 2.5f, 4), vec3(0, 0.5f, 0), 45);
+    p.real.push_back(ground_plane(vec3(0.5f)));
+    p.objects.push_back(sphere(vec3(-0.6f, 0.5f, 0), 0.5f, glass(1.5f)));
+    p.objects.push_back(sphere(vec3(0.6f, 0.5f, 0), 0.5f, diffuse(vec3(0.8f, 0.3f, 0.2f))));
+    Image probe = make_sun_sky_probe(128, 64, glm::normalize(vec3(1, 1.2f, 0.5f)), vec3(3000.0f), 2.0f,
+                                     vec3(0.3f, 0.5f, 1.0f), vec3(0.8f, 0.9f, 1.0f));
+    return build(p, Image(80, 60, vec3(0.3f)), probe);
+}
+
 }  // namespace dp::test

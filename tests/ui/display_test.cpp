@@ -3,6 +3,7 @@
 // off by default, toggled with H over the augmented view and never drawn over the photo.
 #include <QAction>
 #include <QApplication>
+#include <QAbstractItemView>
 #include <QComboBox>
 #include <QFile>
 #include <QImage>
@@ -197,10 +198,11 @@ void DisplayTest::theViewTransformIsPickedInTheToolbarKeptInTheProjectAndUsedByE
 
     // Open the box with a click and walk down to Filmic with the keyboard, as a person would.
     QTest::mouseClick(box, Qt::LeftButton);
-    QWidget* popup = QApplication::activePopupWidget();
-    QVERIFY(popup);
-    for (int i = box->currentIndex(); i < box->findText("Filmic"); ++i) QTest::keyClick(popup, Qt::Key_Down);
-    QTest::keyClick(popup, Qt::Key_Return);
+    QVERIFY(QApplication::activePopupWidget());
+    QWidget* list = box->view();  // the popup's list takes the keys
+    for (int i = box->currentIndex(); i < box->findText("Filmic"); ++i) QTest::keyClick(list, Qt::Key_Down);
+    QTest::keyClick(list, Qt::Key_Return);
+    QVERIFY(!QApplication::activePopupWidget());
     QCOMPARE(w_->document()->project().display.view, std::string("Filmic"));
     QCOMPARE(w_->viewport()->view().view, std::string("Filmic"));
     const QImage filmic = grabViewport();

@@ -23,16 +23,6 @@ using namespace dp::test;
 
 namespace {
 
-std::shared_ptr<RenderScene> glass_and_clay() {
-    Project p = look_at_project(vec3(0, 2.5f, 4), vec3(0, 0.5f, 0), 45);
-    p.real.push_back(ground_plane(vec3(0.5f)));
-    p.objects.push_back(sphere(vec3(-0.6f, 0.5f, 0), 0.5f, glass(1.5f)));
-    p.objects.push_back(sphere(vec3(0.6f, 0.5f, 0), 0.5f, diffuse(vec3(0.8f, 0.3f, 0.2f))));
-    Image probe = make_sun_sky_probe(128, 64, glm::normalize(vec3(1, 1.2f, 0.5f)), vec3(3000.0f), 2.0f,
-                                     vec3(0.3f, 0.5f, 1.0f), vec3(0.8f, 0.9f, 1.0f));
-    return build(p, Image(80, 60, vec3(0.3f)), probe);
-}
-
 RenderSettings without_adaptive() {
     RenderSettings s = settings(30000, 42);
     s.adaptive_threshold = 0;
@@ -87,7 +77,7 @@ TEST(FixedSum, HoldsAFloatSampleExactlyAndCancelsItExactly) {
 }
 
 TEST(RenderShards, PassesSplitAcrossRenderersMergeToTheSingleRenderBitForBit) {
-    auto scene = glass_and_clay();
+    auto scene = glass_and_clay_scene();
     const auto whole = render_passes(scene, 1, 7, 2);
     // Uneven shards, each at another thread count: passes 1-2, 3 and 4-7.
     const auto a = render_passes(scene, 1, 2, 1);
@@ -104,12 +94,12 @@ TEST(RenderShards, PassesSplitAcrossRenderersMergeToTheSingleRenderBitForBit) {
 }
 
 TEST(RenderShards, ARendererWithAdaptiveSamplingRefusesToStartAtALaterPass) {
-    ProgressiveRenderer r(glass_and_clay(), settings(1000, 1));
+    ProgressiveRenderer r(glass_and_clay_scene(), settings(1000, 1));
     EXPECT_THROW(r.start_at_pass(5), std::logic_error);
 }
 
 TEST(RenderShards, AShardFileReadsBackToTheSameSumsAndATruncatedOneIsRefused) {
-    auto scene = glass_and_clay();
+    auto scene = glass_and_clay_scene();
     const auto r = render_passes(scene, 3, 2, 2);
     ShardHeader h;
     h.project_hash = "p";
