@@ -19,7 +19,7 @@ demo: build
 	@mkdir -p $(dir $(DEMO_OUT))
 	@$(BUILD)/app/diffphoton render resources/sample/sample.json -o $(DEMO_OUT:.png=.exr) --layers
 	@$(BUILD)/app/diffphoton convert $(DEMO_OUT:.png=.exr) $(DEMO_OUT) --exposure -2
-	@echo "demo: wrote $(abspath $(DEMO_OUT:.png=.exr)) (linear, layers dL/alpha/shadow) and $(abspath $(DEMO_OUT))"
+	@echo "demo: wrote $(abspath $(DEMO_OUT:.png=.exr)) (linear RGBA, layers objects/catcher/dL/alpha/shadow) and $(abspath $(DEMO_OUT))"
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
