@@ -36,7 +36,8 @@ asan-configure: deps
 
 test-asan: asan-configure
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(UNIT_TESTS) $(FUZZ_EXES) diffphoton
-	@cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) -L 'unit|cli'
+	@cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp \
+	  ctest --output-on-failure -j $(JOBS) -L 'unit|cli'
 
 # Each fuzz target for FUZZ_SECONDS (tests/fuzz/README.md). New inputs collect in out/fuzz/corpus;
 # a finding is written to out/fuzz/findings/<target>/ and fails the run.
