@@ -1,21 +1,12 @@
 // OpenEXR's RGBA interface for what OpenImageIO hands over raw: luminance/chroma EXRs.
-#include <ImfChannelList.h>
-#include <ImfFrameBuffer.h>
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-#include <ImfOutputFile.h>
 #include <ImfRgbaFile.h>
 
-#include <array>
 #include <cstdint>
-#include <set>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "image/image_io.h"
 #include "base/text.h"
-#include "base/atomic_file.h"
 #include "image/image_io_internal.h"
 
 namespace dp {
@@ -23,9 +14,6 @@ namespace dp {
 namespace {
 
 using image_io_detail::throw_unreadable;
-
-// Slices address the x/y/z floats of vec3 pixels in place, which needs a tightly packed vec3.
-static_assert(sizeof(vec3) == 3 * sizeof(float));
 
 struct WindowSize {
     int width, height;
@@ -38,33 +26,6 @@ WindowSize window_size(const Imath::Box2i& dw, const std::string& path,
     if (w <= 0 || h <= 0) throw InputError(path, field, "image has zero size");
     check_image_size(path, field, w, h);  // a corrupt header can claim any data window
     return {int(w), int(h)};
-}
-
-std::string list_channels(const Imf::ChannelList& channels) {
-    std::string out;
-    for (auto it = channels.begin(); it != channels.end(); ++it)
-        out += (out.empty() ? "" : ", ") + std::string(it.name());
-    return out.empty() ? "none" : out;
-}
-
-// Reads the named channels into the x, y, z components; an empty name leaves that component 0.
-Image read_channels(Imf::InputFile& file, const std::array<std::string, 3>& names,
-                    const std::string& path, const std::string& field) {
-    const Imath::Box2i dw = file.header().dataWindow();
-    const WindowSize size = window_size(dw, path, field);
-    if (!file.isComplete()) throw_unreadable(path, field, "the file is truncated");
-
-    Image image(size.width, size.height);
-    Imf::FrameBuffer frame;
-    for (size_t c = 0; c < 3; ++c) {
-        if (names[c].empty()) continue;
-        char* base = reinterpret_cast<char*>(image.data()) + c * sizeof(float);
-        frame.insert(names[c], Imf::Slice::Make(Imf::FLOAT, base, dw, sizeof(vec3),
-                                                sizeof(vec3) * size_t(size.width)));
-    }
-    file.setFrameBuffer(frame);
-    file.readPixels(dw.min.y, dw.max.y);
-    return image;
 }
 
 // Luminance/chroma files store subsampled RY/BY channels that only the RGBA interface rebuilds.
@@ -95,23 +56,7 @@ namespace image_io_detail {
 
 Image load_exr_main(const std::string& path, const std::string& field) {
     try {
-        Imf::InputFile file(path.c_str());
-        const Imf::ChannelList& channels = file.header().channels();
-        auto has = [&](const char* name) { return channels.findChannel(name) != nullptr; };
-
-        if (has("R") || has("G") || has("B")) {
-            auto pick = [&](const char* name) { return has(name) ? std::string(name) : ""; };
-            return read_channels(file, {pick("R"), pick("G"), pick("B")}, path, field);
-        }
-        if (has("Y") && (has("RY") || has("BY"))) return read_luminance_chroma(path, field);
-        if (has("Y")) {
-            Image image = read_channels(file, {"Y", "", ""}, path, field);
-            for (size_t i = 0; i < image.size(); ++i) image[i] = vec3(image[i].x);
-            return image;
-        }
-        throw_unreadable(path, field,
-                         "EXR has no R, G, B or Y channel (channels: " + list_channels(channels) +
-                             ")");
+        return read_luminance_chroma(path, field);
     } catch (const InputError&) {
         throw;
     } catch (const std::bad_alloc&) {

@@ -25,8 +25,8 @@ bool header_size(const std::string& path, int64_t& width, int64_t& height, bool*
     throw InputError(path, field, "cannot read image (corrupt or unsupported format): " + detail);
 }
 
-/// Loads the main colour of an EXR: R, G, B (missing ones read as 0), else Y as grey, else
-/// luminance/chroma. Values are returned as stored, non-finite ones included.
+/// Loads an EXR through OpenEXR's RGBA interface, which rebuilds the subsampled channels of
+/// luminance/chroma files that OpenImageIO refuses. Values are returned as stored.
 Image load_exr_main(const std::string& path, const std::string& field);
 
 /// Decodes any format OpenImageIO reads, as load_image documents (options, report).
