@@ -431,6 +431,7 @@ void MainWindow::connectRenderer() {
     connect(doc_, &Document::reloaded, this, [this] {
         failPendingExport(tr("another project was opened before its render was ready"));
         failedGeneration_ = 0;
+        renderer_->forgetPicture();
         viewport_->setFrame(nullptr);
         viewport_->setRenderSize(options_.renderSize);
         viewport_->fitView();

@@ -152,6 +152,13 @@ void RenderController::stop() {
     session_->cancel();
 }
 
+void RenderController::forgetPicture() {
+    last_.reset();
+    lastFull_.reset();
+    std::lock_guard<std::mutex> lock(mutex_);
+    base_.reset();
+}
+
 bool RenderController::idle() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return !busy_ && !pending_ && !session_->running();

@@ -92,6 +92,9 @@ public:
     /// once, and no frame of what ran is delivered after it.
     void stop();
     bool idle() const;
+    /// Drops the refined picture later edits are laid over: another project was opened, and
+    /// nothing of the old picture may show through the new one.
+    void forgetPicture();
 
     /// The latest full-size frame (what export writes).
     std::shared_ptr<const RenderFrame> lastFullFrame() const { return lastFull_; }

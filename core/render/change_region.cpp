@@ -36,14 +36,15 @@ std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<E
                 const Ray ray = scene.camera_ray(float(x * step) + half, float(y * step) + half);
                 const Hit hit = scene.intersect(ray);
                 bool in = false;
-                if (!hit) {
-                    // Nothing there: only an edited object seen against the void can change it.
-                    for (const EditedBounds& b : edited)
-                        in |= distance_to_half_line(b.center, ray.org, ray.dir) <= b.radius;
-                } else if (hit.surface->is_virtual) {
-                    in = hit.surface->material.kind != Material::Kind::Diffuse;
-                    for (const EditedBounds& b : edited) in |= glm::length(hit.p - b.center) <= b.radius * 1.01f;
-                } else {
+                // What the pixel saw before or sees now: an edited object's sphere on its ray.
+                // The scene is the new state's, so a pixel that saw the object at its old place
+                // and now sees a far surface is found only this way.
+                for (const EditedBounds& b : edited)
+                    in |= distance_to_half_line(b.center, ray.org, ray.dir) <= b.radius;
+                if (hit) {
+                    // A virtual mirror or glass may show an edited object, wherever it is.
+                    in |= hit.surface->is_virtual && hit.surface->material.kind != Material::Kind::Diffuse;
+                    // Any surface, real or virtual, in an edited object's reach or sun shadow.
                     for (const EditedBounds& b : edited) {
                         in |= glm::length(hit.p - b.center) <= reach * b.radius;
                         in |= sun && distance_to_half_line(b.center, hit.p, to_sun) <= 1.25f * b.radius;

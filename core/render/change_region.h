@@ -18,11 +18,13 @@ struct EditedBounds {
 inline constexpr float kChangeReach = 3.0f;
 
 /// The pixels of `scene`'s image whose render an edit of some virtual objects can change (1)
-/// and those it cannot (0), row-major at the scene's resolution. A pixel can change when its
-/// centre ray sees one of `edited` or any virtual mirror or glass (which may show the edited
-/// objects), or meets a real surface within kChangeReach radii of an edited sphere or in the
-/// sun's shadow (or caustic) of one. `edited` holds each edited object's sphere before and
-/// after. A viewer that keeps a refined picture replaces only these pixels with a preview.
+/// and those it cannot (0), row-major at the scene's resolution. `edited` holds each edited
+/// object's sphere before and after the edit; `scene` is the state after it. A pixel can change
+/// when its centre ray passes through an edited sphere (what it saw before, or sees now, even
+/// where the new scene shows a far surface there), sees any virtual mirror or glass (which may
+/// show the edited objects), or meets a surface, real or virtual, within kChangeReach radii of
+/// an edited sphere or in the sun's shadow (or caustic) of one. A viewer that keeps a refined
+/// picture replaces only these pixels with a preview.
 /// With `step` > 1 one ray is traced per step x step block (through its centre) and the mask
 /// is (W + step - 1) / step by (H + step - 1) / step: a viewer needs the region, not its edge
 /// to the pixel.

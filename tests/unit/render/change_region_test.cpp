@@ -61,6 +61,34 @@ TEST(ChangeRegion, CoversTheEditedObjectItsSurroundingsAndItsSunShadowButNotTheR
     EXPECT_LT(in, mask.size() / 2) << "the region is most of the frame";
 }
 
+TEST(ChangeRegion, CoversWhereTheObjectWasSeenEvenWhereTheNewStateShowsAFarSurface) {
+    // The object moves from the air close to the camera down to the ground: its old place is
+    // now seen as ground metres behind it, far from both its old and new spheres.
+    Scene s(diffuse(vec3(0.7f)));
+    EditedBounds before;
+    before.center = vec3(0, 2.0f, 3.5f);
+    before.radius = 0.3f;
+    const EditedBounds after = s.bounds(0);
+    const std::vector<uint8_t> mask = change_region(*s.scene, {before, after});
+    int seenBefore = 0, farNow = 0;
+    for (int y = 0; y < Scene::H; ++y)
+        for (int x = 0; x < Scene::W; ++x) {
+            const Ray ray = s.scene->camera_ray(float(x), float(y));
+            const vec3 to_c = before.center - ray.org;
+            const float t = glm::dot(to_c, ray.dir);
+            if (t <= 0 || glm::length(to_c - t * ray.dir) > before.radius) continue;
+            ++seenBefore;
+            EXPECT_TRUE(mask[size_t(y) * Scene::W + x]) << "pixel " << x << "," << y << " showed the object";
+            const Hit hit = s.scene->intersect(ray);
+            if (hit && glm::length(hit.p - before.center) > kChangeReach * before.radius &&
+                glm::length(hit.p - after.center) > kChangeReach * after.radius)
+                ++farNow;
+        }
+    EXPECT_GT(seenBefore, 50);
+    // The case the test is about: pixels that now see a surface out of both spheres' reach.
+    EXPECT_GT(farNow, seenBefore / 2);
+}
+
 TEST(ChangeRegion, IncludesVirtualMirrorsThatMayShowTheEditedObject) {
     Scene s(mirror());
     const std::vector<uint8_t> mask = change_region(*s.scene, {s.bounds(0)});
