@@ -11,7 +11,7 @@ namespace dp::ui {
 enum class Change {
     None,      ///< names only: nothing to render
     Settings,  ///< render settings only: the session restarts with them, nothing is rebuilt
-    Material,  ///< virtual materials only: RenderScene::update_materials, no BVH rebuild
+    Material,  ///< virtual materials only: RenderScene::with_materials, no BVH rebuild
     Scene,     ///< geometry, transforms, camera or probe pose: rebuild the scene
     Assets,    ///< photo or probe file: reload images, then rebuild
 };

@@ -257,11 +257,9 @@ void RenderController::handle(const Request& r) {
         fullSize_ = full;
         quickSize_ = quick;
     } else if (change == Change::Material) {
-        t0 = std::chrono::steady_clock::now();
-        session_->wait();
-        timings.cancel = ms_since(t0);
-        quick_->update_materials(p);
-        if (full_) full_->update_materials(p);
+        // New versions sharing the BVHs: the run in flight keeps reading its own.
+        quick_ = quick_->with_materials(p);
+        if (full_) full_ = full_->with_materials(p);
     }
     built_ = p;
     haveScenes_ = true;
@@ -269,7 +267,7 @@ void RenderController::handle(const Request& r) {
     std::shared_ptr<const Region> region = regionFor(p, *quick_);
     timings.region = ms_since(t0);
 
-    auto run = [&](std::shared_ptr<RenderScene> scene, const RenderSettings& settings, bool preview) {
+    auto run = [&](std::shared_ptr<const RenderScene> scene, const RenderSettings& settings, bool preview) {
         session_->cancel();
         t0 = std::chrono::steady_clock::now();
         session_->wait();

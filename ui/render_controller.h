@@ -54,8 +54,9 @@ struct RenderFrame {
 /// each request renders one pass at a size chosen to keep the frame rate (drag_preview_pixels),
 /// and a new request never cancels that pass: it follows it, so frames keep coming however
 /// fast the edits arrive. An object edit's previews and first refinement passes are laid over
-/// the last refined picture only where the edit can change it. A material-only change reuses
-/// the built scenes through update_materials: no BVH is rebuilt.
+/// the last refined picture only where the edit can change it. A material-only change makes new
+/// versions of the built scenes (RenderScene::with_materials): no BVH is rebuilt, and the scene
+/// a run or the denoiser holds is never changed under it.
 class RenderController : public QObject {
     Q_OBJECT
 public:
@@ -176,7 +177,7 @@ private:
     std::unique_ptr<SceneBuilder> builder_;
     Project built_;
     bool haveScenes_ = false;
-    std::shared_ptr<RenderScene> quick_, full_;
+    std::shared_ptr<const RenderScene> quick_, full_;
     QSize fullSize_, quickSize_;
     int dragLevel_ = 2;
     std::map<uint64_t, BaseState> bases_;

@@ -77,13 +77,13 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets)
     : RenderScene(project, std::move(assets), nullptr) {}
 
 RenderScene::RenderScene(const Project& project, SceneAssets assets, std::shared_ptr<const LitProbe> probe)
-    : project_(project), assets_(std::move(assets)), lit_(std::move(probe)) {
+    : project_(project), assets_(std::make_shared<SceneAssets>(std::move(assets))), lit_(std::move(probe)) {
     project_.render = RenderSettings{};
-    if (assets_.photo.empty()) throw std::invalid_argument("RenderScene: empty photograph");
+    if (assets_->photo.empty()) throw std::invalid_argument("RenderScene: empty photograph");
     sanitize_images();
-    camera_ = project_.camera.build(assets_.photo.width(), assets_.photo.height());
+    camera_ = project_.camera.build(assets_->photo.width(), assets_->photo.height());
     if (!lit_)
-        lit_ = std::make_shared<const LitProbe>(assets_.probe_latlong, euler_xyz_deg(project_.probe.rotation_deg),
+        lit_ = std::make_shared<const LitProbe>(assets_->probe_latlong, euler_xyz_deg(project_.probe.rotation_deg),
                                                 project_.probe.gain());
     place_surfaces();
     has_transmissive_ = any_transmits(virtual_surfaces_);
@@ -93,7 +93,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets, std::shared
     for (const Surface& s : real_surfaces_) real.push_back(placed(s, true));
     for (size_t i = 0; i < virtual_surfaces_.size(); ++i)
         virt.push_back(placed(virtual_surfaces_[i], project_.objects[i].visible));
-    bvh_ = std::make_unique<SceneBVH>(real, virt);
+    bvh_ = std::make_shared<SceneBVH>(real, virt);
     compute_scale();  // epsilons for everything after
     compute_clusters();
     estimate_albedos();
@@ -101,7 +101,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets, std::shared
 
 void RenderScene::place_surfaces() {
     const auto& objs = project_.objects;
-    virtual_world_meshes_.resize(objs.size());
+    virtual_world_meshes_ = std::make_shared<std::vector<TriangleMesh>>(objs.size());
     for (size_t i = 0; i < objs.size(); ++i) {
         const VirtualObject& o = objs[i];
         Surface s;
@@ -109,15 +109,15 @@ void RenderScene::place_surfaces() {
         s.index = int(i);
         s.material = o.material;
         s.albedo = o.material.albedo.rgb;
-        if (i < assets_.object_textures.size() && !assets_.object_textures[i].empty())
-            s.texture = &assets_.object_textures[i];
-        const TriangleMesh* loaded = i < assets_.object_meshes.size() ? &assets_.object_meshes[i] : nullptr;
-        place_shape(o.shape, o.transform, loaded, s, virtual_world_meshes_[i]);
+        if (i < assets_->object_textures.size() && !assets_->object_textures[i].empty())
+            s.texture = &assets_->object_textures[i];
+        const TriangleMesh* loaded = i < assets_->object_meshes.size() ? &assets_->object_meshes[i] : nullptr;
+        place_shape(o.shape, o.transform, loaded, s, (*virtual_world_meshes_)[i]);
         // A mesh drawn with its file's materials: a part per material, found per triangle.
         if (o.material_source == MaterialSource::File && s.mesh &&
-            !s.mesh->triangle_materials.empty() && i < assets_.object_file_materials.size()) {
+            !s.mesh->triangle_materials.empty() && i < assets_->object_file_materials.size()) {
             const Surface base = s;
-            for (const FileMaterialAsset& f : assets_.object_file_materials[i]) {
+            for (const FileMaterialAsset& f : assets_->object_file_materials[i]) {
                 Surface part = base;
                 part.material = f.material;
                 part.albedo = f.material.albedo.rgb;
@@ -128,16 +128,16 @@ void RenderScene::place_surfaces() {
         virtual_surfaces_.push_back(std::move(s));
     }
     const auto& real = project_.real;
-    real_world_meshes_.resize(real.size());
+    real_world_meshes_ = std::make_shared<std::vector<TriangleMesh>>(real.size());
     for (size_t i = 0; i < real.size(); ++i) {
         const RealProxy& r = real[i];
         Surface s;
         s.index = int(i);
         s.albedo = r.albedo.rgb;
-        if (i < assets_.real_textures.size() && !assets_.real_textures[i].empty())
-            s.texture = &assets_.real_textures[i];
-        const TriangleMesh* loaded = i < assets_.real_meshes.size() ? &assets_.real_meshes[i] : nullptr;
-        place_shape(r.shape, r.transform, loaded, s, real_world_meshes_[i]);
+        if (i < assets_->real_textures.size() && !assets_->real_textures[i].empty())
+            s.texture = &assets_->real_textures[i];
+        const TriangleMesh* loaded = i < assets_->real_meshes.size() ? &assets_->real_meshes[i] : nullptr;
+        place_shape(r.shape, r.transform, loaded, s, (*real_world_meshes_)[i]);
         real_surfaces_.push_back(s);
     }
 }
@@ -240,16 +240,20 @@ void RenderScene::compute_scale() {
     bvh_->set_scale(glm::length(hi - lo));
 }
 
-void RenderScene::update_materials(const Project& project) {
+std::shared_ptr<const RenderScene> RenderScene::with_materials(const Project& project) const {
     if (project.objects.size() != project_.objects.size())
-        throw std::invalid_argument("update_materials: object count changed");
+        throw std::invalid_argument("with_materials: object count changed");
+    // A copy of the surfaces and the project; the assets, world meshes and BVH are shared (the
+    // copied surfaces point into them, and nothing changes them after construction).
+    std::shared_ptr<RenderScene> v(new RenderScene(*this));
     for (size_t i = 0; i < project.objects.size(); ++i) {
-        project_.objects[i].material = project.objects[i].material;
-        virtual_surfaces_[i].material = project.objects[i].material;
-        virtual_surfaces_[i].albedo = project.objects[i].material.albedo.rgb;
+        v->project_.objects[i].material = project.objects[i].material;
+        v->virtual_surfaces_[i].material = project.objects[i].material;
+        v->virtual_surfaces_[i].albedo = project.objects[i].material.albedo.rgb;
         // Parts keep their file materials: only the triangles without one take the project's.
     }
-    has_transmissive_ = any_transmits(virtual_surfaces_);
+    v->has_transmissive_ = any_transmits(v->virtual_surfaces_);
+    return v;
 }
 
 Hit RenderScene::to_hit(const ShapeHit& h) const {

@@ -107,16 +107,15 @@ public:
     /// With a probe already built for the project's probe settings (assets.probe_latlong is
     /// then not read and may be empty).
     RenderScene(const Project& project, SceneAssets assets, std::shared_ptr<const LitProbe> probe);
-    RenderScene(const RenderScene&) = delete;
     RenderScene& operator=(const RenderScene&) = delete;
 
     const Project& project() const { return project_; }
-    const Image& photo() const { return assets_.photo; }
+    const Image& photo() const { return assets_->photo; }
     const Probe& probe() const { return lit_->probe; }
     /// The probe split into its sun and sky for next-event estimation.
     const ProbeLights& probe_lights() const { return lit_->lights; }
     const Camera& camera() const { return camera_; }
-    const SceneAssets& assets() const { return assets_; }
+    const SceneAssets& assets() const { return *assets_; }
     const std::vector<EmissionCluster>& clusters() const { return clusters_; }
     bool has_virtual() const { return !clusters_.empty(); }
     /// Some virtual object transmits light (glass): its shadow and the light through it are
@@ -149,8 +148,10 @@ public:
     /// photograph shows the point there, at the returned pixel.
     bool camera_sees(const vec3& p, const vec3& ng, vec2* pixel = nullptr) const;
 
-    /// Replaces virtual materials in place (no BVH rebuild). Shapes and transforms must match.
-    void update_materials(const Project& project);
+    /// A new version of this scene with `project`'s virtual materials, sharing its assets, world
+    /// meshes and BVHs (nothing is rebuilt). Shapes and transforms must match; the object count
+    /// is checked. A scene never changes once built: what holds it as const may cache on it.
+    std::shared_ptr<const RenderScene> with_materials(const Project& project) const;
 
     const std::vector<Surface>& real_surfaces() const { return real_surfaces_; }
     const std::vector<Surface>& virtual_surfaces() const { return virtual_surfaces_; }
@@ -159,6 +160,8 @@ public:
     bool object_bounds(int index, vec3& center, float& radius) const;
 
 private:
+    /// with_materials' copy: the surfaces are copied, the rest is shared.
+    RenderScene(const RenderScene&) = default;
     /// Replaces NaN/Inf in the photo and textures by 0, counting them in assets_.
     void sanitize_images();
     /// The world-space surfaces of project.real and project.objects, and their shapes.
@@ -177,12 +180,14 @@ private:
     Hit to_hit(const ShapeHit& h) const;
 
     Project project_;
-    SceneAssets assets_;
+    // Shared by the material versions of one scene (with_materials); written only while the
+    // first version is constructed.
+    std::shared_ptr<SceneAssets> assets_;
     std::shared_ptr<const LitProbe> lit_;
     Camera camera_;
     std::vector<Surface> real_surfaces_, virtual_surfaces_;
-    std::vector<TriangleMesh> real_world_meshes_, virtual_world_meshes_;
-    std::unique_ptr<SceneBVH> bvh_;
+    std::shared_ptr<std::vector<TriangleMesh>> real_world_meshes_, virtual_world_meshes_;
+    std::shared_ptr<SceneBVH> bvh_;
     std::vector<EmissionCluster> clusters_;
     bool has_transmissive_ = false;
 };

@@ -22,16 +22,16 @@ void RenderScene::sanitize_images() {
     auto clean = [&](Image& img, const std::string& what) {
         const size_t replaced = replace_non_finite(img);
         if (replaced == 0) return;
-        assets_.non_finite_replaced += replaced;
-        assets_.warnings.push_back(what + ": " + std::to_string(replaced) + " NaN/Inf values replaced by 0");
+        assets_->non_finite_replaced += replaced;
+        assets_->warnings.push_back(what + ": " + std::to_string(replaced) + " NaN/Inf values replaced by 0");
     };
-    clean(assets_.photo, "photo");
-    for (size_t i = 0; i < assets_.real_textures.size(); ++i)
-        clean(assets_.real_textures[i], indexed("real", i, "albedo.texture"));
-    for (size_t i = 0; i < assets_.object_textures.size(); ++i)
-        clean(assets_.object_textures[i], indexed("objects", i, "albedo.texture"));
-    for (size_t i = 0; i < assets_.object_file_materials.size(); ++i)
-        for (FileMaterialAsset& f : assets_.object_file_materials[i])
+    clean(assets_->photo, "photo");
+    for (size_t i = 0; i < assets_->real_textures.size(); ++i)
+        clean(assets_->real_textures[i], indexed("real", i, "albedo.texture"));
+    for (size_t i = 0; i < assets_->object_textures.size(); ++i)
+        clean(assets_->object_textures[i], indexed("objects", i, "albedo.texture"));
+    for (size_t i = 0; i < assets_->object_file_materials.size(); ++i)
+        for (FileMaterialAsset& f : assets_->object_file_materials[i])
             clean(f.texture, indexed("objects", i, "shape.path") + " material '" + f.name + "'");
 }
 
@@ -124,14 +124,14 @@ void RenderScene::estimate_albedos() {
             vec3 n = glm::dot(hit.ng, camera_.position() - hit.p) >= 0 ? hit.ng : -hit.ng;
             dvec3 E = real_irradiance(*this, hit.p, n, rng, kProbeSamples).E;
             if (luminance(E) <= 0) continue;
-            dvec3 rho = double(kPi) * dvec3(assets_.photo.at(x, y)) / glm::max(E, dvec3(1e-30));
+            dvec3 rho = double(kPi) * dvec3(assets_->photo.at(x, y)) / glm::max(E, dvec3(1e-30));
             estimates[hit.surface->index].push_back(vec3(rho));
         }
     for (size_t i = 0; i < real_surfaces_.size(); ++i) {
         if (project_.real[i].albedo.kind != Albedo::Kind::Estimate) continue;
         auto& e = estimates[i];
         if (e.empty()) {
-            assets_.warnings.push_back("real[" + std::to_string(i) +
+            assets_->warnings.push_back("real[" + std::to_string(i) +
                                        "].albedo: 'estimate' but the photo never sees this proxy lit; using " +
                                        "the constant albedo instead");
             continue;

@@ -266,11 +266,12 @@ TEST_F(MeshTexture, AGltfMeshIsDrawnWithAMirrorAGlassAndTheProjectsMaterialWhere
     const auto scene = build_scene(library, project, 0, 0, file);
     // The quads' centres, x = -1, 0 and 1 at 3 m, are seen at columns 15.5 + x fx / 3 with
     // fx = 12 / tan(30 degrees): 8.6, 15.5 and 22.4.
-    auto material_at = [&](float x) -> Material {
-        const Hit hit = scene->intersect(scene->camera_ray(x, 12.0f));
+    auto material_in = [&](const RenderScene& sc, float x) -> Material {
+        const Hit hit = sc.intersect(sc.camera_ray(x, 12.0f));
         EXPECT_TRUE(hit);
         return hit ? hit.surface->material : Material{};
     };
+    auto material_at = [&](float x) { return material_in(*scene, x); };
     const Material chrome = material_at(8.5f), glass = material_at(15.5f),
                    none = material_at(22.5f);
     EXPECT_EQ(chrome.kind, Material::Kind::Mirror);
@@ -282,10 +283,13 @@ TEST_F(MeshTexture, AGltfMeshIsDrawnWithAMirrorAGlassAndTheProjectsMaterialWhere
     EXPECT_EQ(none.albedo.rgb, vec3(0.2f, 0.3f, 0.4f));
     EXPECT_TRUE(scene->has_transmissive());  // glass among the parts: photons carry its shadow
 
-    // A material edit (no rebuild) changes the project's triangles only.
+    // A material edit (no rebuild) is a new version of the scene that changes the project's
+    // triangles only; the version it came from is left as it was.
     project.objects[0].material.albedo.rgb = vec3(0.7f, 0.1f, 0.1f);
-    scene->update_materials(project);
-    EXPECT_EQ(material_at(22.5f).albedo.rgb, vec3(0.7f, 0.1f, 0.1f));
-    EXPECT_EQ(material_at(8.5f).kind, Material::Kind::Mirror);
-    EXPECT_EQ(material_at(15.5f).kind, Material::Kind::Glass);
+    const std::shared_ptr<const RenderScene> edited = scene->with_materials(project);
+    EXPECT_EQ(material_in(*edited, 22.5f).albedo.rgb, vec3(0.7f, 0.1f, 0.1f));
+    EXPECT_EQ(material_in(*edited, 8.5f).kind, Material::Kind::Mirror);
+    EXPECT_EQ(material_in(*edited, 15.5f).kind, Material::Kind::Glass);
+    EXPECT_EQ(material_at(22.5f).albedo.rgb, vec3(0.2f, 0.3f, 0.4f));
+    EXPECT_EQ(&edited->assets(), &scene->assets());  // the decoded files are shared, not copied
 }
