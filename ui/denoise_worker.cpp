@@ -59,6 +59,23 @@ Image DenoiseWorker::denoise_now(const RenderFrame& f, const DenoiseAovs& aovs, 
                              DenoiseQuality::Interactive, cancel);
 }
 
+Image DenoiseWorker::compose_denoised(const RenderFrame& f, const Image& denoised, const Image* denoisedBase) {
+    if (!f.composited() || !f.shownFromEdit) return denoised;
+    const Image& shown = f.image();
+    const int OW = shown.width(), OH = shown.height(), W = denoised.width(), step = std::max(1, f.shownStep);
+    const std::vector<uint8_t>& fromEdit = *f.shownFromEdit;
+    if (fromEdit.size() != shown.size() || OW * step > W || OH * step > denoised.height()) return {};
+    const bool base = denoisedBase && denoisedBase->width() == W && denoisedBase->height() == denoised.height();
+    Image out(OW, OH);
+    for (int oy = 0; oy < OH; ++oy)
+        for (int ox = 0; ox < OW; ++ox) {
+            const size_t o = size_t(oy) * OW + ox;
+            const size_t i = size_t(oy * step + step / 2) * W + size_t(ox * step + step / 2);
+            out[o] = fromEdit[o] ? denoised[i] : base ? (*denoisedBase)[i] : shown[o];
+        }
+    return out;
+}
+
 void DenoiseWorker::run() {
     for (;;) {
         std::shared_ptr<const RenderFrame> frame;
@@ -77,8 +94,20 @@ void DenoiseWorker::run() {
                 aovs_ = denoise_aovs(*frame->scene);
                 aovScene_ = frame->scene;
             }
-            auto image = std::make_shared<const Image>(denoise_now(*frame, aovs_, &cancel_));
-            if (image->empty()) continue;
+            Image whole = denoise_now(*frame, aovs_, &cancel_);
+            if (whole.empty()) continue;
+            std::shared_ptr<const Image> image;
+            if (frame->composited()) {
+                // The edit's pixels denoised; the rest is the refined picture's, denoised
+                // where its denoised image is the last one made.
+                const bool base = lastWhole_ && lastWholeGeneration_ == frame->baseGeneration;
+                image = std::make_shared<const Image>(compose_denoised(*frame, whole, base ? lastWhole_.get() : nullptr));
+                if (image->empty()) continue;
+            } else {
+                lastWhole_ = std::make_shared<const Image>(std::move(whole));
+                lastWholeGeneration_ = frame->generation;
+                image = lastWhole_;
+            }
             {
                 std::lock_guard<std::mutex> lock(mutex_);
                 lastMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -3,6 +3,7 @@
 // renderer waits for it: the newest frame wins, older requests are dropped.
 #include <QObject>
 #include <atomic>
+#include <cstdint>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -38,6 +39,12 @@ public:
     static Image denoise_now(const RenderFrame& frame, const DenoiseAovs& aovs,
                              const std::atomic<bool>* cancel = nullptr);
 
+    /// What the viewport shows denoised for `frame`: `denoised` (the frame's own render,
+    /// denoised) as it is, or for a frame laid over the refined picture, the same composite at
+    /// the shown size: the edit's pixels from `denoised`, the others from `denoisedBase` (the
+    /// refined frame's denoised image, if given) or the frame's own shown pixels.
+    static Image compose_denoised(const RenderFrame& frame, const Image& denoised, const Image* denoisedBase);
+
 Q_SIGNALS:
     /// The denoised augmented image of `frame`, at its size.
     void denoised(std::shared_ptr<const dp::ui::RenderFrame> frame, std::shared_ptr<const dp::Image> image);
@@ -54,6 +61,10 @@ private:
     double lastMs_ = 0;
     std::shared_ptr<const RenderScene> aovScene_;  ///< worker thread: the scene `aovs_` belongs to
     DenoiseAovs aovs_;
+    /// Worker thread: the last refined (not composited) frame's denoised image, laid under
+    /// the denoised edits of later frames.
+    std::shared_ptr<const Image> lastWhole_;
+    uint64_t lastWholeGeneration_ = 0;
 };
 
 }  // namespace dp::ui

@@ -465,12 +465,15 @@ void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     // Larger frames than this are left raw: here the filter takes about 4 s a megapixel and
     // its buffers several times the frame.
     constexpr size_t kMaxDenoisePixels = 2500000;
-    if (renderer_->denoise() && !f->preview && !f->composited() && f->update.image.size() <= kMaxDenoisePixels) {
-        // A refined frame is denoised on its own thread: at most every few seconds (it takes
-        // the cores from the render), and always the last one.
+    if (renderer_->denoise() && !f->preview && f->update.image.size() <= kMaxDenoisePixels) {
+        // A refined frame is denoised on its own thread: the first of each new state at once
+        // (the edit is seen clean within a pass), then at most every few seconds (it takes the
+        // cores from the render), and always the last one.
         const double gap = std::max(2000.0, 3.0 * denoiser_->lastMs());
-        if (f->update.finished || !sinceDenoise_.isValid() || sinceDenoise_.elapsed() >= gap) {
+        if (f->update.finished || f->generation != denoisedGeneration_ || !sinceDenoise_.isValid() ||
+            sinceDenoise_.elapsed() >= gap) {
             denoiser_->request(f);
+            denoisedGeneration_ = f->generation;
             sinceDenoise_.start();
         }
     }

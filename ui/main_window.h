@@ -196,6 +196,7 @@ private:
     SettingsPanel* settingsPanel_ = nullptr;
     DenoiseWorker* denoiser_ = nullptr;
     QElapsedTimer sinceDenoise_;  ///< since a refined frame was last sent to the denoiser
+    uint64_t denoisedGeneration_ = 0;  ///< the request whose frames were last sent to the denoiser
     ProbePanel* probePanel_ = nullptr;
     CameraPanel* cameraPanel_ = nullptr;
     CalibrationPanel* calibrationPanel_ = nullptr;

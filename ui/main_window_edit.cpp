@@ -154,7 +154,7 @@ void MainWindow::setDenoise(bool on) {
     viewport_->setDenoise(on);
     if (!on) return;
     // What is on screen now: denoised without waiting for the next pass.
-    if (const auto f = renderer_->lastFullFrame(); f && !f->composited()) denoiser_->request(f);
+    if (const auto f = renderer_->lastFullFrame()) denoiser_->request(f);
     sinceDenoise_.start();
 }
 

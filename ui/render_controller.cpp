@@ -404,6 +404,7 @@ void RenderController::compose(RenderFrame& f, const RenderFrame& base, const Re
     const int OW = W / step, OH = H / step;
     auto image = std::make_shared<Image>(OW, OH);
     auto dL = std::make_shared<Image>(OW, OH);
+    auto fromEdit = std::make_shared<std::vector<uint8_t>>(size_t(OW) * OH, 0);
     // The mask is looked up at its own scale: a full-size pass uses its preview's region.
     const float sx = float(w) / float(W), sy = float(h) / float(H);
     const float mx = float(region.width) / float(W), my = float(region.height) / float(H);
@@ -414,7 +415,8 @@ void RenderController::compose(RenderFrame& f, const RenderFrame& base, const Re
             const int x = ox * step + step / 2;
             const size_t i = size_t(y) * W + x, o = size_t(oy) * OW + ox;
             const int rx = std::min(region.width - 1, int((float(x) + 0.5f) * mx));
-            if (!region.mask[size_t(ry) * region.width + rx]) {
+            (*fromEdit)[o] = region.mask[size_t(ry) * region.width + rx];
+            if (!(*fromEdit)[o]) {
                 (*image)[o] = bi[i];
                 (*dL)[o] = bd[i];
             } else if (w == W && h == H) {
@@ -429,6 +431,9 @@ void RenderController::compose(RenderFrame& f, const RenderFrame& base, const Re
     });
     f.shownImage = std::move(image);
     f.shownDL = std::move(dL);
+    f.shownFromEdit = std::move(fromEdit);
+    f.baseGeneration = base.generation;
+    f.shownStep = step;
     f.refinedPasses = base.refinedPasses;
 }
 

@@ -35,6 +35,12 @@ struct RenderFrame {
     std::shared_ptr<const Image> shownImage, shownDL;
     /// Passes behind the picture outside the edited region (update's own when not composited).
     int refinedPasses = 0;
+    /// Where composited: which shown pixels are the edit's (1) and which the refined picture's
+    /// (0), the refined frame's generation, and the step from shown to rendered pixels (a
+    /// shown pixel is rendered pixel (x step + step / 2, y step + step / 2)).
+    std::shared_ptr<const std::vector<uint8_t>> shownFromEdit;
+    uint64_t baseGeneration = 0;
+    int shownStep = 1;
     /// The scene it was rendered from (the denoiser's guides come from it).
     std::shared_ptr<const RenderScene> scene;
 

@@ -25,6 +25,8 @@ public:
     explicit Viewport(Document* doc, QWidget* parent = nullptr);
 
     void setFrame(std::shared_ptr<const RenderFrame> frame);
+    /// The frame on screen (null before the first).
+    std::shared_ptr<const RenderFrame> frame() const { return frame_; }
     /// Shows denoised pictures in the augmented view (`setDenoised`'s, for refined frames of
     /// the same state).
     void setDenoise(bool on);

@@ -20,6 +20,7 @@ private Q_SLOTS:
     void aThreeSecondDragShowsThirtyFramesAndTheLastShowsTheObjectWhereTheHandStopped();
     void previewsReplaceOnlyThePixelsTheEditCanChange();
     void theDenoiseKeyShowsDenoisedRefinedFrames();
+    void aDenoisedPictureOfTheNewStateComesBeforeItsRefinementCatchesUp();
 };
 
 namespace {
@@ -206,6 +207,62 @@ void DragPreviewTest::theDenoiseKeyShowsDenoisedRefinedFrames() {
     QTest::keyClick(w.viewport(), Qt::Key_D);
     QVERIFY(!w.action("denoise")->isChecked());
     QVERIFY(!w.viewport()->showingDenoised());
+}
+
+void DragPreviewTest::aDenoisedPictureOfTheNewStateComesBeforeItsRefinementCatchesUp() {
+    QString why;
+    if (!DenoiseWorker::available(&why)) QSKIP(qPrintable(why));
+    QTemporaryDir dir;
+    RecordingReporter reporter;
+    MainWindow w(test::test_options(&reporter, dir.filePath("recovery"), 512, 256));
+    w.resize(1200, 700);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.openProject(test::write_small_sample(dir.path(), 30000, 24)));
+    w.viewport()->setFocus();
+    QTest::keyClick(w.viewport(), Qt::Key_D);
+    QVERIFY(w.action("denoise")->isChecked());
+    QVERIFY(test::wait_refined(w, 90000));
+    QVERIFY(QTest::qWaitFor([&] { return w.viewport()->showingDenoised() && w.viewport()->frame() &&
+                                          w.viewport()->frame()->update.finished; }, 30000));
+    const QImage before = w.viewport()->shownImage();
+
+    // Nudge the clay ball with a drag; the hand rests and the refinement of the new state runs.
+    const Project p0 = w.document()->project();
+    const vec3 from = p0.objects[0].transform.translation;
+    QPointF a, b;
+    QVERIFY(w.viewport()->widgetPosition(from, a));
+    QVERIFY(w.viewport()->widgetPosition(from + vec3(0.25f, 0, 0), b));
+    QTest::mousePress(w.viewport(), Qt::LeftButton, {}, a.toPoint());
+    for (int i = 1; i <= 10; ++i) {
+        QTest::mouseMove(w.viewport(), (a + (b - a) * (i / 10.0)).toPoint());
+        QTest::qWait(16);
+    }
+    QTest::mouseRelease(w.viewport(), Qt::LeftButton, {}, b.toPoint());
+    const uint64_t edit = w.renderer()->generation();
+    QElapsedTimer t;
+    t.start();
+    // The first denoised picture of the new state comes while its frames are still laid over
+    // the refined picture (before they have its 24 passes).
+    QVERIFY(QTest::qWaitFor([&] {
+        const auto f = w.viewport()->frame();
+        return f && f->generation == edit && !f->preview && w.viewport()->showingDenoised();
+    }, 30000));
+    const auto shown = w.viewport()->frame();
+    qInfo("first denoised picture of the new state %lld ms after the drop, at its pass %d (composited: %d)",
+          t.elapsed(), shown->update.stats.passes, int(shown->composited()));
+    QVERIFY(shown->composited());
+    const QImage after = w.viewport()->shownImage();
+    QCOMPARE(after.size(), before.size());
+    // Far from the ball (the crate) the picture is the denoised refined one to the bit; at the
+    // ball's new place it is not.
+    const Camera cam = view_camera(p0, 1024, 512, 512, 256);
+    vec2 crate, ball;
+    QVERIFY(cam.project(p0.real[1].transform.translation + vec3(0, 0.35f, 0), crate));
+    QVERIFY(cam.project(w.document()->project().objects[0].transform.translation + vec3(0.1f, 0, 0), ball));
+    const QPoint far(int(crate.x), int(crate.y)), near(int(ball.x), int(ball.y));
+    QCOMPARE(after.pixel(far), before.pixel(far));
+    QVERIFY(after.pixel(near) != before.pixel(near));
 }
 
 QTEST_MAIN(DragPreviewTest)
