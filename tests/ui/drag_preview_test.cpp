@@ -137,12 +137,7 @@ void DragPreviewTest::previewsReplaceOnlyThePixelsTheEditCanChange() {
     QPointF a, b;
     QVERIFY(w.viewport()->widgetPosition(from, a));
     QVERIFY(w.viewport()->widgetPosition(from + vec3(0.25f, 0, 0), b));
-    QTest::mousePress(w.viewport(), Qt::LeftButton, {}, a.toPoint());
-    for (int i = 1; i <= 5; ++i) {
-        QTest::mouseMove(w.viewport(), (a + (b - a) * (i / 5.0)).toPoint());
-        QTest::qWait(16);
-    }
-    QTest::mouseRelease(w.viewport(), Qt::LeftButton, {}, b.toPoint());
+    test::drag(w.viewport(), a, b, 5);
     QVERIFY(test::wait_refined(w));
 
     // Every preview and early refinement frame was laid over the refined picture: far from the
@@ -233,12 +228,7 @@ void DragPreviewTest::aDenoisedPictureOfTheNewStateComesBeforeItsRefinementCatch
     QPointF a, b;
     QVERIFY(w.viewport()->widgetPosition(from, a));
     QVERIFY(w.viewport()->widgetPosition(from + vec3(0.25f, 0, 0), b));
-    QTest::mousePress(w.viewport(), Qt::LeftButton, {}, a.toPoint());
-    for (int i = 1; i <= 10; ++i) {
-        QTest::mouseMove(w.viewport(), (a + (b - a) * (i / 10.0)).toPoint());
-        QTest::qWait(16);
-    }
-    QTest::mouseRelease(w.viewport(), Qt::LeftButton, {}, b.toPoint());
+    test::drag(w.viewport(), a, b, 10);
     const uint64_t edit = w.renderer()->generation();
     QElapsedTimer t;
     t.start();

@@ -116,12 +116,7 @@ void EditGhostTest::noEditLeavesTheObjectWhereItWas() {
         QPointF a, b;
         QVERIFY(w.viewport()->widgetPosition(from, a));
         QVERIFY(w.viewport()->widgetPosition(from + vec3(0.5f, 0, 0.1f), b));
-        QTest::mousePress(w.viewport(), Qt::LeftButton, {}, a.toPoint());
-        for (int i = 1; i <= 30; ++i) {
-            QTest::mouseMove(w.viewport(), (a + (b - a) * (i / 30.0)).toPoint());
-            QTest::qWait(16);
-        }
-        QTest::mouseRelease(w.viewport(), Qt::LeftButton, {}, b.toPoint());
+        test::drag(w.viewport(), a, b, 30);
     });
     qInfo("%s", qPrintable(describe("move", move)));
     QVERIFY(glm::length(w.document()->project().objects[0].transform.translation - from) > 0.3f);

@@ -36,6 +36,15 @@ StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, 
     return o;
 }
 
+void drag(QWidget* widget, QPointF from, QPointF to, int moves, int msPerMove) {
+    QTest::mousePress(widget, Qt::LeftButton, {}, from.toPoint());
+    for (int i = 1; i <= moves; ++i) {
+        QTest::mouseMove(widget, (from + (to - from) * (double(i) / moves)).toPoint());
+        QTest::qWait(msPerMove);
+    }
+    QTest::mouseRelease(widget, Qt::LeftButton, {}, to.toPoint());
+}
+
 bool wait_refined(MainWindow& w, int timeoutMs) {
     return QTest::qWaitFor([&] { return w.renderer()->finished(); }, timeoutMs);
 }

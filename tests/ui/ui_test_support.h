@@ -1,7 +1,9 @@
 #pragma once
 // Shared set-up for the studio's Qt tests: a small copy of the sample project, window options
 // that keep renders quick, and helpers to wait for the renderer and compare exports.
+#include <QPointF>
 #include <QString>
+#include <QWidget>
 #include <memory>
 
 #include "error_reporter.h"
@@ -17,6 +19,10 @@ QString write_small_sample(const QString& dir, int photons = 30000, int passes =
 /// Options for a test window: `width` x `height` renders, no settings, no recovery prompt.
 StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, int width = 256,
                            int height = 128);
+
+/// A left-button drag as a hand makes it: press at `from`, `moves` mouse moves along the line to
+/// `to`, one every `msPerMove` milliseconds, release at `to`.
+void drag(QWidget* widget, QPointF from, QPointF to, int moves, int msPerMove = 16);
 
 /// Processes events until the latest request has finished refining; false on timeout.
 bool wait_refined(MainWindow& w, int timeoutMs = 30000);
