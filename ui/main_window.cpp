@@ -38,6 +38,7 @@
 #include "render_controller.h"
 #include "scene_panel.h"
 #include "render/preview.h"
+#include "render/scheduler.h"
 #include "settings_panel.h"
 #include "shortcut_policy.h"
 #include "number_field.h"
@@ -466,12 +467,11 @@ void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     // its buffers several times the frame.
     constexpr size_t kMaxDenoisePixels = 2500000;
     if (renderer_->denoise() && !f->preview && f->update.image.size() <= kMaxDenoisePixels) {
-        // A refined frame is denoised on its own thread: the first of each new state at once
-        // (the edit is seen clean within a pass), then at most every few seconds (it takes the
-        // cores from the render), and always the last one.
-        const double gap = std::max(2000.0, 3.0 * denoiser_->lastMs());
-        if (f->update.finished || f->generation != denoisedGeneration_ || !sinceDenoise_.isValid() ||
-            sinceDenoise_.elapsed() >= gap) {
+        // A refined frame is denoised on its own thread, when the scheduler says (the first of
+        // each new state at once, so the edit is seen clean within a pass).
+        const bool newState = f->generation != denoisedGeneration_ || !sinceDenoise_.isValid();
+        if (RenderScheduler::denoise_due(newState, f->update.finished,
+                                         newState ? 0.0 : double(sinceDenoise_.elapsed()), denoiser_->lastMs())) {
             denoiser_->request(f);
             denoisedGeneration_ = f->generation;
             sinceDenoise_.start();

@@ -36,7 +36,7 @@ class RenderController::Sink : public RenderSink {
             std::lock_guard<std::mutex> lock(c_->mutex_);
             preview = c_->runPreview_;
             scene = c_->runScene_;
-            if (!finished && c_->runEndless_ && !c_->runPreview_ && c_->reachedNoiseTarget(update.stats)) {
+            if (!finished && c_->runEndless_ && !c_->runPreview_ && c_->scheduler_.clean_enough(update.stats)) {
                 // Refined enough: this pass is the last; the session stops at its next check.
                 c_->runReachedTarget_ = finished = true;
                 c_->session_->cancel();
@@ -127,6 +127,7 @@ void RenderController::request(const Project& project, bool interactive) {
     r.size = renderSize_;
     r.previewFraction = previewFraction_;
     r.previewScale = previewScale_;
+    r.dragTargetMs = dragTargetMs_;
     r.endless = endless_;
     finished_ = false;
     bool follow = false;
@@ -229,22 +230,11 @@ void RenderController::handle(const Request& r) {
     const Image& photo = *builder_->photo();
     QSize full = r.size.isValid() ? r.size : QSize(photo.width(), photo.height());
     if (full != fullSize_) change = std::max(change, Change::Scene);
-    PreviewPolicy policy;
-    policy.photon_fraction = r.previewFraction;
-    policy.scale = r.previewScale;
-    if (r.interactive) policy.max_pixels = std::min(policy.max_pixels, drag_preview_pixels(dragLevel_));
-    int quick_w = 0, quick_h = 0;
-    policy.size(full.width(), full.height(), quick_w, quick_h);
-    const QSize quick(quick_w, quick_h);
-    RenderSettings quickSettings = policy.settings(p.render);
-    if (r.interactive) {
-        quickSettings.passes = 1;  // the next mouse move brings the next pass
-        // Photons follow the pixels down: the direct shadow (by rays) shows where the object
-        // goes; the photons' caustics and bounce light can wait for the hand to rest.
-        const double share = drag_preview_pixels(dragLevel_) / drag_preview_pixels(0);
-        quickSettings.photons_per_pass =
-            std::max<int64_t>(2000, int64_t(double(quickSettings.photons_per_pass) * share));
-    }
+    scheduler_.set_preview(r.previewFraction, r.previewScale);
+    scheduler_.set_drag_target(r.dragTargetMs);
+    const RenderScheduler::Pass quickPass = scheduler_.quick_pass(p.render, full.width(), full.height(), r.interactive);
+    const QSize quick(quickPass.width, quickPass.height);
+    const RenderSettings& quickSettings = quickPass.settings;
     // A full-size scene of another state would be refined wrongly; a quick one of another size
     // is simply rebuilt.
     if (change >= Change::Scene) full_.reset();
@@ -288,7 +278,7 @@ void RenderController::handle(const Request& r) {
                 const double lastDrag = timings_.dragFrame;
                 timings_ = timings;
                 timings_.dragFrame = lastDrag;
-                timings_.dragLevel = dragLevel_;
+                timings_.dragLevel = scheduler_.drag_level();
             }
             runStart_ = std::chrono::steady_clock::now();
             dragStart_ = requestStart;
@@ -304,8 +294,7 @@ void RenderController::handle(const Request& r) {
             std::lock_guard<std::mutex> lock(mutex_);
             last = runInteractive_ ? timings_.dragFrame : 0;
         }
-        if (last > 1.15 * dragTargetMs_) dragLevel_ = std::min(dragLevel_ + 1, kDragPreviewLevels - 1);
-        if (last > 0 && last < 0.6 * dragTargetMs_) dragLevel_ = std::max(dragLevel_ - 1, 0);
+        scheduler_.drag_frame_took(last);  // the next frame's size
         run(quick_, quickSettings, true);
         return;
     }
@@ -327,12 +316,8 @@ void RenderController::handle(const Request& r) {
     }
     if (superseded()) return;
     rememberBase(r.generation, p, *full_);
-    RenderSettings fullSettings = p.render;
-    if (r.endless) {
-        // No budget: the sink stops the run once the noise is invisible (reachedNoiseTarget).
-        fullSettings.passes = 1 << 30;
-        fullSettings.time_budget_s = 0;
-    }
+    // Endless: no budget; the sink stops the run once it is clean (RenderScheduler::clean_enough).
+    const RenderSettings fullSettings = RenderScheduler::refinement(p.render, r.endless);
     run(full_, fullSettings, false);
 }
 
@@ -435,15 +420,6 @@ void RenderController::compose(RenderFrame& f, const RenderFrame& base, const Re
     f.baseGeneration = base.generation;
     f.shownStep = step;
     f.refinedPasses = base.refinedPasses;
-}
-
-bool RenderController::reachedNoiseTarget(const RenderStats& s) const {
-    // A few passes first: the error estimate compares the two halves of the passes.
-    constexpr int kMinPasses = 8;
-    if (s.passes < kMinPasses || s.estimated_rel_error < 0) return false;
-    double target = noiseTarget_.load();
-    if (target <= 0) target = invisible_relative_error(s.mean_changed_value, exposure_.load());
-    return s.estimated_rel_error <= target;
 }
 
 void RenderController::deliver() {

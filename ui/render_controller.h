@@ -16,6 +16,7 @@
 #include "assets/asset_library.h"
 #include "project_edit.h"
 #include "render/change_region.h"
+#include "render/scheduler.h"
 #include "render/session.h"
 
 namespace dp::ui {
@@ -83,10 +84,10 @@ public:
     void setEndless(bool endless) { endless_ = endless; }
     /// Relative error (RenderStats::estimated_rel_error) at which endless refinement stops;
     /// <= 0: invisible at the display exposure (invisible_relative_error).
-    void setNoiseTarget(double relError) { noiseTarget_.store(relError); }
-    double noiseTarget() const { return noiseTarget_.load(); }
+    void setNoiseTarget(double relError) { scheduler_.set_noise_target(relError); }
+    double noiseTarget() const { return scheduler_.noise_target(); }
     /// The display exposure the invisible noise target is judged at.
-    void setDisplayExposure(double stops) { exposure_.store(stops); }
+    void setDisplayExposure(double stops) { scheduler_.set_display_exposure(stops); }
     /// Whether the viewer shows refined frames denoised (it asks DenoiseWorker for them).
     void setDenoise(bool on) { denoise_.store(on); }
     bool denoise() const { return denoise_.load(); }
@@ -144,6 +145,7 @@ private:
         QSize size;
         double previewFraction = 0.125;
         double previewScale = 0.5;
+        double dragTargetMs = 45;
         bool endless = false;
     };
     /// The pixels an edit can change, at the resolution of the run that found them.
@@ -166,8 +168,6 @@ private:
     void rememberBase(uint64_t generation, const Project& p, const RenderScene& scene);
     /// Lays `f`'s pass over `base` outside `region` (render thread).
     static void compose(RenderFrame& f, const RenderFrame& base, const Region& region);
-    /// Whether an endless refinement's pass reached the noise target (render thread).
-    bool reachedNoiseTarget(const RenderStats& stats) const;
     Q_INVOKABLE void deliver();
     Q_INVOKABLE void deliverStopped(quint64 generation, bool finished, const QString& error);
 
@@ -175,17 +175,17 @@ private:
     double previewFraction_ = 1.0 / 8.0;
     double previewScale_ = 0.5;
     bool endless_ = false;
-    std::atomic<double> noiseTarget_{0};
-    std::atomic<double> exposure_{0};
     std::atomic<bool> denoise_{false};
     double dragTargetMs_ = 45;
+    // The render policy (core): sizes, photons, drag steps, when to stop. Its noise target and
+    // exposure are atomics; the rest is the worker thread's.
+    RenderScheduler scheduler_;
     // Worker-thread state: the scenes built for `built_` (quick and full size).
     std::unique_ptr<SceneBuilder> builder_;
     Project built_;
     bool haveScenes_ = false;
     std::shared_ptr<const RenderScene> quick_, full_;
     QSize fullSize_, quickSize_;
-    int dragLevel_ = 2;
     std::map<uint64_t, BaseState> bases_;
     // Shared with the render thread's sink, under mutex_.
     std::shared_ptr<RenderFrame> latest_;
