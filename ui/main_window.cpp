@@ -37,7 +37,6 @@
 #include "denoise_worker.h"
 #include "render_controller.h"
 #include "scene_panel.h"
-#include "render/preview.h"
 #include "render/scheduler.h"
 #include "settings_panel.h"
 #include "shortcut_policy.h"
@@ -495,10 +494,7 @@ void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     text += lastError_ >= 0 ? tr("  ·  est. error %1%").arg(lastError_ * 100, 0, 'f', 1)
                             : tr("  ·  est. error -");
     if (!f->preview && options_.endless && s.mean_changed_value > 0) {
-        const double target = renderer_->noiseTarget() > 0
-                                  ? renderer_->noiseTarget()
-                                  : invisible_relative_error(s.mean_changed_value, viewport_->exposure());
-        text += tr(" (stops at %1%)").arg(target * 100, 0, 'f', 1);
+        text += tr(" (stops at %1%)").arg(renderer_->stopError(s) * 100, 0, 'f', 1);
     }
     status_->setText(text);
 }

@@ -88,6 +88,8 @@ public:
     double noiseTarget() const { return scheduler_.noise_target(); }
     /// The display exposure the invisible noise target is judged at.
     void setDisplayExposure(double stops) { scheduler_.set_display_exposure(stops); }
+    /// The estimated error an endless refinement of `stats` stops at (the status line says it).
+    double stopError(const RenderStats& stats) const { return scheduler_.stop_error(stats); }
     /// Whether the viewer shows refined frames denoised (it asks DenoiseWorker for them).
     void setDenoise(bool on) { denoise_.store(on); }
     bool denoise() const { return denoise_.load(); }

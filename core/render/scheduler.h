@@ -33,7 +33,6 @@ public:
     }
     /// Time a drag frame should take (milliseconds).
     void set_drag_target(double ms) { drag_target_ms_ = ms; }
-    double drag_target() const { return drag_target_ms_; }
 
     /// The quick pass answering an edit of a width x height render with `project`'s settings.
     /// Interactive (a drag or a slider stroke): one pass at the drag level's pixel budget with

@@ -210,10 +210,7 @@ void DragPreviewTest::aDenoisedPictureOfTheNewStateComesBeforeItsRefinementCatch
     QTemporaryDir dir;
     RecordingReporter reporter;
     MainWindow w(test::test_options(&reporter, dir.filePath("recovery"), 512, 256));
-    w.resize(1200, 700);
-    w.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&w));
-    QVERIFY(w.openProject(test::write_small_sample(dir.path(), 30000, 24)));
+    QVERIFY(test::show_and_open(w, test::write_small_sample(dir.path(), 30000, 24)));
     w.viewport()->setFocus();
     QTest::keyClick(w.viewport(), Qt::Key_D);
     QVERIFY(w.action("denoise")->isChecked());

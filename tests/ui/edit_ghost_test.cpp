@@ -102,11 +102,8 @@ void EditGhostTest::noEditLeavesTheObjectWhereItWas() {
     QTemporaryDir dir;
     RecordingReporter reporter;
     MainWindow w(test::test_options(&reporter, dir.filePath("recovery"), kW, kH));
-    w.resize(1200, 700);
-    w.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&w));
     const QString sample = test::write_small_sample(dir.path(), 30000, 12);
-    QVERIFY(w.openProject(sample));
+    QVERIFY(test::show_and_open(w, sample));
     QVERIFY(test::wait_refined(w, 60000));
     FrameLog log(w);
 

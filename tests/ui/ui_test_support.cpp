@@ -45,6 +45,12 @@ void drag(QWidget* widget, QPointF from, QPointF to, int moves, int msPerMove) {
     QTest::mouseRelease(widget, Qt::LeftButton, {}, to.toPoint());
 }
 
+bool show_and_open(MainWindow& w, const QString& project) {
+    w.resize(1200, 700);
+    w.show();
+    return QTest::qWaitForWindowExposed(&w) && w.openProject(project);
+}
+
 bool wait_refined(MainWindow& w, int timeoutMs) {
     return QTest::qWaitFor([&] { return w.renderer()->finished(); }, timeoutMs);
 }

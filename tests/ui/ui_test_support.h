@@ -24,6 +24,9 @@ StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, 
 /// `to`, one every `msPerMove` milliseconds, release at `to`.
 void drag(QWidget* widget, QPointF from, QPointF to, int moves, int msPerMove = 16);
 
+/// Shows `w` at 1200x700, waits for its window, and opens `project`; false if either fails.
+bool show_and_open(MainWindow& w, const QString& project);
+
 /// Processes events until the latest request has finished refining; false on timeout.
 bool wait_refined(MainWindow& w, int timeoutMs = 30000);
 
