@@ -60,10 +60,10 @@ Image DenoiseWorker::denoise_now(const RenderFrame& f, const DenoiseAovs& aovs, 
 }
 
 Image DenoiseWorker::compose_denoised(const RenderFrame& f, const Image& denoised, const Image* denoisedBase) {
-    if (!f.composited() || !f.shownFromEdit) return denoised;
+    if (!f.composited() || !f.shown_from_edit) return denoised;
     const Image& shown = f.image();
-    const int OW = shown.width(), OH = shown.height(), W = denoised.width(), step = std::max(1, f.shownStep);
-    const std::vector<uint8_t>& fromEdit = *f.shownFromEdit;
+    const int OW = shown.width(), OH = shown.height(), W = denoised.width(), step = std::max(1, f.shown_step);
+    const std::vector<uint8_t>& fromEdit = *f.shown_from_edit;
     if (fromEdit.size() != shown.size() || OW * step > W || OH * step > denoised.height()) return {};
     const bool base = denoisedBase && denoisedBase->width() == W && denoisedBase->height() == denoised.height();
     Image out(OW, OH);
@@ -100,7 +100,7 @@ void DenoiseWorker::run() {
             if (frame->composited()) {
                 // The edit's pixels denoised; the rest is the refined picture's, denoised
                 // where its denoised image is the last one made.
-                const bool base = lastWhole_ && lastWholeGeneration_ == frame->baseGeneration;
+                const bool base = lastWhole_ && lastWholeGeneration_ == frame->base_generation;
                 image = std::make_shared<const Image>(compose_denoised(*frame, whole, base ? lastWhole_.get() : nullptr));
                 if (image->empty()) continue;
             } else {

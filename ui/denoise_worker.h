@@ -12,9 +12,12 @@
 #include "image/image.h"
 #include "render/denoise_aovs.h"
 
+namespace dp {
+struct RenderFrame;
+}
+
 namespace dp::ui {
 
-struct RenderFrame;
 
 /// Runs Open Image Denoise (image/denoise.h) on the change of the frames it is given, guided by
 /// the albedo and normal of their scene (computed once per scene), and hands each result back
@@ -47,7 +50,7 @@ public:
 
 Q_SIGNALS:
     /// The denoised augmented image of `frame`, at its size.
-    void denoised(std::shared_ptr<const dp::ui::RenderFrame> frame, std::shared_ptr<const dp::Image> image);
+    void denoised(std::shared_ptr<const dp::RenderFrame> frame, std::shared_ptr<const dp::Image> image);
 
 private:
     void run();

@@ -55,7 +55,7 @@ public:
 
 Q_SIGNALS:
     /// The project changed; `change` says how much the renderer must redo.
-    void changed(dp::ui::Change change);
+    void changed(dp::Change change);
     /// A new project was opened or created (the views reload everything).
     void reloaded();
     void pathChanged(const QString& path);

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "project_edit.h"
-#include "scene_builder.h"
+#include "assets/scene_builder.h"
 
 namespace dp::ui {
 

@@ -20,6 +20,10 @@ class QSlider;
 class QComboBox;
 class QToolButton;
 
+namespace dp {
+struct RenderFrame;
+}
+
 namespace dp::ui {
 
 class Autosave;
@@ -38,7 +42,6 @@ class SettingsPanel;
 class DenoiseWorker;
 class ShortcutPolicy;
 class Viewport;
-struct RenderFrame;
 
 /// The studio's main window: viewport in the middle, panels docked around it, menus with the
 /// usual shortcuts. Every operation a menu offers is also a public method, which is what the

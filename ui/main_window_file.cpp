@@ -33,7 +33,7 @@
 #include "settings_panel.h"
 #include "scene/project_io.h"
 #include "scene/relink.h"
-#include "scene_builder.h"
+#include "assets/scene_builder.h"
 #include "scene_check.h"
 #include "viewport.h"
 

@@ -14,7 +14,7 @@
 #include "display.h"
 #include "document.h"
 #include "image/image_io.h"
-#include "scene_builder.h"
+#include "assets/scene_builder.h"
 #include "stroke_slider.h"
 
 namespace dp::ui {

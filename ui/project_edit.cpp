@@ -6,49 +6,6 @@
 
 namespace dp::ui {
 
-namespace {
-
-bool same_geometry(const VirtualObject& a, const VirtualObject& b) {
-    // The material source picks which textures are loaded with the assets: a rebuild, as for
-    // a texture.
-    return a.shape == b.shape && a.transform == b.transform && a.visible == b.visible &&
-           a.material_source == b.material_source;
-}
-
-}  // namespace
-
-Change classify(const Project& a, const Project& b) {
-    if (a.photo != b.photo || a.probe.path != b.probe.path || a.probe.format != b.probe.format ||
-        a.base_dir != b.base_dir)
-        return Change::Assets;
-    if (!(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real || a.objects.size() != b.objects.size())
-        return Change::Scene;
-    bool material = false;
-    for (size_t i = 0; i < a.objects.size(); ++i) {
-        if (!same_geometry(a.objects[i], b.objects[i])) return Change::Scene;
-        // Albedo textures are images loaded with the assets: a texture edit needs a rebuild.
-        const Material &ma = a.objects[i].material, &mb = b.objects[i].material;
-        if (ma.albedo.kind != mb.albedo.kind || ma.albedo.texture_path != mb.albedo.texture_path)
-            return Change::Scene;
-        material |= !(ma == mb);
-    }
-    if (material) return Change::Material;
-    return a.render != b.render ? Change::Settings : Change::None;
-}
-
-bool edited_objects(const Project& a, const Project& b, std::vector<int>& edited) {
-    edited.clear();
-    if (classify(a, b) == Change::Assets || !(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real ||
-        a.render != b.render)
-        return false;
-    const size_t n = std::max(a.objects.size(), b.objects.size());
-    for (size_t i = 0; i < n; ++i)
-        if (i >= a.objects.size() || i >= b.objects.size() || !same_geometry(a.objects[i], b.objects[i]) ||
-            !(a.objects[i].material == b.objects[i].material))
-            edited.push_back(int(i));
-    return true;
-}
-
 std::string unique_name(const Project& project, const std::string& base) {
     std::set<std::string> used;
     for (const VirtualObject& o : project.objects) used.insert(o.name);

@@ -1,28 +1,13 @@
 #pragma once
-// Pure helpers over dp::Project used by the studio: what an edit changed, new objects, bounds.
+// Pure helpers over dp::Project used by the studio: new objects, names, bounds (what an edit
+// changed is the core's: scene/project_diff.h).
 #include <string>
 #include <vector>
 
 #include "scene/project.h"
+#include "scene/project_diff.h"
 
 namespace dp::ui {
-
-/// What an edit changed, from cheapest to dearest for the renderer.
-enum class Change {
-    None,      ///< names only: nothing to render
-    Settings,  ///< render settings only: the session restarts with them, nothing is rebuilt
-    Material,  ///< virtual materials only: RenderScene::with_materials, no BVH rebuild
-    Scene,     ///< geometry, transforms, camera or probe pose: rebuild the scene
-    Assets,    ///< photo or probe file: reload images, then rebuild
-};
-
-/// Classifies the difference between two projects (symmetric, so undo classifies as the edit).
-Change classify(const Project& before, const Project& after);
-
-/// The objects an edit from `before` to `after` changed (shape, transform, visibility or
-/// material; by index, so added and removed ones count), or false when it changed more than
-/// objects (photo, probe, camera, real proxies, render settings): then the whole picture can.
-bool edited_objects(const Project& before, const Project& after, std::vector<int>& edited);
 
 /// A name not yet used by the project's objects ("sphere", "sphere 2", ...).
 std::string unique_name(const Project& project, const std::string& base);

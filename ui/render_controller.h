@@ -3,67 +3,22 @@
 #include <QSize>
 #include <QStringList>
 #include <atomic>
-#include <chrono>
-#include <condition_variable>
-#include <cstdint>
-#include <map>
 #include <memory>
 #include <mutex>
-#include <optional>
-#include <thread>
-#include <vector>
 
 #include "assets/asset_library.h"
-#include "project_edit.h"
-#include "render/change_region.h"
-#include "render/scheduler.h"
-#include "render/session.h"
+#include "render/interactive_session.h"
+#include "render/view_frame.h"
 
 namespace dp::ui {
 
-class SceneBuilder;
+using dp::RenderFrame;
 
-/// One progressive image as the viewport shows it.
-struct RenderFrame {
-    RenderUpdate update;                 ///< the render of this request's state, as export writes it
-    std::shared_ptr<const Image> photo;  ///< full-resolution photo (the "photo" view)
-    bool preview = false;                ///< a coarse pass at reduced size (edit in progress)
-    uint64_t generation = 0;             ///< which request it answers
-    /// What the viewport shows, where it differs from `update`: an edit's preview or early
-    /// refinement passes laid over the last refined picture outside the region the edit can
-    /// change (change_region), at the full render size (at most the display's width,
-    /// kDisplayMaxWidth). Null: update's own images.
-    std::shared_ptr<const Image> shownImage, shownDL;
-    /// Passes behind the picture outside the edited region (update's own when not composited).
-    int refinedPasses = 0;
-    /// Where composited: which shown pixels are the edit's (1) and which the refined picture's
-    /// (0), the refined frame's generation, and the step from shown to rendered pixels (a
-    /// shown pixel is rendered pixel (x step + step / 2, y step + step / 2)).
-    std::shared_ptr<const std::vector<uint8_t>> shownFromEdit;
-    uint64_t baseGeneration = 0;
-    int shownStep = 1;
-    /// The scene it was rendered from (the denoiser's guides come from it).
-    std::shared_ptr<const RenderScene> scene;
-
-    bool composited() const { return shownImage != nullptr; }
-    const Image& image() const { return shownImage ? *shownImage : update.image; }
-    const Image& dL() const { return shownDL ? *shownDL : update.dL; }
-};
-
-/// Runs the renderer for the studio. Requests are handled on a worker thread that loads files,
-/// builds scenes and drives the RenderSession; passes come back to the UI thread through a
-/// queued call, at most one pending at a time (older ones are dropped). The UI thread never
-/// waits for the renderer: request() only records the latest project and returns.
-///
-/// Each request first renders one quick pass at reduced size with fewer photons (so the picture
-/// answers within a fraction of a second), then refines at full size, without a pass budget
-/// until the noise is invisible (setEndless). While `interactive` (a drag or a slider stroke)
-/// each request renders one pass at a size chosen to keep the frame rate (drag_preview_pixels),
-/// and a new request never cancels that pass: it follows it, so frames keep coming however
-/// fast the edits arrive. An object edit's previews and first refinement passes are laid over
-/// the last refined picture only where the edit can change it. A material-only change makes new
-/// versions of the built scenes (RenderScene::with_materials): no BVH is rebuilt, and the scene
-/// a run or the denoiser holds is never changed under it.
+/// The studio's adapter over the core's InteractiveSession: an edit becomes a request (reset),
+/// and the session's frames come to the UI thread through a queued call, at most one pending at
+/// a time (older ones are dropped). The UI thread never waits for the renderer: request() only
+/// records the latest project and returns. The render policy (quick pass, drag sizes, when to
+/// stop) is the session's RenderScheduler; this class only adds what Qt needs.
 class RenderController : public QObject {
     Q_OBJECT
 public:
@@ -84,15 +39,15 @@ public:
     void setEndless(bool endless) { endless_ = endless; }
     /// Relative error (RenderStats::estimated_rel_error) at which endless refinement stops;
     /// <= 0: invisible at the display exposure (invisible_relative_error).
-    void setNoiseTarget(double relError) { scheduler_.set_noise_target(relError); }
-    double noiseTarget() const { return scheduler_.noise_target(); }
+    void setNoiseTarget(double relError) { session_->scheduler().set_noise_target(relError); }
+    double noiseTarget() const { return session_->scheduler().noise_target(); }
     /// The display exposure the invisible noise target is judged at.
-    void setDisplayExposure(double stops) { scheduler_.set_display_exposure(stops); }
+    void setDisplayExposure(double stops) { session_->scheduler().set_display_exposure(stops); }
     /// The estimated error an endless refinement of `stats` stops at (the status line says it).
-    double stopError(const RenderStats& stats) const { return scheduler_.stop_error(stats); }
+    double stopError(const RenderStats& stats) const { return session_->scheduler().stop_error(stats); }
     /// Whether the viewer shows refined frames denoised (it asks DenoiseWorker for them).
-    void setDenoise(bool on) { denoise_.store(on); }
-    bool denoise() const { return denoise_.load(); }
+    void setDenoise(bool on) { denoise_ = on; }
+    bool denoise() const { return denoise_; }
     /// Time a drag frame should take (milliseconds): the preview size follows it.
     void setDragFrameTarget(double ms) { dragTargetMs_ = ms; }
 
@@ -101,7 +56,7 @@ public:
     /// Stops rendering (before closing, or while the project's files are missing); returns at
     /// once, and no frame of what ran is delivered after it.
     void stop();
-    bool idle() const;
+    bool idle() const { return session_->idle(); }
     /// Drops the refined picture later edits are laid over: another project was opened, and
     /// nothing of the old picture may show through the new one.
     void forgetPicture();
@@ -111,27 +66,15 @@ public:
     uint64_t generation() const { return requested_; }
     /// Whether the latest request's full-size refinement reached its budget or noise target.
     bool finished() const { return finished_; }
-    /// Where the time of the latest request went (milliseconds), for the benchmark.
-    struct Timings {
-        double cancel = 0;      ///< waiting for the run in flight to stop
-        double buildQuick = 0;  ///< building the quick scene (0 when reused)
-        double region = 0;      ///< finding the pixels the edit can change
-        double firstQuick = 0;  ///< start of the quick run to its first pass
-        double compose = 0;     ///< of which laying it over the refined picture
-        double buildFull = 0;   ///< building the full-size scene
-        double dragFrame = 0;   ///< a drag request's frame: scene, region, pass and compositing
-        int dragLevel = 0;      ///< the drag preview size (drag_preview_pixels)
-    };
-    Timings timings() const {
-        std::lock_guard<std::mutex> lock(mutex_);
-        return timings_;
-    }
+    using Timings = InteractiveSession::Timings;
+    /// Where the time of the latest request went, for the benchmark.
+    Timings timings() const { return session_->timings(); }
     /// Scenes (BVHs) built so far: material-only edits must not add to it.
-    int scenesBuilt() const { return scenesBuilt_.load(); }
+    int scenesBuilt() const { return session_->scenes_built(); }
 
 Q_SIGNALS:
-    void frameReady(std::shared_ptr<const dp::ui::RenderFrame> frame);
-    /// The refinement of the latest request reached its pass or time budget.
+    void frameReady(std::shared_ptr<const dp::RenderFrame> frame);
+    /// The refinement of the latest request reached its pass or time budget, or is clean.
     void refinementFinished();
     /// Loading or building failed (message for the user).
     void failed(const QString& message);
@@ -140,36 +83,7 @@ Q_SIGNALS:
     void assetWarnings(const QStringList& warnings);
 
 private:
-    struct Request {
-        Project project;
-        bool interactive = false;
-        uint64_t generation = 0;
-        QSize size;
-        double previewFraction = 0.125;
-        double previewScale = 0.5;
-        double dragTargetMs = 45;
-        bool endless = false;
-    };
-    /// The pixels an edit can change, at the resolution of the run that found them.
-    struct Region {
-        std::vector<uint8_t> mask;
-        int width = 0, height = 0;
-        uint64_t baseGeneration = 0;  ///< the refined picture it is laid over
-    };
-    /// A full-size state that may become the refined picture edits are laid over.
-    struct BaseState {
-        Project project;
-        std::vector<std::optional<EditedBounds>> bounds;  ///< per object
-    };
     class Sink;
-    void worker();
-    void handle(const Request& r);
-    bool superseded();
-    /// The region of the edit from the refined picture's state to `p` (null: everything).
-    std::shared_ptr<const Region> regionFor(const Project& p, const RenderScene& scene);
-    void rememberBase(uint64_t generation, const Project& p, const RenderScene& scene);
-    /// Lays `f`'s pass over `base` outside `region` (render thread).
-    static void compose(RenderFrame& f, const RenderFrame& base, const Region& region);
     Q_INVOKABLE void deliver();
     Q_INVOKABLE void deliverStopped(quint64 generation, bool finished, const QString& error);
 
@@ -177,48 +91,19 @@ private:
     double previewFraction_ = 1.0 / 8.0;
     double previewScale_ = 0.5;
     bool endless_ = false;
-    std::atomic<bool> denoise_{false};
+    bool denoise_ = false;
     double dragTargetMs_ = 45;
-    // The render policy (core): sizes, photons, drag steps, when to stop. Its noise target and
-    // exposure are atomics; the rest is the worker thread's.
-    RenderScheduler scheduler_;
-    // Worker-thread state: the scenes built for `built_` (quick and full size).
-    std::unique_ptr<SceneBuilder> builder_;
-    Project built_;
-    bool haveScenes_ = false;
-    std::shared_ptr<const RenderScene> quick_, full_;
-    QSize fullSize_, quickSize_;
-    std::map<uint64_t, BaseState> bases_;
-    // Shared with the render thread's sink, under mutex_.
-    std::shared_ptr<RenderFrame> latest_;
-    bool posted_ = false;
-    uint64_t runGeneration_ = 0;
-    bool runPreview_ = false;
-    bool runInteractive_ = false;  ///< a one-pass drag preview: new requests wait for it
-    bool runEndless_ = false;
-    bool runReachedTarget_ = false;
-    std::shared_ptr<const Region> runRegion_;
-    std::shared_ptr<const RenderScene> runScene_;
-    int runFrames_ = 0;
-    bool runStopped_ = false;
-    Timings timings_;
-    std::chrono::steady_clock::time_point runStart_, dragStart_;
-    std::shared_ptr<const Image> photo_;
-    std::shared_ptr<const RenderFrame> base_;  ///< the refined picture (set on the UI thread)
 
     std::unique_ptr<Sink> sink_;
-    std::unique_ptr<RenderSession> session_;
-    std::thread thread_;
-    mutable std::mutex mutex_;
-    std::condition_variable cv_;
-    std::optional<Request> pending_;
-    bool quit_ = false;
-    bool busy_ = false;
-    std::atomic<int> scenesBuilt_{0};
-    std::vector<std::string> warned_;  ///< worker thread: the warnings last sent
-    uint64_t requested_ = 0;  ///< UI thread
-    uint64_t acceptFrom_ = 0; ///< UI thread: previews of this request or later are shown
-    bool finished_ = false;   ///< UI thread
+    std::unique_ptr<InteractiveSession> session_;
+    // The frame waiting for the UI thread (render thread writes, UI thread takes).
+    std::mutex mutex_;
+    std::shared_ptr<RenderFrame> latest_;
+    bool posted_ = false;
+    // UI thread.
+    uint64_t requested_ = 0;
+    uint64_t acceptFrom_ = 0;  ///< previews of this request or later are shown
+    bool finished_ = false;
     std::shared_ptr<const RenderFrame> last_, lastFull_;
 };
 

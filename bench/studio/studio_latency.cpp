@@ -45,7 +45,7 @@ double time_edit(MainWindow& w, const Project& p, bool interactive) {
     uint64_t generation = 0;
     double ms = -1;
     auto c = QObject::connect(w.renderer(), &RenderController::frameReady,
-                              [&](std::shared_ptr<const dp::ui::RenderFrame> f) {
+                              [&](std::shared_ptr<const dp::RenderFrame> f) {
                                   if (ms < 0 && f->generation == generation)
                                       ms = double(t.nsecsElapsed()) / 1e6;
                               });
@@ -81,7 +81,7 @@ double drag_fps(MainWindow& w, int ms, float metres, std::vector<double>& gaps, 
     qint64 last = -1;
     int frames = 0;
     auto c = QObject::connect(w.renderer(), &RenderController::frameReady,
-                              [&](std::shared_ptr<const dp::ui::RenderFrame> f) {
+                              [&](std::shared_ptr<const dp::RenderFrame> f) {
                                   if (!f->preview) return;
                                   const qint64 now = t.nsecsElapsed();
                                   if (last >= 0) gaps.push_back(double(now - last) / 1e6);
@@ -107,7 +107,7 @@ double drag_fps(MainWindow& w, int ms, float metres, std::vector<double>& gaps, 
     QElapsedTimer drop;
     double dropped = -1;
     auto d = QObject::connect(w.renderer(), &RenderController::frameReady,
-                              [&](std::shared_ptr<const dp::ui::RenderFrame> f) {
+                              [&](std::shared_ptr<const dp::RenderFrame> f) {
                                   if (dropped < 0 && !f->preview && f->generation == w.renderer()->generation())
                                       dropped = double(drop.nsecsElapsed()) / 1e6;
                               });

@@ -18,7 +18,7 @@
 #include "image/image_io.h"
 #include "material_panel.h"
 #include "render_controller.h"
-#include "scene_builder.h"
+#include "assets/scene_builder.h"
 #include "ui_test_support.h"
 #include "viewport.h"
 

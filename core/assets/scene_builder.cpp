@@ -1,6 +1,6 @@
-#include "scene_builder.h"
+#include "assets/scene_builder.h"
 
-namespace dp::ui {
+namespace dp {
 
 void SceneBuilder::load(const Project& p) {
     photo_ = library_->photo(p);
@@ -11,4 +11,4 @@ std::shared_ptr<RenderScene> SceneBuilder::build(const Project& project, int wid
     return build_scene(*library_, project, width, height);
 }
 
-}  // namespace dp::ui
+}  // namespace dp

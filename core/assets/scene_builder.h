@@ -7,7 +7,7 @@
 
 #include "assets/asset_library.h"
 
-namespace dp::ui {
+namespace dp {
 
 /// Not thread-safe: one builder per thread (the library under it is shared and thread-safe).
 class SceneBuilder {
@@ -34,4 +34,4 @@ private:
     std::vector<std::string> warnings_;
 };
 
-}  // namespace dp::ui
+}  // namespace dp
