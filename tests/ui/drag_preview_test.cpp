@@ -128,10 +128,15 @@ void DragPreviewTest::previewsReplaceOnlyThePixelsTheEditCanChange() {
     QVERIFY(test::wait_refined(w));
     const std::shared_ptr<const RenderFrame> refined = w.renderer()->lastFullFrame();
     QVERIFY(refined && !refined->composited());
+    const QImage refinedShown = w.viewport()->shownImage();
 
+    // What the viewer shows at each frame (connected after the window: the viewport has it).
     std::vector<std::shared_ptr<const RenderFrame>> frames;
-    connect(w.renderer(), &RenderController::frameReady, &w,
-            [&](std::shared_ptr<const RenderFrame> f) { frames.push_back(f); });
+    std::vector<QImage> shown;
+    connect(w.renderer(), &RenderController::frameReady, &w, [&](std::shared_ptr<const RenderFrame> f) {
+        frames.push_back(f);
+        shown.push_back(w.viewport()->shownImage());
+    });
     // Nudge the clay ball with a short drag.
     const vec3 from = w.document()->project().objects[0].transform.translation;
     QPointF a, b;
@@ -149,10 +154,20 @@ void DragPreviewTest::previewsReplaceOnlyThePixelsTheEditCanChange() {
     QVERIFY(cam.project(p.objects[0].transform.translation, ball));
     QVERIFY(cam.project(p.real[1].transform.translation + vec3(0, 0.35f, 0), crate));
     int composited = 0;
-    for (const auto& f : frames) {
+    for (size_t k = 0; k < frames.size(); ++k) {
+        const auto& f = frames[k];
+        // Every preview, the drag's frames among them, replaces only its region.
+        if (f->preview) QVERIFY2(f->composited(), qPrintable(QString("preview %1 replaces the whole picture").arg(k)));
         if (!f->composited()) continue;
         ++composited;
         QCOMPARE(f->image().width(), 512);
+        // The shown pixels outside the edit's region are the refined picture's, to the bit.
+        QCOMPARE(shown[k].size(), refinedShown.size());
+        int changed = 0;
+        for (int y = 0; y < shown[k].height(); ++y)
+            for (int x = 0; x < shown[k].width(); ++x)
+                changed += !(*f->shown_from_edit)[size_t(y) * 512 + x] && shown[k].pixel(x, y) != refinedShown.pixel(x, y);
+        QVERIFY2(changed == 0, qPrintable(QString("frame %1: %2 pixels outside the edit changed").arg(k).arg(changed)));
         const size_t far = size_t(std::lround(crate.y)) * 512 + size_t(std::lround(crate.x));
         QCOMPARE(f->image()[far], refined->image()[far]);
         const size_t near = size_t(std::lround(ball.y)) * 512 + size_t(std::lround(ball.x));
