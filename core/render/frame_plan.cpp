@@ -25,7 +25,8 @@ double pixels_per_area(const Camera& camera, const vec3& p, const vec3& n) {
     return std::abs(double(u.x) * v.y - double(u.y) * v.x) / (double(delta) * delta);
 }
 
-FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std::atomic<bool>* cancel) {
+FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std::atomic<bool>* cancel,
+                           const PixelWindow* window) {
     FramePlan plan;
     const int W = s.photo().width(), H = s.photo().height();
     const size_t n = size_t(W) * H;
@@ -71,6 +72,7 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std:
     tbb::parallel_for(0, H, [&](int y) {
         if (cancelled()) return;
         for (int x = 0; x < W; ++x) {
+            if (window && !window->contains(x, y)) continue;
             const size_t i = size_t(y) * W + x;
             const Ray ray = s.camera_ray(float(x), float(y));
             const Hit hit = s.intersect(ray);

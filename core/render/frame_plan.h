@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <vector>
@@ -50,11 +51,23 @@ inline constexpr float kDirectRouletteLevel = 0.02f;
 /// normal n, as the camera sees it; 0 where p is behind the camera or seen edge-on.
 double pixels_per_area(const Camera& camera, const vec3& p, const vec3& n);
 
-/// Traces one ray through every pixel centre. With `direct_by_rays`, bounds each real pixel's
+/// A rectangle of pixels, [x0, x1) x [y0, y1): where a viewer needs the render (an edit's
+/// region while a slider is dragged), the rest left as the photo.
+struct PixelWindow {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
+    bool meets_tile(int tile_x, int tile_y, int tile) const {
+        return tile_x * tile < x1 && (tile_x + 1) * tile > x0 && tile_y * tile < y1 && (tile_y + 1) * tile > y0;
+    }
+    size_t area() const { return size_t(std::max(0, x1 - x0)) * size_t(std::max(0, y1 - y0)); }
+};
+
+/// Traces one ray through every pixel centre (of `window` only, when given: the pixels outside
+/// it are planned as seeing nothing that changes). With `direct_by_rays`, bounds each real pixel's
 /// direct-light change (DirectChange::bound) for the roulette; otherwise the probabilities
 /// stay 0 (the all-photon estimator has no direct term).
 /// `cancel` becoming true stops it early: the plan returned is then incomplete (width 0).
 FramePlan build_frame_plan(const RenderScene& scene, bool direct_by_rays,
-                           const std::atomic<bool>* cancel = nullptr);
+                           const std::atomic<bool>* cancel = nullptr, const PixelWindow* window = nullptr);
 
 }  // namespace dp

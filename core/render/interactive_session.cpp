@@ -2,6 +2,9 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "base/threads.h"
 #include "render/progressive.h"
 #include "scene/project_diff.h"
@@ -26,6 +29,7 @@ struct InteractiveSession::Run {
     std::unique_ptr<ProgressiveRenderer> renderer;
     std::unique_ptr<tbb::task_arena> arena;
     std::shared_ptr<const EditRegion> region;
+    std::optional<PixelWindow> window;  ///< a drag frame renders its edit's region only
     std::shared_ptr<const Image> photo;
     Clock::time_point asked, begun, started;  ///< reset() called; the thread took it; first pass began
     bool may_be_base = true;  ///< false once forget_picture() was called during it
@@ -189,6 +193,7 @@ void InteractiveSession::start(const ViewRequest& r, Clock::time_point asked) {
     t0 = Clock::now();
     if (base_) run->region = states_.region(base_->generation, p, *quick_);
     timings.region = ms_since(t0);
+    if (r.interactive && run->region) frame_the_region(*run, change == Change::Material);
     {
         std::lock_guard<std::mutex> lock(mutex_);
         timings.dragFrame = timings_.dragFrame;
@@ -201,11 +206,46 @@ void InteractiveSession::start(const ViewRequest& r, Clock::time_point asked) {
     step();  // the quick pass at once: a newer request cancels it, nothing else delays it
 }
 
+void InteractiveSession::frame_the_region(Run& run, bool material) {
+    const EditRegion& region = *run.region;
+    int cx0 = region.width, cy0 = region.height, cx1 = -1, cy1 = -1;
+    for (int y = 0; y < region.height; ++y)
+        for (int x = 0; x < region.width; ++x)
+            if (region.mask[size_t(y) * region.width + x]) {
+                cx0 = std::min(cx0, x);
+                cy0 = std::min(cy0, y);
+                cx1 = std::max(cx1, x);
+                cy1 = std::max(cy1, y);
+            }
+    if (cx1 < 0) return;
+    // The region's cells in a w x h render's pixels, one pixel wider for the upsampling.
+    auto window_at = [&](int w, int h) {
+        PixelWindow win;
+        win.x0 = std::max(0, int(std::floor(double(cx0) * w / region.width)) - 1);
+        win.y0 = std::max(0, int(std::floor(double(cy0) * h / region.height)) - 1);
+        win.x1 = std::min(w, int(std::ceil(double(cx1 + 1) * w / region.width)) + 1);
+        win.y1 = std::min(h, int(std::ceil(double(cy1 + 1) * h / region.height)) + 1);
+        return win;
+    };
+    // A material stroke changes no geometry: the full-size scene (a new version with the
+    // stroke's material) shows the object sharp where its region is small enough.
+    if (material && full_) {
+        const PixelWindow full = window_at(full_w_, full_h_);
+        if (double(full.area()) <= 2.0 * drag_preview_pixels(scheduler_.drag_level())) {
+            run.scene = full_;
+            run.window = full;
+            return;
+        }
+    }
+    run.window = window_at(quick_w_, quick_h_);
+}
+
 void InteractiveSession::step() {
     Run& r = *run_;
     if (!r.renderer) {
         r.arena = std::make_unique<tbb::task_arena>(worker_threads(r.settings.threads));
         r.renderer = std::make_unique<ProgressiveRenderer>(r.scene, r.settings);
+        if (r.window) r.renderer->set_window(*r.window);
         r.started = Clock::now();
     }
     bool rendered = false;

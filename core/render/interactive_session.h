@@ -101,6 +101,9 @@ private:
     void start(const ViewRequest& r, std::chrono::steady_clock::time_point asked);
     void step();
     void start_full();
+    /// A drag frame renders only the pixels its region covers (at full size for a material
+    /// stroke whose region is small enough).
+    void frame_the_region(Run& run, bool material);
     bool replaced() const;
 
     std::unique_ptr<SceneBuilder> scenes_;

@@ -68,7 +68,7 @@ bool ProgressiveRenderer::ensure_plan(const std::atomic<bool>* cancel) {
     if (planned_) return true;
     // Built with the first pass, not in the constructor: it traces a ray per pixel, and a
     // viewer's edit must be able to stop it like any pass.
-    FramePlan plan = build_frame_plan(*scene_, split_, cancel);
+    FramePlan plan = build_frame_plan(*scene_, split_, cancel, window_ ? &*window_ : nullptr);
     if (plan.width == 0) return false;
     plan_ = std::move(plan);
     sums_ = TileAccumulator(plan_.width, plan_.height, kTile);
@@ -226,6 +226,8 @@ ProgressiveRenderer::PassWork ProgressiveRenderer::plan_pass(int pass, const Pas
     for (const Splat& e : work.splats) photon_tile[e.key / kTilePixels] = 1;
     for (uint32_t t = 0; t < plan_.tiles(); ++t) {
         if (respect_stopped && !sums_.live(t)) continue;
+        if (window_ && !window_->meets_tile(int(t % uint32_t(plan_.tiles_x)), int(t / uint32_t(plan_.tiles_x)), kTile))
+            continue;
         // Roulette on the tile's largest probability; its pixels then keep their share of it.
         const float p = plan_.tile_direct_max[t];
         const bool direct = split_ && p > 0 &&

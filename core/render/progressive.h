@@ -57,6 +57,10 @@ public:
     /// std::logic_error if adaptive sampling is on or a pass was already rendered.
     void start_at_pass(int first);
 
+    /// Renders only the tiles that meet `window` (a viewer's region of interest), leaving the
+    /// rest of the picture as the photo. Call before the first pass.
+    void set_window(const PixelWindow& window) { window_ = window; }
+
     /// Photo plus the mean change: the augmented photograph (linear, may be negative only
     /// where the estimate is; clamp for display).
     Image image() const override;
@@ -110,6 +114,7 @@ private:
 
     std::shared_ptr<const RenderScene> scene_;
     RenderSettings settings_;
+    std::optional<PixelWindow> window_;
     int64_t photons_per_pass_;
     uint64_t seed_;
     float r1_ = 0, alpha_ = 2.0f / 3.0f;

@@ -285,3 +285,28 @@ TEST_F(InteractiveSessionTest, AMissingFileFailsTheRequestNamingIt) {
     EXPECT_NE(sink_.stops.back().error.find("gone.exr"), std::string::npos) << sink_.stops.back().error;
     EXPECT_TRUE(sink_.frames.empty());
 }
+
+TEST_F(InteractiveSessionTest, AMaterialStrokeShowsTheObjectAtFullSizeRenderingOnlyItsRegion) {
+    refine(project_);
+    const std::shared_ptr<RenderFrame> base = sink_.last_of(generation_);
+    Project red = project_;
+    red.objects[0].material.albedo.rgb = vec3(0.8f, 0.1f, 0.1f);
+    ViewRequest r = request(red, true);
+    session().reset(r);
+    const auto f = sink_.first_of(r.generation);
+    ASSERT_TRUE(f);
+    ASSERT_TRUE(f->composited());
+    // Rendered at the full 96 x 64, not at the drag's reduced size, and only around the object.
+    EXPECT_EQ(f->update.image.width(), 96);
+    EXPECT_GT(f->update.stats.pixels_gathered, 0u);
+    EXPECT_LT(f->update.stats.pixels_gathered, size_t(96 * 64) / 2);
+    // The ball is red in the shown picture, and the picture away from it is the refined one.
+    const Camera cam = project_.camera.build(96, 64);
+    vec2 px;
+    ASSERT_TRUE(cam.project(vec3(-0.6f, 0.4f, 0.4f), px));  // the ball's front
+    const vec3 c = f->image()[size_t(px.y) * 96 + size_t(px.x)];
+    EXPECT_GT(c.x, 2.0f * c.y) << c.x << " " << c.y;
+    size_t kept = 0;
+    for (size_t i = 0; i < f->image().size(); ++i) kept += !(*f->shown_from_edit)[i] && f->image()[i] == base->image()[i];
+    EXPECT_GT(kept, f->image().size() / 4);
+}
