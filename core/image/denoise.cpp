@@ -286,6 +286,89 @@ void fill_holes(Image& img, std::vector<uint8_t> known) {
 
 }  // namespace
 
+/// The filter averages in a compressed (HDR) domain, which pulls the mean of noisy radiance
+/// down by a few percent: each pixel of `clean` is scaled so that the luminance summed over its
+/// neighbourhood (the `known` pixels within kMeanRadius) is the raw one's.
+static void keep_local_mean(const Image& raw, const std::vector<uint8_t>& known, Image& clean) {
+    constexpr int kMeanRadius = 6;
+    const int w = raw.width(), h = raw.height();
+    // Integral images of the known pixels' luminance, raw and filtered.
+    std::vector<double> sr(size_t(w + 1) * (h + 1), 0.0), sc(sr.size(), 0.0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x, o = size_t(y + 1) * (w + 1) + x + 1;
+            const double r = known[i] ? luminance(raw[i]) : 0.0, c = known[i] ? luminance(clean[i]) : 0.0;
+            sr[o] = r + sr[o - 1] + sr[o - size_t(w + 1)] - sr[o - size_t(w + 1) - 1];
+            sc[o] = c + sc[o - 1] + sc[o - size_t(w + 1)] - sc[o - size_t(w + 1) - 1];
+        }
+    auto box = [&](const std::vector<double>& s, int x0, int y0, int x1, int y1) {
+        auto at = [&](int x, int y) { return s[size_t(y) * (w + 1) + x]; };
+        return at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0);
+    };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            if (!known[i]) continue;
+            const int x0 = std::max(0, x - kMeanRadius), y0 = std::max(0, y - kMeanRadius);
+            const int x1 = std::min(w, x + kMeanRadius + 1), y1 = std::min(h, y + kMeanRadius + 1);
+            const double r = box(sr, x0, y0, x1, y1), c = box(sc, x0, y0, x1, y1);
+            if (r > 0 && c > 0) clean[i] *= float(std::clamp(r / c, 0.5, 2.0));
+        }
+}
+
+/// Pixels with less object than this are left to the real surface's filter: the object's
+/// radiance recovered from them would carry the pixel's noise divided by its coverage.
+constexpr float kObjectShare = 0.25f;
+
+/// The objects' own radiance, filtered apart from the real surfaces' change (so that neither
+/// spreads into the other), guided by their albedo and normal (for mirrors and glass, those of
+/// what they show), in the box around them; `out` gets each pixel's object share replaced.
+static void denoise_objects(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
+                     const Image& albedo, const Image& normal, float ceiling, DenoiseQuality quality,
+                     const std::atomic<bool>* cancel, Image& out) {
+    const int W = augmented.width(), H = augmented.height();
+    int x0 = W, y0 = H, x1 = -1, y1 = -1;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            if (alpha[size_t(y) * W + x].x >= kObjectShare) {
+                x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+            }
+    if (x1 < 0) return;
+    // The filter's own reach around the objects: enough context, a fraction of a large frame.
+    constexpr int kMargin = 16;
+    x0 = std::max(0, x0 - kMargin), y0 = std::max(0, y0 - kMargin);
+    x1 = std::min(W - 1, x1 + kMargin), y1 = std::min(H - 1, y1 + kMargin);
+    const int bw = x1 - x0 + 1, bh = y1 - y0 + 1;
+    Image radiance(bw, bh), raw(bw, bh), box_albedo, box_normal;
+    if (!albedo.empty()) box_albedo = Image(bw, bh), box_normal = Image(bw, bh);
+    std::vector<uint8_t> known(size_t(bw) * bh, 0);
+    for (int y = 0; y < bh; ++y)
+        for (int x = 0; x < bw; ++x) {
+            const size_t i = size_t(y + y0) * W + size_t(x + x0), b = size_t(y) * bw + x;
+            if (!albedo.empty()) box_albedo[b] = albedo[i], box_normal[b] = normal[i];
+            const float a = std::clamp(alpha[i].x, 0.0f, 1.0f);
+            if (a < kObjectShare || (a < kCovered && dL.empty())) continue;
+            // augmented = photo + a (object - photo) + dL, with dL the real share's change.
+            const vec3 real = a < kCovered ? (1.0f - a) * photo[i] + dL[i] : vec3(0.0f);
+            const vec3 o = a < kCovered ? (augmented[i] - real) / a : augmented[i];
+            if (!is_finite(o)) continue;
+            raw[b] = o;
+            radiance[b] = glm::max(o, vec3(0.0f));
+            known[b] = 1;
+        }
+    fill_holes(radiance, known);
+    Image clean = denoise_change(radiance, box_albedo, box_normal, ceiling, quality, cancel);
+    keep_local_mean(raw, known, clean);
+    for (int y = 0; y < bh; ++y)
+        for (int x = 0; x < bw; ++x) {
+            const size_t i = size_t(y + y0) * W + size_t(x + x0), b = size_t(y) * bw + x;
+            if (!known[b]) continue;
+            const float a = std::min(1.0f, alpha[i].x);
+            const vec3 v = out[i] + a * (clean[b] - raw[b]);
+            if (is_finite(v)) out[i] = v;
+        }
+}
+
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
                         const Image& albedo, const Image& normal, DenoiseQuality quality,
                         const std::atomic<bool>* cancel) {
@@ -308,7 +391,8 @@ Image denoise_augmented(const Image& photo, const Image& augmented, const Image&
     }
     for (uint8_t k : known) holes |= !k;
     if (holes) fill_holes(signal, std::move(known));
-    Image out = denoise_change(signal, albedo, normal, denoise_ceiling(photo), quality, cancel);
+    const float ceiling = denoise_ceiling(photo);
+    Image out = denoise_change(signal, albedo, normal, ceiling, quality, cancel);
     for (size_t i = 0; i < out.size(); ++i) {
         const float a = covered(i);
         if (a == 0)
@@ -318,6 +402,7 @@ Image denoise_augmented(const Image& photo, const Image& augmented, const Image&
         else
             out[i] = augmented[i] + (1.0f - a) * out[i] - dL[i];  // the real share's change, denoised
     }
+    if (!alpha.empty()) denoise_objects(photo, augmented, alpha, dL, albedo, normal, ceiling, quality, cancel, out);
     return out;
 }
 

@@ -41,15 +41,16 @@ Image denoise_change(const Image& change, const Image& albedo = {}, const Image&
                      float ceiling = INFINITY, DenoiseQuality quality = DenoiseQuality::Final,
                      const std::atomic<bool>* cancel = nullptr);
 
-/// The augmented photograph with the noise of the change on real surfaces removed. `alpha` is
-/// the render's virtual coverage (red channel; empty: none) and `dL` its change on real surfaces
+/// The augmented photograph with the noise of the render's change removed. `alpha` is the
+/// render's virtual coverage (red channel; empty: none) and `dL` its change on real surfaces
 /// seen directly (the mean over all of a pixel's samples, 0 for those that saw an object; empty:
-/// augmented - photo where alpha is 0). Only that change is filtered: the objects' radiance and
-/// the photo behind them never enter the filter, so they neither spread into the shadows beside
-/// them nor get smeared. Pixels an object covers fully keep the raw render; a partly covered one
-/// has its real share's raw change replaced by the denoised one (with `dL` only; without it the
-/// pixel stays raw). Pixels where alpha is 0 and the denoised change is 0 keep the photo's bits.
-/// The ceiling is denoise_ceiling(photo). Same sizes required; throws as denoise_change.
+/// augmented - photo where alpha is 0). The real surfaces' change and the objects' own radiance
+/// are filtered apart, each with the guides, so neither spreads into the other (a bright object
+/// does not light the shadow beside it) and the photo behind an object is never smeared. A
+/// pixel's object share is filtered where the object covers at least a quarter of it (with `dL`
+/// for partly covered pixels); a partly covered pixel's real share is filtered with `dL` only.
+/// Pixels where alpha is 0 and the denoised change is 0 keep the photo's bits. The ceiling is
+/// denoise_ceiling(photo). Same sizes required; throws as denoise_change.
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
                         const Image& albedo = {}, const Image& normal = {},
                         DenoiseQuality quality = DenoiseQuality::Final,

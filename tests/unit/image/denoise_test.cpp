@@ -98,35 +98,41 @@ TEST(Denoise, ThePhotoStaysBitExactFarFromTheChange) {
     EXPECT_GT(far, size_t(kW * kH / 4));  // the test looked at a good part of the frame
 }
 
-// A virtual object covering the striped photo keeps its raw radiance; the floor's change around
-// it is denoised all the same.
-TEST(Denoise, PixelsAnObjectCoversKeepTheRawRender) {
+// A virtual object's own radiance is denoised apart from the floor's change: its noise falls,
+// its mean stays, and the floor around it is cleaned all the same.
+TEST(Denoise, AnObjectsRadianceIsDenoisedApartFromTheFloor) {
     std::string why;
     if (!denoiser_available(&why)) GTEST_SKIP() << why;
     const Synthetic s = make_scene(3);
-    Image augmented = s.photo, alpha(kW, kH), albedo = s.albedo;
-    for (size_t i = 0; i < augmented.size(); ++i) augmented[i] += s.noisy[i];
+    Image augmented = s.photo, alpha(kW, kH), albedo = s.albedo, clean = s.photo;
+    for (size_t i = 0; i < augmented.size(); ++i) {
+        augmented[i] += s.noisy[i];
+        clean[i] += s.clean[i];
+    }
     std::mt19937 rng(5);
-    std::normal_distribution<float> gauss(0.0f, 0.05f);
-    auto on_object = [](int x, int y) { return std::hypot(x - 140.0f, y - 100.0f) < 12; };
+    std::normal_distribution<float> gauss(0.0f, 0.08f);
+    auto on_object = [](int x, int y) { return std::hypot(x - 80.0f, y - 60.0f) < 30; };
+    const vec3 object(0.3f, 0.25f, 0.2f);
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x)
             if (on_object(x, y)) {
-                augmented.at(x, y) = vec3(0.3f, 0.25f, 0.2f) + vec3(gauss(rng), gauss(rng), gauss(rng));
+                augmented.at(x, y) = object + vec3(gauss(rng), gauss(rng), gauss(rng));
+                clean.at(x, y) = object;
                 alpha.at(x, y) = vec3(1);
                 albedo.at(x, y) = vec3(0.6f, 0.5f, 0.4f);
             }
     const Image out = denoise_augmented(s.photo, augmented, alpha, Image(), albedo, s.normal);
-    Image clean = s.photo;
-    for (size_t i = 0; i < clean.size(); ++i) clean[i] += s.clean[i];
+    std::vector<bool> floor(out.size()), on(out.size());
+    double mean_out = 0, n = 0;
     for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x)
-            if (on_object(x, y)) {
-                ASSERT_EQ(out.at(x, y), augmented.at(x, y)) << x << "," << y;
-            }
-    std::vector<bool> floor(out.size());
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) floor[size_t(y) * kW + x] = !on_object(x, y);
+        for (int x = 0; x < kW; ++x) {
+            on[size_t(y) * kW + x] = on_object(x, y);
+            floor[size_t(y) * kW + x] = !on_object(x, y);
+            if (on_object(x, y)) mean_out += luminance(out.at(x, y)), ++n;
+        }
+    // White noise is not what the filter learnt from (a render's is): 40% less is what it gives.
+    EXPECT_LT(image_error(out, clean, on).rmse, 0.6 * image_error(augmented, clean, on).rmse);
+    EXPECT_NEAR(mean_out / n, luminance(object), 0.01 * luminance(object));
     EXPECT_LT(image_error(out, clean, floor).rmse, image_error(augmented, clean, floor).rmse / 2);
 }
 
