@@ -94,19 +94,23 @@ void DenoiseWorker::run() {
                 aovs_ = denoise_aovs(*frame->scene);
                 aovScene_ = frame->scene;
             }
-            Image whole = denoise_now(*frame, aovs_, &cancel_);
-            if (whole.empty()) continue;
-            std::shared_ptr<const Image> image;
+            Image result = denoise_now(*frame, aovs_, &cancel_);
+            if (result.empty()) continue;
+            // The frame's own render, denoised: its state's picture, whose noise is judged
+            // against earlier ones of the state (composited frames show it in the edit's pixels).
+            const auto own = std::make_shared<const Image>(std::move(result));
+            const double error = noise_.add(frame->generation, frame->update.stats.passes, own, frame->scene->photo(),
+                                            frame->update.alpha, frame->update.dL);
+            std::shared_ptr<const Image> image = own;
             if (frame->composited()) {
                 // The edit's pixels denoised; the rest is the refined picture's, denoised
                 // where its denoised image is the last one made.
                 const bool base = lastWhole_ && lastWholeGeneration_ == frame->base_generation;
-                image = std::make_shared<const Image>(compose_denoised(*frame, whole, base ? lastWhole_.get() : nullptr));
+                image = std::make_shared<const Image>(compose_denoised(*frame, *own, base ? lastWhole_.get() : nullptr));
                 if (image->empty()) continue;
             } else {
-                lastWhole_ = std::make_shared<const Image>(std::move(whole));
+                lastWhole_ = own;
                 lastWholeGeneration_ = frame->generation;
-                image = lastWhole_;
             }
             {
                 std::lock_guard<std::mutex> lock(mutex_);
@@ -114,6 +118,12 @@ void DenoiseWorker::run() {
             }
             QMetaObject::invokeMethod(
                 this, [this, frame, image] { Q_EMIT denoised(frame, image); }, Qt::QueuedConnection);
+            if (error >= 0)
+                QMetaObject::invokeMethod(
+                    this, [this, g = frame->generation, p = frame->update.stats.passes, error] {
+                        Q_EMIT shownError(g, p, error);
+                    },
+                    Qt::QueuedConnection);
         } catch (const std::exception&) {
             // Stopped by a drag, or failed: the raw picture stays on screen; a stopped frame
             // is asked for again when the drag ends.

@@ -11,6 +11,7 @@
 
 #include "image/image.h"
 #include "render/denoise_aovs.h"
+#include "render/shown_noise.h"
 
 namespace dp {
 struct RenderFrame;
@@ -51,6 +52,10 @@ public:
 Q_SIGNALS:
     /// The denoised augmented image of `frame`, at its size.
     void denoised(std::shared_ptr<const dp::RenderFrame> frame, std::shared_ptr<const dp::Image> image);
+    /// The estimated relative error of the denoised picture of a refined frame (request
+    /// `generation` after `passes` passes), over the pixels the objects change (ShownNoise);
+    /// sent after its `denoised`, once an earlier picture of the state allows it.
+    void shownError(quint64 generation, int passes, double error);
 
 private:
     void run();
@@ -68,6 +73,7 @@ private:
     /// the denoised edits of later frames.
     std::shared_ptr<const Image> lastWhole_;
     uint64_t lastWholeGeneration_ = 0;
+    ShownNoise noise_;  ///< worker thread
 };
 
 }  // namespace dp::ui

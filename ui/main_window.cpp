@@ -115,6 +115,9 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
             [this](std::shared_ptr<const RenderFrame> f, std::shared_ptr<const Image> image) {
                 viewport_->setDenoised(std::move(f), std::move(image));
             });
+    connect(denoiser_, &DenoiseWorker::shownError, this, [this](quint64 generation, int, double error) {
+        onShownError(generation, error);
+    });
     if (options_.denoise) {
         // On where the library is there; quietly off (its tooltip says why) where not.
         QString why;
@@ -484,19 +487,31 @@ void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
         writeExport(path, *f);
     }
     const RenderStats& s = f->update.stats;
-    lastError_ = s.estimated_rel_error;
+    // The error of what is shown: the denoised picture's where it is shown, else the raw one's.
+    const bool denoisedError = renderer_->denoise() && shownErrorGeneration_ == f->generation && !f->preview;
+    lastError_ = denoisedError ? shownError_ : s.estimated_rel_error;
     QString text = f->preview ? tr("Preview pass %1").arg(s.passes)
                    : options_.endless ? tr("Pass %1").arg(s.passes)
                    : f->update.target_passes > 0
                        ? tr("Pass %1 / %2").arg(s.passes).arg(f->update.target_passes)
                        : tr("Pass %1 (%2 s budget)").arg(s.passes).arg(f->update.time_budget_s);
     text += tr("  ·  %1 M photons/s").arg(s.photons_per_second / 1e6, 0, 'f', 2);
-    text += lastError_ >= 0 ? tr("  ·  est. error %1%").arg(lastError_ * 100, 0, 'f', 1)
+    text += lastError_ >= 0 ? tr("  ·  est. error %1%%2").arg(lastError_ * 100, 0, 'f', 1).arg(denoisedError ? tr(" denoised") : QString())
                             : tr("  ·  est. error -");
     if (!f->preview && options_.endless && s.mean_changed_value > 0) {
         text += tr(" (stops at %1%)").arg(renderer_->stopError(s) * 100, 0, 'f', 1);
     }
     status_->setText(text);
+}
+
+void MainWindow::onShownError(uint64_t generation, double error) {
+    if (generation != renderer_->generation() || !renderer_->denoise()) return;
+    shownError_ = error;
+    shownErrorGeneration_ = generation;
+    // The denoised picture the artist sees is clean: the refinement stops after its next pass.
+    const auto f = renderer_->lastFullFrame();
+    if (options_.endless && f && f->generation == generation && renderer_->shownClean(error, f->update.stats))
+        renderer_->finishClean();
 }
 
 void MainWindow::beginInteraction() {

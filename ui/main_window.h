@@ -162,6 +162,8 @@ private:
     /// there are any.
     bool showMissingFiles();
     void onFrame(const std::shared_ptr<const RenderFrame>& frame);
+    /// The denoiser's estimate of the shown picture's error (DenoiseWorker::shownError).
+    void onShownError(uint64_t generation, double error);
     void beginInteraction();
     void endInteraction();
     void updateTitle();
@@ -224,6 +226,8 @@ private:
     QProgressBar* exportProgress_ = nullptr;
     uint64_t failedGeneration_ = 0;  ///< renderer generation whose render failed (0: none)
     double lastError_ = -1;
+    double shownError_ = -1;            ///< the denoised picture's estimated error (DenoiseWorker::shownError)
+    uint64_t shownErrorGeneration_ = 0; ///< the request it is of
     bool interactive_ = false, editedWhileInteractive_ = false;
 };
 

@@ -45,6 +45,13 @@ public:
     void setDisplayExposure(double stops) { session_->scheduler().set_display_exposure(stops); }
     /// The estimated error an endless refinement of `stats` stops at (the status line says it).
     double stopError(const RenderStats& stats) const { return session_->scheduler().stop_error(stats); }
+    /// Whether the picture the viewer shows, estimated `shownError` after the frame with
+    /// `stats`, is clean enough for an endless refinement to stop (RenderScheduler::shown_clean).
+    bool shownClean(double shownError, const RenderStats& stats) const {
+        return session_->scheduler().shown_clean(shownError, stats);
+    }
+    /// Ends the latest request's endless refinement after its next pass, as clean.
+    void finishClean() { session_->finish_clean(requested_); }
     /// Whether the viewer shows refined frames denoised (it asks DenoiseWorker for them).
     void setDenoise(bool on) { denoise_ = on; }
     bool denoise() const { return denoise_; }

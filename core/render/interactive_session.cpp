@@ -80,6 +80,11 @@ void InteractiveSession::forget_picture() {
     cv_.notify_all();
 }
 
+void InteractiveSession::finish_clean(uint64_t generation) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    clean_generation_ = generation;
+}
+
 bool InteractiveSession::idle() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return !busy_ && !pending_;
@@ -257,8 +262,14 @@ void InteractiveSession::step() {
     bool finished = r.phase == Phase::Drag;
     if (full) {
         finished = r.settings.time_budget_s > 0 ? elapsed_s >= r.settings.time_budget_s : stats.passes >= r.settings.passes;
-        // Endless refinement has no budget: it stops once clean.
-        finished = finished || (r.request.endless && scheduler_.clean_enough(stats));
+        // Endless refinement has no budget: it stops once clean, by the renderer's estimate or
+        // by the viewer's of what it shows.
+        bool shown_clean;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            shown_clean = clean_generation_ == r.request.generation;
+        }
+        finished = finished || (r.request.endless && (shown_clean || scheduler_.clean_enough(stats)));
     }
     // While the viewer has not taken the last frame a newer one would only replace it; a
     // quick pass and a run's last frame are always sent.

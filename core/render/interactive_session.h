@@ -72,6 +72,10 @@ public:
     /// Drops the refined picture later edits are laid over (another project was opened: nothing
     /// of the old picture may show through the new one).
     void forget_picture();
+    /// Ends the refinement of request `generation` after its next pass, as clean (the viewer
+    /// judged the picture it shows clean: RenderScheduler::shown_clean). Nothing if another
+    /// request runs by then.
+    void finish_clean(uint64_t generation);
     /// No request waiting and nothing rendering.
     bool idle() const;
 
@@ -127,6 +131,7 @@ private:
     std::chrono::steady_clock::time_point pending_since_;
     std::atomic<bool> cancel_{false};
     bool quit_ = false, stop_ = false, forget_ = false, busy_ = false;
+    uint64_t clean_generation_ = 0;  ///< finish_clean()'s request
     bool drag_in_flight_ = false;  ///< a drag's one pass runs: newer drag requests follow it
     Timings timings_;
     std::atomic<int> scenes_built_{0};

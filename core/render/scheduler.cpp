@@ -46,6 +46,11 @@ bool RenderScheduler::clean_enough(const RenderStats& stats) const {
     return stats.estimated_rel_error <= stop_error(stats);
 }
 
+bool RenderScheduler::shown_clean(double shown_error, const RenderStats& stats) const {
+    if (stats.passes < kMinPassesBeforeStop || shown_error < 0) return false;
+    return shown_error <= stop_error(stats);
+}
+
 bool RenderScheduler::denoise_due(bool new_state, bool finished, double ms_since_last, double last_denoise_ms) {
     if (new_state || finished) return true;
     return ms_since_last >= std::max(2000.0, 3.0 * last_denoise_ms);

@@ -61,6 +61,10 @@ public:
     /// first (the estimate compares the halves of the passes), then the error at stop_error.
     bool clean_enough(const RenderStats& stats) const;
     static constexpr int kMinPassesBeforeStop = 8;
+    /// Whether an endless refinement may stop because the picture the viewer shows is clean:
+    /// `shown_error` estimates its error (ShownNoise: the denoised picture's, where the viewer
+    /// denoises), compared with the same stop_error, after the same few passes.
+    bool shown_clean(double shown_error, const RenderStats& stats) const;
 
     /// Whether a refined frame goes to the denoiser now: the first frame of a new state and the
     /// last frame of a refinement always; otherwise when `ms_since_last` (since the last frame

@@ -310,3 +310,16 @@ TEST_F(InteractiveSessionTest, AMaterialStrokeShowsTheObjectAtFullSizeRenderingO
     for (size_t i = 0; i < f->image().size(); ++i) kept += !(*f->shown_from_edit)[i] && f->image()[i] == base->image()[i];
     EXPECT_GT(kept, f->image().size() / 4);
 }
+
+TEST_F(InteractiveSessionTest, TheViewerCanEndAnEndlessRefinementAsClean) {
+    session().scheduler().set_noise_target(1e-9);  // never reached by the renderer's own estimate
+    ViewRequest r = request(project_);
+    r.endless = true;
+    session().reset(r);
+    ASSERT_TRUE(sink_.wait([&] { return sink_.frames.size() >= 3; }));
+    session().finish_clean(r.generation);
+    ASSERT_TRUE(sink_.stopped(r.generation));
+    std::lock_guard<std::mutex> lock(sink_.m_);
+    EXPECT_TRUE(sink_.stops.back().finished);
+    EXPECT_TRUE(sink_.frames.back()->update.finished);
+}

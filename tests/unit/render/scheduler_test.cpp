@@ -111,3 +111,17 @@ TEST(RenderScheduler, TheDenoiserTakesANewStateAndTheLastFrameAtOnceAndOthersEve
     EXPECT_FALSE(RenderScheduler::denoise_due(false, false, 5000, 2000));
     EXPECT_TRUE(RenderScheduler::denoise_due(false, false, 6000, 2000));
 }
+
+TEST(RenderScheduler, TheShownPictureIsCleanAtTheSameTargetAfterTheSameFewPasses) {
+    RenderScheduler s;
+    s.set_noise_target(0.02);
+    RenderStats st;
+    st.passes = RenderScheduler::kMinPassesBeforeStop;
+    st.estimated_rel_error = 0.06;  // the raw sums are far from it
+    EXPECT_FALSE(s.clean_enough(st));
+    EXPECT_TRUE(s.shown_clean(0.019, st));
+    EXPECT_FALSE(s.shown_clean(0.021, st));
+    EXPECT_FALSE(s.shown_clean(-1, st)) << "no estimate yet";
+    st.passes = RenderScheduler::kMinPassesBeforeStop - 1;
+    EXPECT_FALSE(s.shown_clean(0.001, st));
+}

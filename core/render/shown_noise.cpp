@@ -1,0 +1,63 @@
+#include "render/shown_noise.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "image/denoise.h"
+
+namespace dp {
+
+double shown_rel_error(const Image& later, int m, const Image& earlier, int k, const Image& photo, const Image& alpha,
+                       const Image& dL, float ceiling) {
+    const size_t n = later.size();
+    if (k <= 0 || m <= k || earlier.size() != n || photo.size() != n || alpha.size() != n || dL.size() != n) return -1;
+    double mean = 0;
+    for (size_t i = 0; i < n; ++i) mean += std::max(0.0f, luminance(photo[i]));
+    const double floor = 0.1 * mean / double(std::max<size_t>(1, n)) + 1e-12;
+    double e2 = 0, value = 0;
+    size_t changed = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const double before = luminance(photo[i]);
+        if (!(alpha[i].x > 0 || std::abs(luminance(dL[i])) > 0.01 * std::max(before, floor))) continue;
+        const double a = std::clamp(double(luminance(later[i])), 0.0, double(ceiling));
+        const double b = std::clamp(double(luminance(earlier[i])), 0.0, double(ceiling));
+        if (!std::isfinite(a) || !std::isfinite(b)) continue;
+        e2 += (a - b) * (a - b);
+        value += std::max(a, floor);
+        ++changed;
+    }
+    if (changed == 0 || value <= 0) return -1;
+    const double scale = double(k) / double(m - k);
+    return std::sqrt(e2 * scale / double(changed)) / (value / double(changed));
+}
+
+double ShownNoise::add(uint64_t generation, int passes, std::shared_ptr<const Image> shown, const Image& photo,
+                       const Image& alpha, const Image& dL) {
+    if (generation != generation_ || (!kept_.empty() && kept_.back().image->size() != shown->size())) {
+        kept_.clear();
+        generation_ = generation;
+    }
+    // The latest earlier picture with at most 3/4 of the passes: m - k of at least m / 4 keeps
+    // the difference's own noise from ruling the estimate.
+    const Kept* earlier = nullptr;
+    for (const Kept& k : kept_)
+        if (4 * k.passes <= 3 * passes) earlier = &k;
+    const double error = earlier ? shown_rel_error(*shown, passes, *earlier->image, earlier->passes, photo, alpha, dL,
+                                                   denoise_ceiling(photo))
+                                 : -1.0;
+    if (!kept_.empty() && kept_.back().passes >= passes) return error;  // an older picture came late
+    kept_.push_back({passes, std::move(shown)});
+    // Thinned where two kept pictures are closest in passes (ratio), the first and last kept.
+    while (kept_.size() > kKept) {
+        size_t drop = 1;
+        double closest = INFINITY;
+        for (size_t i = 1; i + 1 < kept_.size(); ++i) {
+            const double r = double(kept_[i + 1].passes) / double(kept_[i - 1].passes);
+            if (r < closest) closest = r, drop = i;
+        }
+        kept_.erase(kept_.begin() + ptrdiff_t(drop));
+    }
+    return error;
+}
+
+}  // namespace dp
