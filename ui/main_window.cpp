@@ -77,6 +77,7 @@ MainWindow::MainWindow(const StudioOptions& options, QWidget* parent)
     viewport_ = new Viewport(doc_, this);
     setCentralWidget(viewport_);
     status_ = new QLabel(tr("No project"));
+    status_->setObjectName("renderStatus");
     status_->setToolTip(tr("Passes done, photon rate and an estimate of the remaining noise"));
     statusBar()->addWidget(status_, 1);
     // Asset warnings stay visible beside the status until the project's files are fixed.

@@ -14,21 +14,27 @@ double shown_rel_error(const Image& later, int m, const Image& earlier, int k, c
     double mean = 0;
     for (size_t i = 0; i < n; ++i) mean += std::max(0.0f, luminance(photo[i]));
     const double floor = 0.1 * mean / double(std::max<size_t>(1, n)) + 1e-12;
-    double e2 = 0, value = 0;
-    size_t changed = 0;
+    std::vector<double> d2;
+    double value = 0;
     for (size_t i = 0; i < n; ++i) {
         const double before = luminance(photo[i]);
         if (!(alpha[i].x > 0 || std::abs(luminance(dL[i])) > 0.01 * std::max(before, floor))) continue;
         const double a = std::clamp(double(luminance(later[i])), 0.0, double(ceiling));
         const double b = std::clamp(double(luminance(earlier[i])), 0.0, double(ceiling));
         if (!std::isfinite(a) || !std::isfinite(b)) continue;
-        e2 += (a - b) * (a - b);
+        d2.push_back((a - b) * (a - b));
         value += std::max(a, floor);
-        ++changed;
     }
+    const size_t changed = d2.size();
     if (changed == 0 || value <= 0) return -1;
+    // The largest thousandth left out: a firefly in one of the two pictures would otherwise
+    // make the estimate jump from one picture to the next.
+    const size_t keep = changed - changed / 1000;
+    std::nth_element(d2.begin(), d2.begin() + ptrdiff_t(keep - 1), d2.end());
+    double e2 = 0;
+    for (size_t i = 0; i < keep; ++i) e2 += d2[i];
     const double scale = double(k) / double(m - k);
-    return std::sqrt(e2 * scale / double(changed)) / (value / double(changed));
+    return std::sqrt(e2 * scale / double(keep)) / (value / double(changed));
 }
 
 double ShownNoise::add(uint64_t generation, int passes, std::shared_ptr<const Image> shown, const Image& photo,

@@ -44,8 +44,9 @@ private:
 /// The estimate for one pair: `later` after m passes, `earlier` after k < m passes of the same
 /// refinement (see ShownNoise). Pixels change where alpha > 0 or the change on real surfaces is
 /// above 1% of the photo's value (values below a tenth of the photo's mean count as that);
-/// luminances are clamped at `ceiling` first (the sun in a mirror is not noise). -1 if no pixel
-/// changes or the sizes differ.
+/// luminances are clamped at `ceiling` first (the sun in a mirror is not noise), and the largest
+/// thousandth of the squared differences is left out (a firefly). -1 if no pixel changes or the
+/// sizes differ.
 double shown_rel_error(const Image& later, int m, const Image& earlier, int k, const Image& photo, const Image& alpha,
                        const Image& dL, float ceiling);
 
