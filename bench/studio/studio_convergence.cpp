@@ -1,6 +1,7 @@
 // dp_studio_bench --converge [RUNS]: after an object is moved (as a drop ends a drag), how long
 // until the picture the studio shows is within 5 % of a converged render of the new state, over
-// the pixels the objects change: raw frames (previews and refinement passes) and denoised ones.
+// the pixels the objects change, and its error 5 s and 30 s after the drop: raw frames (previews
+// and refinement passes) and denoised ones.
 // The truth is two independent long renders of each state, made after the runs (the studio
 // stopped), with seeds the studio never uses; their difference gives the truth's own noise,
 // which is taken out of each error in quadrature.
@@ -82,6 +83,18 @@ double time_to(const std::vector<Shown>& shown, const Truth& t, bool denoised, d
     return -1;
 }
 
+/// The error of the last picture of the kind asked for shown by `ms` after the edit; -1 if none.
+double error_at(const std::vector<Shown>& shown, const Truth& t, bool denoised, double ms) {
+    const Shown* last = nullptr;
+    for (const Shown& s : shown)
+        if (s.denoised == denoised && s.ms <= ms && s.image->width() == t.image.width() &&
+            s.image->height() == t.image.height())
+            last = &s;
+    if (!last) return -1;
+    const double e = image_error(*last->image, t.image, t.changed, t.ceiling).rel_rmse;
+    return std::sqrt(std::max(0.0, e * e - t.noise * t.noise));
+}
+
 }  // namespace
 
 int convergence(int runs, int truthPasses) {
@@ -132,7 +145,7 @@ int convergence(int runs, int truthPasses) {
         clock.start();
         w.document()->edit("bench move", run % 2 ? start : moved);
         generation = w.renderer()->generation();
-        QTest::qWait(25000);
+        QTest::qWait(30000);
         std::printf("  run %d: %zu pictures shown\n", run, shown[run].size());
     }
     QObject::disconnect(frames);
@@ -155,6 +168,7 @@ int convergence(int runs, int truthPasses) {
                     100 * truths[k].noise);
     }
     std::vector<double> raw, den, firstDenoised;
+    std::vector<double> at[2][2];  // [denoised][5 s, 30 s]
     for (int i = 0; i < runs; ++i) {
         // The first denoised picture of the new state, however noisy (the edit seen clean).
         for (const Shown& s : shown[i])
@@ -171,6 +185,11 @@ int convergence(int runs, int truthPasses) {
                     shown[i].size());
         if (r >= 0) raw.push_back(r);
         if (d >= 0) den.push_back(d);
+        for (int k = 0; k < 2; ++k)
+            for (int j = 0; j < 2; ++j) {
+                const double e = error_at(shown[i], truths[i % 2], k == 1, j ? 30000 : 5000);
+                if (e >= 0) at[k][j].push_back(e);
+            }
     }
     std::printf("%-44s median %7.0f ms (%zu of %d runs had one)\n", "first denoised picture after the drop",
                 percentile(firstDenoised, 0.5), firstDenoised.size(), runs);
@@ -178,5 +197,9 @@ int convergence(int runs, int truthPasses) {
                 percentile(raw, 0.5), raw.size(), runs);
     std::printf("%-44s median %7.0f ms (%zu of %d runs reached it)\n", "time to 5 % error, denoised picture",
                 percentile(den, 0.5), den.size(), runs);
+    for (int k = 0; k < 2; ++k)
+        for (int j = 0; j < 2; ++j)
+            std::printf("error of the last %-8s picture by %2d s       median %6.2f %% (%zu of %d runs had one)\n",
+                        k ? "denoised" : "raw", j ? 30 : 5, 100 * percentile(at[k][j], 0.5), at[k][j].size(), runs);
     return 0;
 }
