@@ -62,16 +62,26 @@ Image DenoiseWorker::denoise_now(const RenderFrame& f, const DenoiseAovs& aovs, 
 Image DenoiseWorker::compose_denoised(const RenderFrame& f, const Image& denoised, const Image* denoisedBase) {
     if (!f.composited() || !f.shown_from_edit) return denoised;
     const Image& shown = f.image();
-    const int OW = shown.width(), OH = shown.height(), W = denoised.width(), step = std::max(1, f.shown_step);
+    const int OW = shown.width(), OH = shown.height(), step = std::max(1, f.shown_step);
     const std::vector<uint8_t>& fromEdit = *f.shown_from_edit;
-    if (fromEdit.size() != shown.size() || OW * step > W || OH * step > denoised.height()) return {};
-    const bool base = denoisedBase && denoisedBase->width() == W && denoisedBase->height() == denoised.height();
+    if (fromEdit.size() != shown.size() || denoised.empty()) return {};
+    // The full render's size: the refined picture's (a quick pass is rendered smaller and its
+    // denoised pixels are resampled into the edit's region, as its raw ones were).
+    const bool base = denoisedBase && denoisedBase->width() >= OW * step && denoisedBase->height() >= OH * step;
+    const int W = base ? denoisedBase->width() : std::max(denoised.width(), OW * step);
+    const int H = base ? denoisedBase->height() : std::max(denoised.height(), OH * step);
+    const bool same = denoised.width() == W && denoised.height() == H;
+    if (same && (OW * step > W || OH * step > H)) return {};
+    const float sx = float(denoised.width()) / float(W), sy = float(denoised.height()) / float(H);
     Image out(OW, OH);
     for (int oy = 0; oy < OH; ++oy)
         for (int ox = 0; ox < OW; ++ox) {
             const size_t o = size_t(oy) * OW + ox;
-            const size_t i = size_t(oy * step + step / 2) * W + size_t(ox * step + step / 2);
-            out[o] = fromEdit[o] ? denoised[i] : base ? (*denoisedBase)[i] : shown[o];
+            const int x = ox * step + step / 2, y = oy * step + step / 2;
+            const size_t i = size_t(y) * W + size_t(x);
+            if (!fromEdit[o]) out[o] = base ? (*denoisedBase)[i] : shown[o];
+            else if (same) out[o] = denoised[i];
+            else out[o] = denoised.bilinear((float(x) + 0.5f) * sx - 0.5f, (float(y) + 0.5f) * sy - 0.5f);
         }
     return out;
 }
@@ -108,7 +118,7 @@ void DenoiseWorker::run() {
                 const bool base = lastWhole_ && lastWholeGeneration_ == frame->base_generation;
                 image = std::make_shared<const Image>(compose_denoised(*frame, *own, base ? lastWhole_.get() : nullptr));
                 if (image->empty()) continue;
-            } else {
+            } else if (!frame->preview) {
                 lastWhole_ = own;
                 lastWholeGeneration_ = frame->generation;
             }

@@ -45,8 +45,9 @@ public:
 
     /// What the viewport shows denoised for `frame`: `denoised` (the frame's own render,
     /// denoised) as it is, or for a frame laid over the refined picture, the same composite at
-    /// the shown size: the edit's pixels from `denoised`, the others from `denoisedBase` (the
-    /// refined frame's denoised image, if given) or the frame's own shown pixels.
+    /// the shown size: the edit's pixels from `denoised` (resampled where it is a quick pass's,
+    /// rendered smaller), the others from `denoisedBase` (the refined frame's denoised image, if
+    /// given) or the frame's own shown pixels.
     static Image compose_denoised(const RenderFrame& frame, const Image& denoised, const Image* denoisedBase);
 
 Q_SIGNALS:

@@ -469,7 +469,9 @@ void MainWindow::onFrame(const std::shared_ptr<const RenderFrame>& f) {
     // Larger frames than this are left raw: here the filter takes about 4 s a megapixel and
     // its buffers several times the frame.
     constexpr size_t kMaxDenoisePixels = 2500000;
-    if (renderer_->denoise() && !f->preview && f->update.image.size() <= kMaxDenoisePixels) {
+    // An edit's quick pass is denoised too (the edit seen clean within a second); a drag's
+    // frames are not: the filter would take longer than the frame.
+    if (renderer_->denoise() && !f->drag && f->update.image.size() <= kMaxDenoisePixels) {
         // A refined frame is denoised on its own thread, when the scheduler says (the first of
         // each new state at once, so the edit is seen clean within a pass).
         const bool newState = f->generation != denoisedGeneration_ || !sinceDenoise_.isValid();

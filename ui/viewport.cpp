@@ -111,9 +111,9 @@ void Viewport::rebuildImage() {
         shown_ = to_false_colour(frame_->dL(), exposure_, kDisplayMaxWidth);
     } else {
         // Denoised: a refined frame shows the denoised picture of its state, however many
-        // passes behind (laid over the refined picture as the frame is); previews stay raw.
+        // passes behind (laid over the refined picture as the frame is); drag frames stay raw.
         const Image* image = &frame_->image();
-        if (denoise_ && !frame_->preview && denoised_ &&
+        if (denoise_ && !frame_->drag && denoised_ &&
             denoisedGeneration_ == frame_->generation && denoised_->width() == frame_->image().width()) {
             image = denoised_.get();
             showingDenoised_ = true;

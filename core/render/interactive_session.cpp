@@ -285,6 +285,7 @@ void InteractiveSession::step() {
         u.source = nullptr;
         frame->photo = r.photo;
         frame->preview = !full;
+        frame->drag = r.phase == Phase::Drag;
         frame->generation = r.request.generation;
         frame->refined_passes = stats.passes;
         frame->scene = r.scene;

@@ -13,6 +13,7 @@ struct RenderFrame {
     RenderUpdate update;                 ///< the render of this request's state, as export writes it
     std::shared_ptr<const Image> photo;  ///< full-resolution photo (the "photo" view)
     bool preview = false;                ///< a quick pass at reduced size (an edit in progress)
+    bool drag = false;                   ///< of which a drag's frame (one pass while the hand moves)
     uint64_t generation = 0;             ///< which request it answers
     /// What the viewer shows, where it differs from `update`: an edit's preview or early
     /// refinement passes laid over the last refined picture outside the region the edit can

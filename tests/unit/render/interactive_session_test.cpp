@@ -219,7 +219,9 @@ TEST_F(InteractiveSessionTest, TheLatestRequestWinsAndStopDeliversNothingMore) {
         bool seen_b = false;
         for (const auto& f : sink_.frames) {
             seen_b |= f->generation == b.generation;
-            if (seen_b) EXPECT_EQ(f->generation, b.generation);
+            if (seen_b) {
+                EXPECT_EQ(f->generation, b.generation);
+            }
         }
     }
     ViewRequest c = request(slow);
