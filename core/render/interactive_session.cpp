@@ -198,7 +198,8 @@ void InteractiveSession::start(const ViewRequest& r, Clock::time_point asked) {
     t0 = Clock::now();
     if (base_) run->region = states_.region(base_->generation, p, *quick_);
     timings.region = ms_since(t0);
-    if (r.interactive && run->region) frame_the_region(*run, change == Change::Material);
+    // Only the region is shown of a quick pass laid over the refined picture: only it is rendered.
+    if (run->region) frame_the_region(*run, r.interactive && change == Change::Material);
     {
         std::lock_guard<std::mutex> lock(mutex_);
         timings.dragFrame = timings_.dragFrame;

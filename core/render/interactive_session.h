@@ -105,8 +105,8 @@ private:
     void start(const ViewRequest& r, std::chrono::steady_clock::time_point asked);
     void step();
     void start_full();
-    /// A drag frame renders only the pixels its region covers (at full size for a material
-    /// stroke whose region is small enough).
+    /// A quick pass or drag frame laid over the refined picture renders only the pixels its
+    /// region covers (a material stroke's at full size where its region is small enough).
     void frame_the_region(Run& run, bool material);
     bool replaced() const;
 
