@@ -37,6 +37,13 @@ void DenoiseWorker::request(std::shared_ptr<const RenderFrame> frame) {
     cv_.notify_all();
 }
 
+void DenoiseWorker::dropStale() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_.reset();
+    stale_ = true;
+    cancel_.store(true);
+}
+
 double DenoiseWorker::lastMs() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return lastMs_;
@@ -95,6 +102,7 @@ void DenoiseWorker::run() {
             if (quit_) return;
             frame = std::move(pending_);
             cancel_.store(false);
+            stale_ = false;
         }
         if (!frame->scene) continue;
         const auto t0 = std::chrono::steady_clock::now();
@@ -138,7 +146,7 @@ void DenoiseWorker::run() {
             // Stopped by a drag, or failed: the raw picture stays on screen; a stopped frame
             // is asked for again when the drag ends.
             std::lock_guard<std::mutex> lock(mutex_);
-            if (cancel_.load() && !pending_) pending_ = frame;
+            if (cancel_.load() && !pending_ && !stale_) pending_ = frame;
         }
     }
 }

@@ -36,6 +36,8 @@ public:
     /// While paused (a drag) nothing runs and a denoise in flight is stopped: the drag's
     /// previews need the cores. The last request runs once unpaused.
     void setPaused(bool paused);
+    /// Drops the request waiting and stops the denoise in flight: an edit made them stale.
+    void dropStale();
     /// Milliseconds the last denoise took (0 before the first).
     double lastMs() const;
     /// The denoised augmented image of `frame` at its size, at the interactive quality;
@@ -66,6 +68,7 @@ private:
     std::condition_variable cv_;
     std::shared_ptr<const RenderFrame> pending_;
     bool quit_ = false, paused_ = false;
+    bool stale_ = false;  ///< dropStale() stopped the denoise in flight: it is not asked again
     std::atomic<bool> cancel_{false};
     double lastMs_ = 0;
     std::shared_ptr<const RenderScene> aovScene_;  ///< worker thread: the scene `aovs_` belongs to

@@ -3,6 +3,7 @@
 #include <QLabel>
 #include <QToolButton>
 
+#include "denoise_worker.h"
 #include "document.h"
 #include "main_window.h"
 #include "missing_files_dialog.h"
@@ -88,6 +89,8 @@ bool MainWindow::requestRender(bool interactive) {
     }
     waiting_ = false;
     renderedPaths_ = std::move(paths);
+    // A denoise of the state before the edit would only take the cores from its quick pass.
+    denoiser_->dropStale();
     renderer_->request(doc_->project(), interactive);
     return true;
 }
