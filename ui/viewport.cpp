@@ -44,9 +44,11 @@ void Viewport::setDenoised(std::shared_ptr<const RenderFrame> frame, std::shared
     if (!frame || !image) return;
     // An older pass of the same state never replaces a newer one's.
     if (frame->generation == denoisedGeneration_ && frame->update.stats.passes < denoisedPasses_) return;
+    if (frame->generation == denoisedGeneration_ && frame->preview && !denoisedPreview_) return;
     denoised_ = std::move(image);
     denoisedGeneration_ = frame->generation;
     denoisedPasses_ = frame->update.stats.passes;
+    denoisedPreview_ = frame->preview;
     if (frame_ && frame_->generation == denoisedGeneration_) rebuildImage();
 }
 
@@ -114,7 +116,8 @@ void Viewport::rebuildImage() {
         // passes behind (laid over the refined picture as the frame is); drag frames stay raw.
         const Image* image = &frame_->image();
         if (denoise_ && !frame_->drag && denoised_ &&
-            denoisedGeneration_ == frame_->generation && denoised_->width() == frame_->image().width()) {
+            denoisedGeneration_ == frame_->generation && (!denoisedPreview_ || frame_->preview) &&
+            denoised_->width() == frame_->image().width()) {
             image = denoised_.get();
             showingDenoised_ = true;
         }

@@ -118,6 +118,9 @@ protected:
     std::shared_ptr<const Image> denoised_;
     uint64_t denoisedGeneration_ = 0;
     int denoisedPasses_ = 0;
+    /// The denoised picture is a quick pass's: shown over that pass only, never over the
+    /// full-size frames that follow (its half size and eighth of the photons show through).
+    bool denoisedPreview_ = false;
     QImage shown_;
     QSize renderSize_;
     ViewMode mode_ = ViewMode::Augmented;
