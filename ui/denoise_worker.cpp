@@ -118,7 +118,7 @@ void DenoiseWorker::run() {
             // against earlier ones of the state (composited frames show it in the edit's pixels).
             const auto own = std::make_shared<const Image>(std::move(result));
             const double error = noise_.add(frame->generation, frame->update.stats.passes, own, frame->scene->photo(),
-                                            frame->update.alpha, frame->update.dL);
+                                            frame->update.alpha, frame->update.image);
             std::shared_ptr<const Image> image = own;
             if (frame->composited()) {
                 // The edit's pixels denoised; the rest is the refined picture's, denoised

@@ -31,6 +31,12 @@ ImageError image_error(const Image& a, const Image& truth, const std::vector<boo
     return e;
 }
 
+float value_floor(const Image& photo) {
+    double mean = 0;
+    for (size_t i = 0; i < photo.size(); ++i) mean += std::max(0.0f, luminance(photo[i]));
+    return float(0.1 * mean / double(std::max<size_t>(1, photo.size()))) + 1e-12f;
+}
+
 std::vector<bool> changed_pixels(const Image& photo, const Image& truth, const Image& alpha,
                                  float threshold, float floor) {
     if (photo.size() != truth.size() || (!alpha.empty() && alpha.size() != truth.size()))

@@ -24,6 +24,11 @@ ImageError image_error(const Image& a, const Image& truth, const std::vector<boo
 /// The luminance below which the fraction `q` of the image's pixels lie (0 for an empty image).
 float luminance_quantile(const Image& image, double q);
 
+/// A tenth of the photo's mean luminance (negative values as 0): pixel values below it count as
+/// this much when a change is judged against a pixel's value, so that a black pixel's change is
+/// measured against the image, not against zero.
+float value_floor(const Image& photo);
+
 /// The pixels a virtual object changes: seen through it (alpha > 0) or with a luminance change
 /// from the photograph larger than `threshold` times the photo's (floored at `floor`).
 std::vector<bool> changed_pixels(const Image& photo, const Image& truth, const Image& alpha,

@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "base/rng.h"
+#include "image/image_metrics.h"
 
 namespace dp {
 
@@ -36,9 +37,7 @@ StandardDifferentialRenderer::StandardDifferentialRenderer(std::shared_ptr<const
 void StandardDifferentialRenderer::build_focus() {
     const Image& photo = scene_->photo();
     const int W = photo.width(), H = photo.height();
-    double mean = 0;
-    for (size_t i = 0; i < photo.size(); ++i) mean += std::max(0.0f, luminance(photo[i]));
-    const double floor = 0.1 * mean / double(std::max<size_t>(1, photo.size())) + 1e-12;
+    const double floor = value_floor(photo);
     std::vector<uint8_t> changed(photo.size(), 0);
     for (size_t i = 0; i < photo.size(); ++i) {
         const double n = std::max<uint32_t>(1, samples_[i]);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "image/image_metrics.h"
 #include "render/direct_change.h"
 #include "assets/scattering.h"
 
@@ -42,9 +43,7 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std:
     plan.tile_splat_min.assign(tiles, INFINITY);
     plan.tile_has_object.assign(tiles, 0);
     const Image& photo = s.photo();
-    double mean = 0;
-    for (size_t i = 0; i < n; ++i) mean += std::max(0.0f, luminance(photo[i]));
-    plan.value_floor = float(0.1 * mean / double(std::max<size_t>(1, n))) + 1e-12f;
+    plan.value_floor = value_floor(photo);
     const float floor = plan.value_floor;
     if (!s.has_virtual()) return plan;
 

@@ -31,7 +31,7 @@ struct InteractiveSession::Run {
     std::shared_ptr<const EditRegion> region;
     std::optional<PixelWindow> window;  ///< a drag frame renders its edit's region only
     std::shared_ptr<const Image> photo;
-    Clock::time_point asked, begun, started;  ///< reset() called; the thread took it; first pass began
+    Clock::time_point begun, started;  ///< the thread took the request; the first pass began
     bool may_be_base = true;  ///< false once forget_picture() was called during it
 };
 
@@ -194,7 +194,6 @@ void InteractiveSession::start(const ViewRequest& r, Clock::time_point asked) {
     run->scene = quick_;
     run->settings = quick.settings;
     run->photo = scenes_->photo();
-    run->asked = asked;
     t0 = Clock::now();
     if (base_) run->region = states_.region(base_->generation, p, *quick_);
     timings.region = ms_since(t0);
@@ -335,7 +334,6 @@ void InteractiveSession::start_full() {
     run->settings = RenderScheduler::refinement(p.render, quick.request.endless);
     run->region = quick.region;
     run->photo = quick.photo;
-    run->asked = quick.asked;
     run->begun = quick.begun;
     run->may_be_base = quick.may_be_base;
     run_ = std::move(run);

@@ -42,8 +42,7 @@ double RenderScheduler::stop_error(const RenderStats& stats) const {
 }
 
 bool RenderScheduler::clean_enough(const RenderStats& stats) const {
-    if (stats.passes < kMinPassesBeforeStop || stats.estimated_rel_error < 0) return false;
-    return stats.estimated_rel_error <= stop_error(stats);
+    return shown_clean(stats.estimated_rel_error, stats);
 }
 
 bool RenderScheduler::shown_clean(double shown_error, const RenderStats& stats) const {

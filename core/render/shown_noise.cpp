@@ -4,26 +4,25 @@
 #include <cmath>
 
 #include "image/denoise.h"
+#include "image/image_metrics.h"
 
 namespace dp {
 
 double shown_rel_error(const Image& later, int m, const Image& earlier, int k, const Image& photo, const Image& alpha,
-                       const Image& dL, float ceiling) {
+                       const Image& raw, float ceiling) {
     const size_t n = later.size();
-    if (k <= 0 || m <= k || earlier.size() != n || photo.size() != n || alpha.size() != n || dL.size() != n) return -1;
-    double mean = 0;
-    for (size_t i = 0; i < n; ++i) mean += std::max(0.0f, luminance(photo[i]));
-    const double floor = 0.1 * mean / double(std::max<size_t>(1, n)) + 1e-12;
+    if (k <= 0 || m <= k || earlier.size() != n || photo.size() != n || alpha.size() != n || raw.size() != n) return -1;
+    const float floor = value_floor(photo);
+    const std::vector<bool> changes = changed_pixels(photo, raw, alpha, 0.01f, floor);
     std::vector<double> d2;
     double value = 0;
     for (size_t i = 0; i < n; ++i) {
-        const double before = luminance(photo[i]);
-        if (!(alpha[i].x > 0 || std::abs(luminance(dL[i])) > 0.01 * std::max(before, floor))) continue;
+        if (!changes[i]) continue;
         const double a = std::clamp(double(luminance(later[i])), 0.0, double(ceiling));
         const double b = std::clamp(double(luminance(earlier[i])), 0.0, double(ceiling));
         if (!std::isfinite(a) || !std::isfinite(b)) continue;
         d2.push_back((a - b) * (a - b));
-        value += std::max(a, floor);
+        value += std::max(a, double(floor));
     }
     const size_t changed = d2.size();
     if (changed == 0 || value <= 0) return -1;
@@ -38,7 +37,7 @@ double shown_rel_error(const Image& later, int m, const Image& earlier, int k, c
 }
 
 double ShownNoise::add(uint64_t generation, int passes, std::shared_ptr<const Image> shown, const Image& photo,
-                       const Image& alpha, const Image& dL) {
+                       const Image& alpha, const Image& raw) {
     if (generation != generation_ || (!kept_.empty() && kept_.back().image->size() != shown->size())) {
         kept_.clear();
         generation_ = generation;
@@ -48,7 +47,7 @@ double ShownNoise::add(uint64_t generation, int passes, std::shared_ptr<const Im
     const Kept* earlier = nullptr;
     for (const Kept& k : kept_)
         if (4 * k.passes <= 3 * passes) earlier = &k;
-    const double error = earlier ? shown_rel_error(*shown, passes, *earlier->image, earlier->passes, photo, alpha, dL,
+    const double error = earlier ? shown_rel_error(*shown, passes, *earlier->image, earlier->passes, photo, alpha, raw,
                                                    denoise_ceiling(photo))
                                  : -1.0;
     if (!kept_.empty() && kept_.back().passes >= passes) return error;  // an older picture came late

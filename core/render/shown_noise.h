@@ -20,12 +20,12 @@ namespace dp {
 /// RenderStats::estimated_rel_error.
 class ShownNoise {
 public:
-    /// The picture shown after `passes` passes of request `generation` (same size as `alpha`,
-    /// `dL` and `photo`, the render's layers and its photo). Returns the estimated relative
+    /// The picture shown after `passes` passes of request `generation` (same size as `photo`,
+    /// `alpha` and `raw`: the render's photo, coverage and raw augmented image). Returns the estimated relative
     /// error of `shown`, or -1 while no earlier picture of the state has at most 3/4 of its
     /// passes.
     double add(uint64_t generation, int passes, std::shared_ptr<const Image> shown, const Image& photo,
-               const Image& alpha, const Image& dL);
+               const Image& alpha, const Image& raw);
     /// Forgets the pictures kept (another project).
     void clear() { kept_.clear(); }
 
@@ -42,12 +42,12 @@ private:
 };
 
 /// The estimate for one pair: `later` after m passes, `earlier` after k < m passes of the same
-/// refinement (see ShownNoise). Pixels change where alpha > 0 or the change on real surfaces is
-/// above 1% of the photo's value (values below a tenth of the photo's mean count as that);
+/// refinement (see ShownNoise). The pixels judged are those the raw render changes
+/// (changed_pixels: alpha > 0, or more than 1 % of the photo's value, floored at value_floor);
 /// luminances are clamped at `ceiling` first (the sun in a mirror is not noise), and the largest
 /// thousandth of the squared differences is left out (a firefly). -1 if no pixel changes or the
 /// sizes differ.
 double shown_rel_error(const Image& later, int m, const Image& earlier, int k, const Image& photo, const Image& alpha,
-                       const Image& dL, float ceiling);
+                       const Image& raw, float ceiling);
 
 }  // namespace dp

@@ -83,7 +83,7 @@ TEST(ShownNoise, MatchesTheNoiseOfRawAndFilteredPictures) {
             const int m = 2 * k;
             Image later = r.picture(m), earlier = r.picture(k);
             if (filtered) later = box3(later), earlier = box3(earlier);
-            const double estimate = shown_rel_error(later, m, earlier, k, r.photo, r.alpha, r.dL, 100.0f);
+            const double estimate = shown_rel_error(later, m, earlier, k, r.photo, r.alpha, r.truth, 100.0f);
             const double truth = r.true_error(later, filtered ? &filtered_truth : nullptr);
             EXPECT_NEAR(estimate, truth, 0.15 * truth) << "filtered " << filtered << " passes " << m;
         }
@@ -94,16 +94,16 @@ TEST(ShownNoise, FallsAsThePictureImprovesAndWaitsForAnEarlierPicture) {
     const Refinement r(64, 0.3f, 5);
     ShownNoise noise;
     auto shown = [&](int n) { return std::make_shared<const Image>(r.picture(n)); };
-    EXPECT_LT(noise.add(1, 4, shown(4), r.photo, r.alpha, r.dL), 0);  // nothing to compare with
-    EXPECT_LT(noise.add(1, 5, shown(5), r.photo, r.alpha, r.dL), 0);  // 4 > 3/4 of 5
-    const double at8 = noise.add(1, 8, shown(8), r.photo, r.alpha, r.dL);
+    EXPECT_LT(noise.add(1, 4, shown(4), r.photo, r.alpha, r.truth), 0);  // nothing to compare with
+    EXPECT_LT(noise.add(1, 5, shown(5), r.photo, r.alpha, r.truth), 0);  // 4 > 3/4 of 5
+    const double at8 = noise.add(1, 8, shown(8), r.photo, r.alpha, r.truth);
     double last = at8;
     for (int n : {12, 16, 24, 32, 48, 64}) {
-        const double e = noise.add(1, n, shown(n), r.photo, r.alpha, r.dL);
+        const double e = noise.add(1, n, shown(n), r.photo, r.alpha, r.truth);
         EXPECT_NEAR(e, r.true_error(r.picture(n)), 0.25 * r.true_error(r.picture(n))) << n;
         last = e;
     }
     EXPECT_LT(last, 0.5 * at8);
     // Another request's pictures are never compared with this one's.
-    EXPECT_LT(noise.add(2, 64, shown(64), r.photo, r.alpha, r.dL), 0);
+    EXPECT_LT(noise.add(2, 64, shown(64), r.photo, r.alpha, r.truth), 0);
 }
