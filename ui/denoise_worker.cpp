@@ -107,9 +107,10 @@ void DenoiseWorker::run() {
         if (!frame->scene) continue;
         const auto t0 = std::chrono::steady_clock::now();
         try {
-            // The guides are one ray per pixel: once per scene, not per pass.
+            // The guides are one ray per pixel: once per scene, not per pass; an edit stops them.
             if (aovScene_ != frame->scene) {
-                aovs_ = denoise_aovs(*frame->scene);
+                aovScene_.reset();
+                aovs_ = denoise_aovs(*frame->scene, &cancel_);
                 aovScene_ = frame->scene;
             }
             Image result = denoise_now(*frame, aovs_, &cancel_);

@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <stdexcept>
+
 #include "assets/scattering.h"
 
 namespace dp {
@@ -38,10 +40,11 @@ vec3 albedo_along(const RenderScene& s, Ray ray, Hit hit) {
 
 }  // namespace
 
-DenoiseAovs denoise_aovs(const RenderScene& s) {
+DenoiseAovs denoise_aovs(const RenderScene& s, const std::atomic<bool>* cancel) {
     const int W = s.photo().width(), H = s.photo().height();
     DenoiseAovs out{Image(W, H), Image(W, H)};
     tbb::parallel_for(0, H, [&](int y) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return;
         for (int x = 0; x < W; ++x) {
             const Ray ray = s.camera_ray(float(x), float(y));
             const Hit hit = s.intersect(ray);
@@ -51,6 +54,7 @@ DenoiseAovs denoise_aovs(const RenderScene& s) {
             out.normal.at(x, y) = facing_normal(glm::normalize(n), ray.dir);
         }
     });
+    if (cancel && cancel->load()) throw std::runtime_error("denoiser guides cancelled");
     return out;
 }
 

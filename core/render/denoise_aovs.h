@@ -1,4 +1,6 @@
 #pragma once
+#include <atomic>
+
 #include "assets/render_scene.h"
 #include "image/image.h"
 
@@ -14,7 +16,8 @@ struct DenoiseAovs {
 /// can trust them. Albedo: a real proxy's or virtual diffuse object's reflectance at the hit;
 /// for mirrors and glass, that of the diffuse surface seen in them (up to four specular
 /// bounces) times the mirror's reflectance or the glass's tint, or just those where the chain
-/// leaves the scene. Normal: the first hit's.
-DenoiseAovs denoise_aovs(const RenderScene& scene);
+/// leaves the scene. Normal: the first hit's. `cancel` becoming true stops the work between
+/// rows (std::runtime_error), so that an edit does not wait for the guides of a stale scene.
+DenoiseAovs denoise_aovs(const RenderScene& scene, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace dp

@@ -5,6 +5,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <random>
+#include <thread>
+#include <atomic>
+#include <chrono>
 
 #include "image/image_metrics.h"
 #include "image_test_util.h"
@@ -211,4 +214,27 @@ TEST(Denoise, SplittingTheSignBeatsAnOffset) {
     const double shift = image_error(offset, s.clean).rmse;
     std::printf("rmse: raw %.4f  split %.4f  offset %.4f\n", image_error(s.noisy, s.clean).rmse, split, shift);
     EXPECT_LT(split, shift);
+}
+
+// The library notes a stop asked for mid-run but may finish a one-tile image anyway; the result
+// of a stopped run must never come back as if it were whole.
+TEST(Denoise, AStopAskedForBeforeOrDuringTheRunEndsItWithoutAResult) {
+    std::string why;
+    if (!denoiser_available(&why)) GTEST_SKIP() << why;
+    const int W = 640, H = 360;  // one tile, about 0.25 s on two cores: the stop lands inside
+    Image noisy(W, H), albedo(W, H, vec3(0.5f)), normal(W, H, vec3(0, 0, 1));
+    std::mt19937 rng(3);
+    std::normal_distribution<float> gauss(0.0f, 0.1f);
+    for (size_t i = 0; i < noisy.size(); ++i) noisy[i] = glm::abs(vec3(gauss(rng), gauss(rng), gauss(rng)));  // one filter run
+    std::atomic<bool> stop{true};
+    EXPECT_THROW(denoise_change(noisy, albedo, normal, 10.0f, DenoiseQuality::Interactive, &stop), std::runtime_error);
+    stop.store(false);
+    std::thread stopper([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(40));
+        stop.store(true);
+    });
+    EXPECT_THROW(denoise_change(noisy, albedo, normal, 10.0f, DenoiseQuality::Interactive, &stop), std::runtime_error);
+    stopper.join();
+    stop.store(false);
+    EXPECT_EQ(denoise_change(noisy, albedo, normal, 10.0f, DenoiseQuality::Interactive, &stop).width(), W);
 }

@@ -43,3 +43,15 @@ TEST(DenoiseAovs, AlbedoAndNormalFollowWhatEachPixelCentreSees) {
         ASSERT_TRUE(len == 0 || std::abs(len - 1) < 1e-4f) << "pixel " << i;
     }
 }
+
+TEST(DenoiseAovs, AStopAskedForEndsTheWorkWithoutAResult) {
+    SunProbe sun;
+    Project p = look_at_project(vec3(0, 1.6f, 4), vec3(0, 0.6f, 0), 50);
+    p.real.push_back(ground_plane(vec3(0.4f)));
+    auto scene = build(p, Image(64, 48, vec3(0.3f)), sun.image());
+    std::atomic<bool> cancel{true};
+    EXPECT_THROW(denoise_aovs(*scene, &cancel), std::runtime_error);
+    cancel.store(false);
+    const DenoiseAovs aovs = denoise_aovs(*scene, &cancel);
+    EXPECT_NEAR(aovs.albedo.at(32, 40).x, 0.4f, 1e-5f);
+}
