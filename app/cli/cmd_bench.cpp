@@ -116,7 +116,7 @@ std::unique_ptr<PassRenderer> make_renderer(const std::string& method, BenchScen
 }
 
 
-/// Error of the denoised image (render --denoise's, at final quality) against the truth, and
+/// Error of the denoised image (render --denoise's, its quality chosen by the render's time) against the truth, and
 /// the filter's time (not counted in the render's time).
 struct DenoisedError {
     ImageError changed, objects, real;
@@ -126,8 +126,9 @@ struct DenoisedError {
 DenoisedError denoised_error(BenchScene& b, const PassRenderer& r, const Image& img) {
     if (!b.aovs) b.aovs = denoise_aovs(*b.scene);
     const auto t0 = std::chrono::steady_clock::now();
-    const Image d = denoise_augmented(b.scene->photo(), img, r.alpha_layer(), r.dL_layer(), b.aovs->albedo,
-                                      b.aovs->normal, DenoiseQuality::Final);
+    const Image& photo = b.scene->photo();
+    const Image d = denoise_augmented(photo, img, r.alpha_layer(), r.dL_layer(), b.aovs->albedo, b.aovs->normal,
+                                      denoise_quality_for(r.stats().seconds, photo.size()));
     DenoisedError e;
     e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     e.changed = image_error(d, b.truth, b.changed, b.ceiling);

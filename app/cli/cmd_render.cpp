@@ -89,9 +89,11 @@ Denoised denoise_result(const RenderScene& scene, const RenderUpdate& u, bool wi
     const bool same = photo.width() == w && photo.height() == h;
     if (!same) aovs = {resample(aovs.albedo, w, h), resample(aovs.normal, w, h)};
     Denoised d;
+    // The filter's quality follows the render's time: a quick render is not held up by it.
+    const DenoiseQuality quality = denoise_quality_for(u.stats.seconds, size_t(w) * size_t(h));
     d.image = denoise_augmented(same ? photo : resample(photo, w, h), u.image, u.alpha, u.dL, aovs.albedo,
-                                aovs.normal);
-    if (with_dL) d.dL = denoise_change(u.dL, aovs.albedo, aovs.normal, denoise_ceiling(photo));
+                                aovs.normal, quality);
+    if (with_dL) d.dL = denoise_change(u.dL, aovs.albedo, aovs.normal, denoise_ceiling(photo), quality);
     return d;
 }
 

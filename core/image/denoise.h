@@ -32,9 +32,19 @@ bool denoiser_available(std::string* why = nullptr);
 /// a mirror) is not noise: it keeps its raw value, and the filter sees it clamped so that its
 /// energy does not spread. Every value returned is finite. Throws DenoiserUnavailable, or
 /// std::invalid_argument for mismatched sizes, std::runtime_error when the library fails.
-/// How hard the filter works: Final is the library's best (renders written to disk);
-/// Interactive its balanced network, about half the time, for a viewer.
+/// How hard the filter works. Final: the library's best network, the change's signed parts
+/// filtered apart (two runs). Interactive: its fast network and, in denoise_augmented, the real
+/// surfaces' change demodulated by the photo (one run): about an eighth of the time, a few
+/// percent more error.
 enum class DenoiseQuality { Final, Interactive };
+
+/// The share of a render's time its denoise may take.
+inline constexpr double kDenoiseShare = 0.1;
+
+/// Final where its predicted cost for an image of `pixels` (from the filter runs measured so far
+/// in this process, or two-core figures before the first) is at most kDenoiseShare of
+/// `render_seconds`, else Interactive: a short render is not held up by its filter.
+DenoiseQuality denoise_quality_for(double render_seconds, size_t pixels);
 
 /// `cancel` becoming true stops the filter (std::runtime_error).
 Image denoise_change(const Image& change, const Image& albedo = {}, const Image& normal = {},

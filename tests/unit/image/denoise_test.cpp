@@ -76,13 +76,20 @@ TEST(Denoise, ASignedNoisyChangeLosesHalfItsErrorAndKeepsSignAndEnergy) {
     EXPECT_GT(d.at(115, 55).x, 0);
 }
 
-TEST(Denoise, ThePhotoStaysBitExactFarFromTheChange) {
+// The augmented photo's tests hold at both qualities: Final filters the change's signed parts
+// apart, Interactive the change demodulated by the photo in one run.
+class DenoiseAtEachQuality : public ::testing::TestWithParam<DenoiseQuality> {};
+INSTANTIATE_TEST_SUITE_P(Denoise, DenoiseAtEachQuality,
+                         ::testing::Values(DenoiseQuality::Final, DenoiseQuality::Interactive),
+                         [](const auto& info) { return info.param == DenoiseQuality::Final ? "Final" : "Interactive"; });
+
+TEST_P(DenoiseAtEachQuality, ThePhotoStaysBitExactFarFromTheChange) {
     std::string why;
     if (!denoiser_available(&why)) GTEST_SKIP() << why;
     const Synthetic s = make_scene(11);
     Image augmented = s.photo;
     for (size_t i = 0; i < augmented.size(); ++i) augmented[i] += s.noisy[i];
-    const Image out = denoise_augmented(s.photo, augmented, Image(), Image(), s.albedo, s.normal);
+    const Image out = denoise_augmented(s.photo, augmented, Image(), Image(), s.albedo, s.normal, GetParam());
     const Image change = denoise_change(s.noisy, s.albedo, s.normal);
     size_t far = 0;
     for (int y = 0; y < kH; ++y)
@@ -103,7 +110,7 @@ TEST(Denoise, ThePhotoStaysBitExactFarFromTheChange) {
 
 // A virtual object's own radiance is denoised apart from the floor's change: its noise falls,
 // its mean stays, and the floor around it is cleaned all the same.
-TEST(Denoise, AnObjectsRadianceIsDenoisedApartFromTheFloor) {
+TEST_P(DenoiseAtEachQuality, AnObjectsRadianceIsDenoisedApartFromTheFloor) {
     std::string why;
     if (!denoiser_available(&why)) GTEST_SKIP() << why;
     const Synthetic s = make_scene(3);
@@ -124,7 +131,7 @@ TEST(Denoise, AnObjectsRadianceIsDenoisedApartFromTheFloor) {
                 alpha.at(x, y) = vec3(1);
                 albedo.at(x, y) = vec3(0.6f, 0.5f, 0.4f);
             }
-    const Image out = denoise_augmented(s.photo, augmented, alpha, Image(), albedo, s.normal);
+    const Image out = denoise_augmented(s.photo, augmented, alpha, Image(), albedo, s.normal, GetParam());
     std::vector<bool> floor(out.size()), on(out.size());
     double mean_out = 0, n = 0;
     for (int y = 0; y < kH; ++y)
@@ -142,7 +149,7 @@ TEST(Denoise, AnObjectsRadianceIsDenoisedApartFromTheFloor) {
 
 // A bright object standing in the shadow: given dL, only the floor's change is filtered, so the
 // object's radiance does not spread into the shadow around it, and the floor is still cleaned.
-TEST(Denoise, ABrightObjectDoesNotBleedIntoTheShadowBesideIt) {
+TEST_P(DenoiseAtEachQuality, ABrightObjectDoesNotBleedIntoTheShadowBesideIt) {
     std::string why;
     if (!denoiser_available(&why)) GTEST_SKIP() << why;
     const Synthetic s = make_scene(5);
@@ -160,7 +167,7 @@ TEST(Denoise, ABrightObjectDoesNotBleedIntoTheShadowBesideIt) {
                 dL.at(x, y) = vec3(0);
                 albedo.at(x, y) = vec3(0.8f);
             }
-    const Image out = denoise_augmented(s.photo, augmented, alpha, dL, albedo, s.normal);
+    const Image out = denoise_augmented(s.photo, augmented, alpha, dL, albedo, s.normal, GetParam());
     std::vector<bool> ring(out.size()), floor(out.size());
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
@@ -237,4 +244,11 @@ TEST(Denoise, AStopAskedForBeforeOrDuringTheRunEndsItWithoutAResult) {
     stopper.join();
     stop.store(false);
     EXPECT_EQ(denoise_change(noisy, albedo, normal, 10.0f, DenoiseQuality::Interactive, &stop).width(), W);
+}
+
+// A short render is not held up by its filter; a long one gets the best network.
+TEST(Denoise, TheQualityFollowsTheRendersTime) {
+    EXPECT_EQ(denoise_quality_for(0.01, 640 * 360), DenoiseQuality::Interactive);
+    EXPECT_EQ(denoise_quality_for(3600.0, 640 * 360), DenoiseQuality::Final);
+    EXPECT_EQ(denoise_quality_for(3600.0, size_t(1) << 40), DenoiseQuality::Interactive);
 }
