@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "image/denoise.h"
+#include "image/noise_blend.h"
 #include "render_controller.h"
 
 namespace dp::ui {
@@ -62,8 +63,12 @@ Image DenoiseWorker::denoise_now(const RenderFrame& f, const DenoiseAovs& aovs, 
     if (!f.scene || f.update.image.empty() || !denoiser_available()) return {};
     const Image& photo = f.scene->photo();
     if (photo.width() != f.update.image.width() || aovs.albedo.width() != photo.width()) return {};
-    return denoise_augmented(photo, f.update.image, f.update.alpha, f.update.dL, aovs.albedo, aovs.normal,
-                             DenoiseQuality::Interactive, cancel);
+    Image d = denoise_augmented(photo, f.update.image, f.update.alpha, f.update.dL, aovs.albedo, aovs.normal,
+                                DenoiseQuality::Interactive, cancel);
+    // Refined far enough, the raw pixels stand where the filter would only blur them.
+    const Image& v = f.update.variance;
+    if (v.width() == d.width() && v.height() == d.height()) d = blend_by_noise(f.update.image, d, v);
+    return d;
 }
 
 Image DenoiseWorker::compose_denoised(const RenderFrame& f, const Image& denoised, const Image* denoisedBase) {

@@ -20,6 +20,7 @@
 #include "image/image_metrics.h"
 #include "reference/standard_differential.h"
 #include "render/denoise_aovs.h"
+#include "image/noise_blend.h"
 #include "render/progressive.h"
 
 namespace dp::cli {
@@ -127,8 +128,10 @@ DenoisedError denoised_error(BenchScene& b, const PassRenderer& r, const Image& 
     if (!b.aovs) b.aovs = denoise_aovs(*b.scene);
     const auto t0 = std::chrono::steady_clock::now();
     const Image& photo = b.scene->photo();
-    const Image d = denoise_augmented(photo, img, r.alpha_layer(), r.dL_layer(), b.aovs->albedo, b.aovs->normal,
-                                      denoise_quality_for(r.stats().seconds, photo.size()));
+    const Image variance = r.variance_layer();
+    Image d = denoise_augmented(photo, img, r.alpha_layer(), r.dL_layer(), b.aovs->albedo, b.aovs->normal,
+                                denoise_quality_for(r.stats().seconds, photo.size()));
+    if (variance.width() == img.width() && variance.height() == img.height()) d = blend_by_noise(img, d, variance);
     DenoisedError e;
     e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     e.changed = image_error(d, b.truth, b.changed, b.ceiling);

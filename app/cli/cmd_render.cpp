@@ -14,6 +14,7 @@
 #include "image/image_io.h"
 #include "reference/standard_differential.h"
 #include "render/denoise_aovs.h"
+#include "image/noise_blend.h"
 #include "render/progressive.h"
 #include "render/render_limits.h"
 #include "render/render_output.h"
@@ -93,6 +94,8 @@ Denoised denoise_result(const RenderScene& scene, const RenderUpdate& u, bool wi
     const DenoiseQuality quality = denoise_quality_for(u.stats.seconds, size_t(w) * size_t(h));
     d.image = denoise_augmented(same ? photo : resample(photo, w, h), u.image, u.alpha, u.dL, aovs.albedo,
                                 aovs.normal, quality);
+    // Where the raw render has converged past what the filter keeps, the raw pixels stand.
+    if (u.variance.width() == w && u.variance.height() == h) d.image = blend_by_noise(u.image, d.image, u.variance);
     if (with_dL) d.dL = denoise_change(u.dL, aovs.albedo, aovs.normal, denoise_ceiling(photo), quality);
     return d;
 }

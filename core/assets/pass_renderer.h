@@ -52,6 +52,9 @@ public:
     virtual Image dL_layer() const = 0;
     /// Fraction of samples that saw a virtual object first (grey RGB).
     virtual Image alpha_layer() const = 0;
+    /// The squared error estimate of each pixel's mean luminance (grey RGB; infinite where it
+    /// is not known yet), for blend_by_noise; empty where the method keeps none.
+    virtual Image variance_layer() const { return {}; }
 };
 
 /// Makes the renderer a session runs on a scene with its settings.

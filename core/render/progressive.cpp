@@ -410,6 +410,14 @@ Image ProgressiveRenderer::alpha_layer() const {
     return planned_ ? accumulated_alpha(sums_) : Image(scene_->photo().width(), scene_->photo().height());
 }
 
+Image ProgressiveRenderer::variance_layer() const {
+    if (!planned_ || sums_.passes() < 2) return {};
+    const Image& photo = scene_->photo();
+    Image out(photo.width(), photo.height());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = vec3(float(sums_.error2(i, luminance(photo[i]), ceiling_)));
+    return out;
+}
+
 Image shadow_matte(const Image& photo, const Image& dL) {
     Image out(photo.width(), photo.height());
     for (size_t i = 0; i < out.size(); ++i) {

@@ -68,6 +68,9 @@ public:
     Image dL_layer() const override;
     /// Fraction of samples that saw a virtual object first (grey RGB).
     Image alpha_layer() const override;
+    /// From the two interleaved halves of the passes (TileAccumulator::error2); empty before
+    /// the second pass.
+    Image variance_layer() const override;
     /// Fraction of pixels the last pass left as the photo, with no ray and no gather.
     double skipped_fraction() const;
     /// Estimates per camera sample on virtual diffuse surfaces (camera_gather.h).

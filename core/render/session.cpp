@@ -21,6 +21,7 @@ void RenderUpdate::pull_images() {
     image = source->image();
     dL = source->dL_layer();
     alpha = source->alpha_layer();
+    variance = source->variance_layer();
 }
 
 RenderSession::RenderSession(RenderSink* sink) : sink_(sink), factory_(make_differential) {}

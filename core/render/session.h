@@ -24,6 +24,7 @@ struct RenderUpdate {
     Image image;  ///< augmented photo (linear), after pull_images()
     Image dL;     ///< signed change of the real surfaces' radiance, after pull_images()
     Image alpha;  ///< virtual-object coverage, after pull_images()
+    Image variance;  ///< the renderer's variance_layer(), after pull_images() (may be empty)
     /// Builds image, dL and alpha from the renderer. Only during RenderSink::on_update.
     void pull_images();
     bool has_images() const { return !image.empty(); }
