@@ -4,8 +4,9 @@
 Usage: plot_time_vs_error.py rows.json --out DIR
 Writes DIR/<scene>.png (log-log relative RMSE over changed pixels against seconds, each
 method, the truth's noise floor) and DIR/summary.md. With rows of the `cycles` method (Blender
-Cycles' shadow catcher), the summary gives each of our methods' speed-up against Cycles: how
-many times sooner it reached the same error.
+3.4 Cycles' shadow catcher), the summary gives each of our methods' speed-up against Cycles: how
+many times sooner it reached the same error. Rows of `cycles5` and `cycles5-artist` (Blender 5,
+raw and as artists run it) are plotted and tabulated like any method.
 """
 import argparse
 import json
@@ -25,7 +26,10 @@ STYLE = {"differential": ("tab:blue", "differential photon mapping"),
          "differential-uniform": ("tab:gray", "differential, no adaptive sampling"),
          "standard": ("tab:red", "standard (two independent simulations)"),
          "standard-correlated": ("tab:orange", "standard, correlated sampling"),
-         "cycles": ("tab:green", "Blender Cycles, shadow catcher")}
+         "cycles": ("tab:green", "Blender 3.4 Cycles, shadow catcher"),
+         "cycles5": ("tab:olive", "Blender 5 Cycles, shadow catcher"),
+         "cycles5-artist": ("tab:brown", "Blender 5 Cycles as artists run it (denoised)")}
+CYCLES_METHODS = ("cycles", "cycles5", "cycles5-artist")
 
 
 def error_key(scene):
@@ -82,7 +86,7 @@ def cycles_cell(with_cycles, method, reach, levels):
     rows, so that the table keeps its old columns)."""
     if not with_cycles:
         return ""
-    if method == "cycles":
+    if method in CYCLES_METHODS:
         return " | "
     if "cycles" not in levels:
         return " | n/a"
@@ -129,10 +133,10 @@ def main():
                 rows[-1][key], rows[-1]["seconds"], time_to_reach(rows, key, 2 * floor),
                 corrected(rows[-1][key], floor)]
             reach_cycles_levels[m] = [time_to_reach(rows, key, x, floor) for x in CYCLES_THRESHOLDS]
-            if m == "cycles":  # a Cycles "pass" is one render: time per sample of the last one
+            if m in CYCLES_METHODS:  # a Cycles "pass" is one render: time per sample of the last one
                 pass_times[(name, m)] = rows[-1]["seconds"] / rows[-1]["passes"]
         for run in doc["runs"]:
-            if run["scene"] == name and run["method"] != "cycles":
+            if run["scene"] == name and run["method"] not in CYCLES_METHODS:
                 pass_times[(name, run["method"])] = run["median_pass_seconds"]
         ax.axhline(floor, color="grey", ls="--", lw=1, label="truth's noise")
         ax.set_xlabel("render time (s)")
@@ -173,8 +177,8 @@ def main():
                 f"without it (`big_proxy` / `shadow_hard`, {len(ratios)} alternating pairs of "
                 f"short runs): median ratio {ratios[len(ratios) // 2]:.2f} (pairs: "
                 + ", ".join(f"{r:.2f}" for r in ratios) + "; target 1.3)."]
-    out += ["", "Median time per pass (s)" + ("; for cycles, seconds per sample per pixel of its last render"
-                                             if with_cycles else "") + ":",
+    out += ["", "Median time per pass (s)" + ("; for the Cycles methods, seconds per sample per pixel of the last "
+                                             "render" if any(m in CYCLES_METHODS for m in methods) else "") + ":",
             "", "| scene | " + " | ".join(methods) + " |",
             "|---|" + "---|" * len(methods)]
     for scene in doc["scenes"]:

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Time against error, one command: builds diffphoton, makes the benchmark scenes and their
 # truths (once; tens of minutes), runs every method on every scene, plots and summarises.
-# Blender Cycles (method cycles, Debian's blender; DP_BLENDER=PATH for another) runs under the
-# standard methods' budget; without Blender the bench prints one line and skips it.
+# Blender Cycles (method cycles, Debian's Blender 3.4; DP_BLENDER=PATH for another; methods
+# cycles5 and cycles5-artist, Blender 5 from .deps/bpy5 or DP_BPY5_PYTHON=PATH) runs under the
+# standard methods' budget; without a Blender the bench prints one line per method and skips it.
 #   BUILD=build OUT=out/bench/error DIFF_S=30 STD_S=120 bash bench/time_vs_error.sh [--update-docs]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,7 +13,7 @@ SCENES=${SCENES:-out/bench/scenes}
 DIFF_S=${DIFF_S:-30}
 STD_S=${STD_S:-120}
 ORDER=(shadow_hard shadow_soft caustic mirrors bleeding five_objects big_proxy noop)
-METHODS=${METHODS:-differential,differential-photons,differential-random,standard-correlated,cycles}
+METHODS=${METHODS:-differential,differential-photons,differential-random,standard-correlated,cycles,cycles5,cycles5-artist}
 
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 git diff --quiet HEAD 2>/dev/null || commit="$commit with uncommitted changes"

@@ -14,8 +14,10 @@ packages=(
   xvfb xauth    # xvfb-run for the studio's screenshot test and documentation screenshots
   clang libclang-rt-14-dev  # the sanitizer build and the libFuzzer targets (tests/fuzz)
 )
-# `--bench`: also what the benchmark plots need, and Blender for the Cycles method.
-[ "${1:-}" = "--bench" ] && packages+=(python3-matplotlib blender)
+# `--bench`: also what the benchmark plots need, Blender 3.4 for the cycles method and the venv
+# module for Blender 5 (below).
+bench=0
+[ "${1:-}" = "--bench" ] && bench=1 && packages+=(python3-matplotlib blender python3-venv)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -67,6 +69,45 @@ for f in "$oidn_dir"/lib/*.so*; do
     exit 1
   fi
 done
+
+# `--bench`: Blender 5 as a Python module (PyPI bpy, which needs Python 3.11) in the venv
+# .deps/bpy5, for the cycles5 and cycles5-artist methods of `diffphoton bench` (docs/cycles.md).
+# Optional: when it cannot be installed (no network, no Python 3.11 with venv) one line says why
+# and the rest goes on.
+bpy_version=5.0.1
+bpy_dir="$(cd "$(dirname "$0")/.." && pwd)/.deps/bpy5"
+install_bpy5() {
+  local py="" candidate log
+  for candidate in /usr/bin/python3 python3.11 python3; do
+    if "$candidate" -c 'import sys, venv, ensurepip; sys.exit(sys.version_info[:2] != (3, 11))' 2>/dev/null; then
+      py="$candidate"
+      break
+    fi
+  done
+  if [ -z "$py" ]; then
+    echo "install-deps: skipping Blender 5 (bpy $bpy_version): no Python 3.11 with venv and ensurepip found" >&2
+    return 0
+  fi
+  echo "install-deps: installing Blender 5 (bpy $bpy_version: a 370 MB download, 1 GB installed) into .deps/bpy5 with $py"
+  log="$(mktemp)"
+  rm -rf "$bpy_dir"
+  if "$py" -m venv "$bpy_dir" >"$log" 2>&1 &&
+     "$bpy_dir/bin/python" -m pip install --quiet --disable-pip-version-check "bpy==$bpy_version" >>"$log" 2>&1 &&
+     "$bpy_dir/bin/python" -c 'import sys, bpy; v = bpy.app.version_string; print(v); sys.exit(not v.startswith("5.0"))' >>"$log" 2>&1; then
+    echo "$bpy_version" > "$bpy_dir/VERSION"
+  else
+    echo "install-deps: skipping Blender 5 (bpy $bpy_version): $(grep -v '^\s*$' "$log" | tail -n 1)" >&2
+    rm -rf "$bpy_dir"
+  fi
+  rm -f "$log"
+}
+if [ "$bench" = 1 ]; then
+  if [ -x "$bpy_dir/bin/python" ] && [ "$(cat "$bpy_dir/VERSION" 2>/dev/null)" = "$bpy_version" ]; then
+    echo "install-deps: Blender 5 (bpy $bpy_version) present in .deps/bpy5"
+  else
+    install_bpy5
+  fi
+fi
 
 # The Dask runner (farm/, docs/farm.md): dask.distributed from PyPI and the farm package itself,
 # for whatever python3 is on PATH (its tests run with it). Debian's python3 refuses installs into

@@ -1,5 +1,6 @@
-// The `cycles` bench method: runs bench/cycles/cycles_render.py in Blender and hands its renders
-// to the bench one by one, as passes.
+// The Cycles bench methods: run bench/cycles/cycles_render.py in Blender 3.4 (`cycles`) or in
+// Blender 5's Python (`cycles5`, `cycles5-artist`) and hand its renders to the bench one by one,
+// as passes.
 #include "bench_cycles.h"
 
 #include <fcntl.h>
@@ -64,7 +65,7 @@ public:
         : scene_(std::move(scene)), run_(std::move(run)) {
         static std::atomic<int> counter{0};
         dir_ = fs::temp_directory_path() /
-               ("diffphoton-cycles-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+               ("diffphoton-" + run_.method + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
         fs::create_directories(dir_);
         stats_.pixels_total = size_t(scene_->camera().width()) * scene_->camera().height();
     }
@@ -90,7 +91,7 @@ public:
     Image image() const override {
         if (next_ == 0) return scene_->photo();
         const std::string& exr = renders_[next_ - 1].exr;
-        Image img = load_image(exr, "cycles");
+        Image img = load_image(exr, run_.method);
         if (img.width() != scene_->camera().width() || img.height() != scene_->camera().height())
             throw InputError(exr, "", "Cycles' render differs in size from the photograph");
         return img;
@@ -111,16 +112,24 @@ private:
     bool run_blender(const std::atomic<bool>* cancel) {
         const fs::path project = fs::absolute(scene_->project().base_dir / "scene.json");
         const fs::path script = DP_CYCLES_SCRIPT, log = dir_ / "blender.log";
+        const char* method = run_.method.c_str();
         if (!fs::exists(script)) {
-            std::fprintf(stderr, "cycles: %s: the Blender script %s is missing\n", scene_label().c_str(),
+            std::fprintf(stderr, "%s: %s: the Blender script %s is missing\n", method, scene_label().c_str(),
                          script.c_str());
             return false;
         }
         char budget[32];
         std::snprintf(budget, sizeof budget, "%.17g", run_.budget_seconds);
-        std::vector<std::string> args = {run_.blender, "-b", "--factory-startup", "--python-exit-code", "1",
-                                         "-P", script.string(), "--", project.string(), "--out", dir_.string(),
-                                         "--budget", budget, "--threads", std::to_string(run_.threads)};
+        // Blender 3.4 runs the script (its arguments after --); Blender 5 is a module that
+        // Python imports, so Python runs the script with its arguments.
+        std::vector<std::string> args = {run_.program};
+        if (run_.method == "cycles")
+            args.insert(args.end(), {"-b", "--factory-startup", "--python-exit-code", "1", "-P", script.string(), "--"});
+        else
+            args.push_back(script.string());
+        args.insert(args.end(), {project.string(), "--out", dir_.string(), "--budget", budget, "--threads",
+                                 std::to_string(run_.threads)});
+        if (run_.method == "cycles5-artist") args.push_back("--artist");
         std::vector<char*> argv;
         for (std::string& a : args) argv.push_back(a.data());
         argv.push_back(nullptr);
@@ -130,10 +139,10 @@ private:
         posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
         posix_spawn_file_actions_adddup2(&actions, 1, 2);
         pid_t pid = 0;
-        const int err = posix_spawn(&pid, run_.blender.c_str(), &actions, nullptr, argv.data(), environ);
+        const int err = posix_spawn(&pid, run_.program.c_str(), &actions, nullptr, argv.data(), environ);
         posix_spawn_file_actions_destroy(&actions);
         if (err != 0) {
-            std::fprintf(stderr, "cycles: cannot start %s: %s\n", run_.blender.c_str(), std::strerror(err));
+            std::fprintf(stderr, "%s: cannot start %s: %s\n", method, run_.program.c_str(), std::strerror(err));
             return false;
         }
         int status = 0;
@@ -148,11 +157,12 @@ private:
         if (stopped || (cancel && cancel->load())) return false;
         const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
         if (code == 2) {
-            std::fprintf(stderr, "cycles: %s: cannot convert: %s\n", scene_label().c_str(), error_line(log).c_str());
+            std::fprintf(stderr, "%s: %s: cannot convert: %s\n", method, scene_label().c_str(),
+                         error_line(log).c_str());
             return false;
         }
         if (code != 0) {
-            std::fprintf(stderr, "cycles: %s: Blender failed (exit code %d); the end of its output:\n%s",
+            std::fprintf(stderr, "%s: %s: Blender failed (exit code %d); the end of its output:\n%s", method,
                          scene_label().c_str(), code, tail_of(log, 15).c_str());
             return false;
         }
@@ -160,7 +170,7 @@ private:
         std::ifstream in(list);
         const nlohmann::json doc = nlohmann::json::parse(in, nullptr, false);
         if (doc.is_discarded() || !doc.contains("renders")) {
-            std::fprintf(stderr, "cycles: %s: Blender wrote no renders (%s)\n", scene_label().c_str(),
+            std::fprintf(stderr, "%s: %s: Blender wrote no renders (%s)\n", method, scene_label().c_str(),
                          list.c_str());
             return false;
         }
@@ -179,6 +189,10 @@ private:
 };
 
 }  // namespace
+
+bool is_cycles_method(const std::string& method) {
+    return std::find(kCyclesMethods.begin(), kCyclesMethods.end(), method) != kCyclesMethods.end();
+}
 
 std::string find_blender(const std::string& option) {
     if (!option.empty()) return is_executable(option) ? option : "";
@@ -204,6 +218,39 @@ std::string prepare_cycles_method(std::vector<std::string>& methods, const std::
         methods.erase(std::remove(methods.begin(), methods.end(), "cycles"), methods.end());
     }
     return blender;
+}
+
+std::string find_bpy5_python() {
+    if (const char* env = std::getenv("DP_BPY5_PYTHON"); env && *env) return is_executable(env) ? env : "";
+    const fs::path rel = fs::path(".deps") / "bpy5" / "bin" / "python";
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec)  // build/app/diffphoton reaches the repository's .deps
+        for (fs::path d = exe.parent_path(); !d.empty(); d = d.parent_path()) {
+            if (is_executable(d / rel)) return (d / rel).string();
+            if (d == d.root_path()) break;
+        }
+#ifdef DP_SOURCE_DIR
+    if (is_executable(fs::path(DP_SOURCE_DIR) / rel)) return (fs::path(DP_SOURCE_DIR) / rel).string();
+#endif
+    return "";
+}
+
+std::string prepare_cycles5_methods(std::vector<std::string>& methods) {
+    const auto wanted = [&](const std::string& m) { return std::find(methods.begin(), methods.end(), m) != methods.end(); };
+    if (!wanted("cycles5") && !wanted("cycles5-artist")) return "";
+    std::string python = find_bpy5_python();
+    if (python.empty()) {
+        const char* env = std::getenv("DP_BPY5_PYTHON");
+        const std::string where = env && *env ? std::string("$DP_BPY5_PYTHON ") + env + " is not an executable"
+                                              : "no .deps/bpy5: run scripts/install-deps.sh --bench, or set "
+                                                "DP_BPY5_PYTHON";
+        for (const char* m : {"cycles5", "cycles5-artist"})
+            if (wanted(m)) std::printf("%s: skipped, Blender 5 not found (%s)\n", m, where.c_str());
+        std::fflush(stdout);
+        std::erase_if(methods, [](const std::string& m) { return m == "cycles5" || m == "cycles5-artist"; });
+    }
+    return python;
 }
 
 std::unique_ptr<PassRenderer> make_cycles_renderer(std::shared_ptr<const RenderScene> scene, const CyclesRun& run) {

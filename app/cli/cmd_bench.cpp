@@ -34,6 +34,7 @@ struct BenchOptions {
     std::vector<std::string> scenes;
     std::vector<std::string> methods{"differential", "standard", "standard-correlated"};
     std::string output, images, blender;
+    std::string bpy5_python;  ///< Blender 5's Python, for cycles5 and cycles5-artist
     double max_seconds_differential = 30, max_seconds_standard = 120;
     int threads = 0;
     bool denoise = false;  ///< also measure the denoised image of our methods at each snapshot
@@ -145,8 +146,10 @@ DenoisedError denoised_error(BenchScene& b, const PassRenderer& r, const Image& 
 nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::string& method,
                           nlohmann::json& rows) {
     const double budget = is_differential(method) ? o.max_seconds_differential : o.max_seconds_standard;
-    std::unique_ptr<PassRenderer> r = method == "cycles" ? make_cycles_renderer(b.scene, {o.blender, budget, o.threads})
-                                                         : make_renderer(method, b);
+    std::unique_ptr<PassRenderer> r =
+        is_cycles_method(method)
+            ? make_cycles_renderer(b.scene, {method, method == "cycles" ? o.blender : o.bpy5_python, budget, o.threads})
+            : make_renderer(method, b);
     std::vector<double> pass_seconds;
     double next_snapshot = 1;
     for (;;) {
@@ -208,17 +211,19 @@ nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::strin
 
 int run_bench(BenchOptions o) {
     for (const std::string& m : o.methods)
-        if (!is_differential(m) && m != "standard" && m != "standard-correlated" && m != "cycles")
+        if (!is_differential(m) && m != "standard" && m != "standard-correlated" && !is_cycles_method(m))
             throw InputError("", "--methods",
                              "unknown method '" + m +
                                  "' (differential, differential-photons, differential-random, "
-                                 "differential-uniform, standard, standard-correlated or cycles)");
+                                 "differential-uniform, standard, standard-correlated, cycles, cycles5 or "
+                                 "cycles5-artist)");
     if (o.denoise) {
         std::string why;
         if (!denoiser_available(&why)) throw InputError("", "--denoise", why);
     }
     check_output_folder(o.output, "--output");
     o.blender = prepare_cycles_method(o.methods, o.blender);
+    o.bpy5_python = prepare_cycles5_methods(o.methods);
     if (!o.images.empty()) fs::create_directories(o.images);
     return with_threads(o.threads, [&]() -> int {
         install_interrupt_handler();
@@ -253,16 +258,18 @@ Command add_bench_command(CLI::App& app) {
     sub->add_option("--methods", o->methods,
                     "Comma-separated: differential (split estimator), differential-photons (all-photon "
                     "estimator), differential-random (no low-discrepancy points), differential-uniform "
-                    "(no adaptive sampling), standard, standard-correlated, cycles (Blender)")
+                    "(no adaptive sampling), standard, standard-correlated, cycles (Blender 3.4), cycles5 "
+                    "(Blender 5: $DP_BPY5_PYTHON, else .deps/bpy5/bin/python), cycles5-artist (Blender 5 "
+                    "as artists run it: denoised, adaptive sampling, path guiding, light tree, MNEE)")
         ->delimiter(',');
     sub->add_option("--max-seconds-differential", o->max_seconds_differential,
                     "Render-time budget of differential photon mapping per scene")
         ->check(kPositive);
     sub->add_option("--max-seconds-standard", o->max_seconds_standard,
-                    "Render-time budget of standard differential rendering (and of Cycles) per scene")
+                    "Render-time budget of standard differential rendering (and of the Cycles methods) per scene")
         ->check(kPositive);
     sub->add_option("--blender", o->blender,
-                    "Blender for the cycles method (default: $DP_BLENDER, else blender on PATH)");
+                    "Blender 3.4 for the cycles method (default: $DP_BLENDER, else blender on PATH)");
     sub->add_option("--images", o->images, "Folder for each run's last image (PNG)");
     sub->add_option("--threads", o->threads, "Worker threads (0: all cores)")->check(kNonNegative);
     sub->add_flag("--denoise", o->denoise,

@@ -1,4 +1,5 @@
-"""Checks that dp_cycles.py converts a diffphoton project faithfully (runs inside Blender).
+"""Checks that dp_cycles.py converts a diffphoton project faithfully (runs inside Blender 3.4, or
+with Blender 5's Python: `.deps/bpy5/bin/python bench/cycles/check_conversion.py CHECK ...`).
 
     blender -b --factory-startup --python-exit-code 1 -P bench/cycles/check_conversion.py -- \\
         orientation --diffphoton build/app/diffphoton --out /tmp/cyc-orientation
@@ -499,7 +500,7 @@ def save_exr(img, path):
 
 
 def main():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    argv = dp_cycles.script_args(__file__)
     ap = argparse.ArgumentParser(prog="check_conversion.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("check", choices=("orientation", "real-only", "composite", "materials"))
     ap.add_argument("project", nargs="?", help="real-only: a project; composite: a bench scene folder")

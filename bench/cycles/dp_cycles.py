@@ -1,7 +1,8 @@
 """A diffphoton project as a Blender Cycles scene: the one converter every Cycles script shares.
 
-Runs inside Blender (`blender -b --factory-startup -P SCRIPT -- ARGS`); imported by
-cycles_render.py (the `cycles` method of `diffphoton bench`) and check_conversion.py. The
+Runs inside Blender 3.4 (`blender -b --factory-startup -P SCRIPT -- ARGS`) or Blender 5 as a
+Python module (PyPI bpy: `python SCRIPT ARGS`); imported by cycles_render.py (the `cycles`,
+`cycles5` and `cycles5-artist` methods of `diffphoton bench`) and check_conversion.py. The
 conventions it maps, and how each was checked, are in docs/cycles.md:
 
 - world: the Blender scene is built in the probe's frame (probe +Y up becomes Blender's +Z up,
@@ -11,7 +12,8 @@ conventions it maps, and how each was checked, are in docs/cycles.md:
 - probe: the lat-long map as an Environment Texture with closest-texel lookups (ours is
   piecewise constant) and an importance map of one cell per texel;
 - real proxies: diffuse surfaces marked as shadow catchers; virtual objects: diffuse, sharp
-  glossy (mirror) or sharp glass;
+  glossy (mirror) or sharp glass (Blender 3.4's SHARP distribution, GGX at roughness 0 in
+  Blender 4 and later, which dropped SHARP and treats roughness 0 as a perfect reflection);
 - one composite per render: Combined + (1 - Combined.alpha) * photo * ShadowCatcher.
 """
 import array
@@ -29,6 +31,46 @@ SPHERE_SEGMENTS, SPHERE_RINGS = 256, 128
 # ...except for a non-uniformly scaled sphere, which ours renders as its 96 x 48 UV mesh.
 OURS_SPHERE_MESH = (96, 48)
 MAX_ALBEDO = 0.98  # ours clamps every reflectance to [0, 0.98] (Surface::reflectance_at)
+
+
+def script_args(script_file):
+    """The script's own arguments: those after `--` (Blender: `blender -b -P SCRIPT -- ARGS`),
+    else, when the script is Python's main program (Blender as a module: `python SCRIPT ARGS`),
+    those after its name, else none."""
+    import sys
+    if "--" in sys.argv:
+        return sys.argv[sys.argv.index("--") + 1:]
+    if sys.argv and os.path.abspath(sys.argv[0]) == os.path.abspath(script_file):
+        return sys.argv[1:]
+    return []
+
+
+def has_enum_item(struct, prop, item):
+    return item in {e.identifier for e in struct.bl_rna.properties[prop].enum_items}
+
+
+def set_linear(img):
+    """Marks an image's values as linear: the colour space "Linear" in Blender 3.4, renamed
+    "Linear Rec.709" in Blender 4."""
+    names = img.colorspace_settings.bl_rna.properties["name"].enum_items.keys()
+    img.colorspace_settings.name = "Linear" if "Linear" in names else "Linear Rec.709"
+
+
+def use_nodes(idblock):
+    """Node trees on a material or world: to be switched on in Blender 3.4; always there in
+    Blender 5, where `use_nodes` is deprecated."""
+    if bpy.app.version < (5, 0, 0) or idblock.node_tree is None:
+        idblock.use_nodes = True
+
+
+def make_sharp(bsdf):
+    """A perfectly sharp Glossy, Glass or Refraction BSDF: the SHARP distribution in Blender
+    3.4; Blender 4 dropped it, and GGX at roughness 0 is the same singular lobe there."""
+    if has_enum_item(bsdf, "distribution", "SHARP"):
+        bsdf.distribution = "SHARP"
+    else:
+        bsdf.distribution = "GGX"
+        bsdf.inputs["Roughness"].default_value = 0.0
 
 
 class ConversionError(Exception):
@@ -148,7 +190,7 @@ def load_linear_image(path, file, field, name):
         raise ConversionError(file, field, f"cannot read {path} (unsupported or empty image)")
     img.name = name
     if is_linear_file(path):
-        img.colorspace_settings.name = "Linear"
+        set_linear(img)
         px = pixels_of(img)
         if math.isfinite(sum(px)):
             return img
@@ -168,7 +210,7 @@ def load_linear_image(path, file, field, name):
 def float_image(name, w, h, rgba):
     """A packed float image holding `rgba` (rows bottom-up) as is: linear, no view transform."""
     img = bpy.data.images.new(name, w, h, alpha=True, float_buffer=True)
-    img.colorspace_settings.name = "Linear"
+    set_linear(img)
     img.pixels.foreach_set(rgba)
     img.pack()
     return img
@@ -211,7 +253,7 @@ def setup_world(scene, probe, base_dir, file):
                               "diffphoton calibrate probe)")
     img = load_linear_image(resolve(base_dir, probe["path"]), file, "probe.path", "probe")
     world = bpy.data.worlds.new("probe")
-    world.use_nodes = True
+    use_nodes(world)
     nodes, links = world.node_tree.nodes, world.node_tree.links
     nodes.clear()
     # The scene is in the probe's frame (blender_from_ours): the texture reads the ray direction.
@@ -253,8 +295,9 @@ def new_mesh_object(name, verts, faces, uvs=None, normals=None):
 
 def set_vertex_normals(mesh, normals):
     mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
-    mesh.use_auto_smooth = True  # Cycles uses custom split normals only with auto smooth on
-    mesh.auto_smooth_angle = math.pi
+    if hasattr(mesh, "use_auto_smooth"):  # Blender 3.4: custom split normals need auto smooth;
+        mesh.use_auto_smooth = True       # Blender 4.1 dropped it and always uses them
+        mesh.auto_smooth_angle = math.pi
     mesh.normals_split_custom_set_from_vertices([tuple(map(float, n)) for n in normals])
 
 
@@ -341,8 +384,11 @@ def import_mesh(path, name, file, field):
     if ext == ".obj":
         # forward +Y, up +Z is the identity: the file's coordinates are kept as they are.
         bpy.ops.wm.obj_import(filepath=path, forward_axis="Y", up_axis="Z")
+    elif ext == ".ply" and ply_importer() == "wm":
+        # Blender 4's importer (forward +Y, up +Z: the identity); it reads the file's normals.
+        bpy.ops.wm.ply_import(filepath=path, forward_axis="Y", up_axis="Z")
     elif ext == ".ply":
-        bpy.ops.import_mesh.ply(filepath=path)
+        bpy.ops.import_mesh.ply(filepath=path)  # Blender 3.4's Python add-on: no axes, no normals
     else:
         raise ConversionError(file, field, f"{path}: Cycles meshes are read from OBJ or PLY only")
     objs = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
@@ -357,6 +403,15 @@ def import_mesh(path, name, file, field):
         if not o.data.has_custom_normals:
             smooth_normals_like_ours(o.data)
     return objs
+
+
+def ply_importer():
+    """"wm" where Blender has its built-in PLY importer (3.6 and later), else "import_mesh"."""
+    try:
+        bpy.ops.wm.ply_import.get_rna_type()
+        return "wm"
+    except KeyError:
+        return "import_mesh"
 
 
 def smooth_normals_like_ours(mesh):
@@ -444,7 +499,7 @@ def shape_objects(shape, transform, frame, base_dir, file, field, name):
 
 def node_material(name):
     mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
+    use_nodes(mat)
     mat.node_tree.nodes.clear()
     out = mat.node_tree.nodes.new("ShaderNodeOutputMaterial")
     out.target = "CYCLES"
@@ -556,7 +611,7 @@ def object_material(name, m, base_dir, sphere_frame, file, field, file_uvs=False
     if kind == "mirror":
         # Ours: reflectance times a perfect reflection, no Fresnel, two-sided: a sharp Glossy.
         bsdf = nodes.new("ShaderNodeBsdfGlossy")
-        bsdf.distribution = "SHARP"
+        make_sharp(bsdf)
         bsdf.inputs["Color"].default_value = (*[float(x) for x in m.get("reflectance", [0.95] * 3)], 1.0)
         links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
         return mat
@@ -566,7 +621,7 @@ def object_material(name, m, base_dir, sphere_frame, file, field, file_uvs=False
     tint = [float(t) for t in m.get("tint", [1, 1, 1])]
     if all(t == 1.0 for t in tint):
         bsdf = nodes.new("ShaderNodeBsdfGlass")
-        bsdf.distribution = "SHARP"
+        make_sharp(bsdf)
         bsdf.inputs["IOR"].default_value = ior
         bsdf.inputs["Color"].default_value = (1, 1, 1, 1)
         links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
@@ -577,11 +632,11 @@ def object_material(name, m, base_dir, sphere_frame, file, field, file_uvs=False
     fresnel = nodes.new("ShaderNodeFresnel")
     fresnel.inputs["IOR"].default_value = ior
     refr = nodes.new("ShaderNodeBsdfRefraction")
-    refr.distribution = "SHARP"
+    make_sharp(refr)
     refr.inputs["IOR"].default_value = ior
     refr.inputs["Color"].default_value = (*[math.sqrt(t) for t in tint], 1.0)
     refl = nodes.new("ShaderNodeBsdfGlossy")
-    refl.distribution = "SHARP"
+    make_sharp(refl)
     refl.inputs["Color"].default_value = (1, 1, 1, 1)
     mix = nodes.new("ShaderNodeMixShader")
     links.new(fresnel.outputs["Fac"], mix.inputs["Fac"])
@@ -601,12 +656,17 @@ class CyclesScene:
     mode "catcher": real proxies are shadow catchers, virtual objects are rendered, the film is
     transparent and each render is composited onto the photograph. mode "real-only": proxies
     as plain diffuse surfaces, no objects, the probe visible: what `diffphoton reference
-    --real-only` renders."""
+    --real-only` renders.
 
-    def __init__(self, project_path, mode="catcher", threads=0, project=None):
+    `artist`: Cycles as artists run it in Blender 5 (artist_settings) instead of the plain
+    estimator that matches ours (setup_render)."""
+
+    def __init__(self, project_path, mode="catcher", threads=0, project=None, artist=False):
         """`project`: the project's JSON already read (the script `diffphoton export blender`
         writes carries it); `project_path` then only names it in messages and anchors relative
         paths."""
+        if artist:
+            check_artist_support()
         self.file = project_path
         if project is not None:
             p = project
@@ -641,6 +701,8 @@ class CyclesScene:
                                    f"real {i} {r.get('name', '')}"):
                 o.data.materials.append(mat)
                 o.is_shadow_catcher = mode == "catcher"
+                if artist:  # MNEE: caustics cast by the glass objects land on the proxies
+                    o.cycles.is_caustics_receiver = True
                 scene.collection.objects.link(o)
         if mode == "catcher":
             for i, ob in enumerate(p.get("objects", [])):
@@ -657,8 +719,13 @@ class CyclesScene:
                 for o in shape_objects(ob["shape"], ob.get("transform"), frame, base_dir, project_path,
                                        field + ".shape", f"object {i} {ob.get('name', '')}"):
                     o.data.materials.append(mat)
+                    if artist and ob.get("material", {}).get("type") == "glass":
+                        o.cycles.is_caustics_caster = True
                     scene.collection.objects.link(o)
         self.setup_render(int(p.get("render", {}).get("max_depth", 8)), threads)
+        self.artist = artist
+        if artist:
+            self.artist_settings()
         if mode == "catcher":
             self.setup_composite()
 
@@ -681,6 +748,10 @@ class CyclesScene:
         c.sample_clamp_direct = c.sample_clamp_indirect = 0.0  # no clamping (default indirect 10)
         c.light_sampling_threshold = 0.0
         c.use_auto_tile = False
+        if hasattr(c, "use_light_tree"):  # Blender 3.5 and later: off, as Blender 3.4 samples
+            c.use_light_tree = False
+        if hasattr(c, "use_guiding"):
+            c.use_guiding = False
         scene.render.use_persistent_data = False  # each render syncs and builds its BVH anew
         scene.render.threads_mode = "FIXED" if threads > 0 else "AUTO"
         if threads > 0:
@@ -700,9 +771,36 @@ class CyclesScene:
         settings.exr_codec = "ZIP"
         scene.view_layers[0].cycles.use_pass_shadow_catcher = self.mode == "catcher"
 
+    def artist_settings(self):
+        """Cycles as artists run it in Blender 5, on top of setup_render's scene: Open Image
+        Denoise on the render with albedo and normal guides (accurate prefilter, CPU), adaptive
+        sampling to a noise threshold of 0.01, path guiding (surfaces and volumes; CPU only), the
+        light tree, and MNEE shadow caustics (the constructor marks glass objects as casters and
+        the proxies as receivers; the world is the only light and is marked here). Everything
+        else stays as setup_render sets it (no clamping, no filter glossy, the bounces of ours)."""
+        c, world = self.scene.cycles, self.scene.world
+        c.use_denoising = True
+        c.denoiser = "OPENIMAGEDENOISE"
+        c.denoising_input_passes = "RGB_ALBEDO_NORMAL"
+        c.denoising_prefilter = "ACCURATE"
+        c.denoising_use_gpu = False
+        c.use_adaptive_sampling = True
+        c.adaptive_threshold = 0.01
+        c.adaptive_min_samples = 0  # automatic
+        c.use_guiding = True
+        c.use_surface_guiding = c.use_volume_guiding = True
+        c.use_light_tree = True
+        world.cycles.is_caustics_light = True
+        for o in self.scene.objects:
+            if o.type == "LIGHT":
+                o.data.cycles.is_caustics_light = True
+
     def setup_composite(self):
         """Compositor: Combined + (1 - Combined.alpha) * photo * ShadowCatcher (Cycles' own
         recipe: multiply the backplate by the Shadow Catcher pass, then alpha-over Combined)."""
+        if hasattr(self.scene, "compositing_node_group"):
+            self.setup_composite_group()
+            return
         scene = self.scene
         scene.use_nodes = True
         tree = scene.node_tree
@@ -732,6 +830,44 @@ class CyclesScene:
         tree.links.new(layers.outputs["Image"], over.inputs[2])
         tree.links.new(over.outputs["Image"], comp.inputs["Image"])
 
+    def setup_composite_group(self):
+        """The same composite in Blender 5, whose compositor is a node group
+        (scene.compositing_node_group) ending in a Group Output, with the shader nodes' Mix for
+        colour arithmetic and Alpha Over's options as inputs."""
+        scene = self.scene
+        tree = bpy.data.node_groups.new("composite", "CompositorNodeTree")
+        tree.interface.new_socket("Image", in_out="OUTPUT", socket_type="NodeSocketColor")
+        scene.compositing_node_group = tree
+        layers = tree.nodes.new("CompositorNodeRLayers")
+        layers.scene = scene
+        photo = tree.nodes.new("CompositorNodeImage")
+        photo.image = self.photo
+
+        def multiply(a, b):
+            mix = tree.nodes.new("ShaderNodeMix")
+            mix.data_type = "RGBA"
+            mix.blend_type = "MULTIPLY"
+            mix.clamp_result = False
+            mix.clamp_factor = True
+            mix.inputs["Factor"].default_value = 1.0
+            sockets = {sk.identifier: sk for sk in (*mix.inputs, *mix.outputs)}
+            for socket, value in ((sockets["A_Color"], a), (sockets["B_Color"], b)):
+                if isinstance(value, tuple):
+                    socket.default_value = value
+                else:
+                    tree.links.new(value, socket)
+            return sockets["Result_Color"]
+
+        exposed = multiply(photo.outputs["Image"], (self.photo_scale,) * 3 + (1.0,))  # 2^stops
+        backplate = multiply(exposed, layers.outputs["Shadow Catcher"])
+        over = tree.nodes.new("CompositorNodeAlphaOver")
+        over.inputs["Factor"].default_value = 1.0
+        over.inputs["Straight Alpha"].default_value = False  # Combined is premultiplied
+        out = tree.nodes.new("NodeGroupOutput")
+        tree.links.new(backplate, over.inputs["Background"])
+        tree.links.new(layers.outputs["Image"], over.inputs["Foreground"])
+        tree.links.new(over.outputs["Image"], out.inputs["Image"])
+
     def render(self, spp, seed, exr_path):
         """Renders `spp` samples per pixel with `seed` and writes the result (the composite, or
         the plain render in real-only mode) as a linear RGB float EXR. Returns the wall time of
@@ -744,6 +880,20 @@ class CyclesScene:
         seconds = time.perf_counter() - t0
         bpy.data.images["Render Result"].save_render(exr_path, scene=self.scene)
         return seconds
+
+
+def check_artist_support():
+    """Artist mode needs Blender 5 (its light tree came in 3.5, its Cycles settings here are
+    Blender 5's): raises ArtistUnsupported naming the Blender that runs."""
+    if bpy.app.version < (5, 0, 0):
+        raise ArtistUnsupported(f"--artist needs Blender 5 (Cycles as artists run it: Open Image Denoise "
+                                f"with albedo and normal guides, adaptive sampling, path guiding, the light "
+                                f"tree, MNEE); this is Blender {bpy.app.version_string}, whose Cycles has no "
+                                f"light tree")
+
+
+class ArtistUnsupported(Exception):
+    """--artist under a Blender older than 5."""
 
 
 def read_exr(path):

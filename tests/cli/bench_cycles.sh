@@ -1,6 +1,8 @@
 # The `cycles` bench method: one skip line when Blender is missing (CI has none), a clear
 # message when Blender fails; where Blender is installed, a tiny scene renders and its rows
-# appear.
+# appear, and cycles_render.py --artist (Blender 5 only) exits 2. The Blender 5 methods:
+# bench_cycles5.sh.
+SCRIPT=$(cd "$(dirname "$0")/../../bench/cycles" && pwd)/cycles_render.py
 source "$(dirname "$0")/testlib.bash" "$@"
 make_inputs
 mkdir -p scenes/tiny
@@ -43,13 +45,20 @@ expect_stderr "Blender failed (exit code 1)" "message for a failing Blender"
 expect_stderr "scenes/tiny/scene.json" "the message names the scene"
 run bench scenes/tiny -o rows.json --methods cyclez
 expect_rc 2 "an unknown method"
-expect_stderr "cycles" "the list of methods names cycles"
+expect_stderr "cycles, cycles5 or cycles5-artist" "the list of methods names the Cycles methods"
 
 blender=${DP_BLENDER:-$(command -v blender || true)}
 if [ -z "$blender" ]; then
     echo "note: Blender is not installed; the Cycles render part of this test did not run"
     exit 0
 fi
+# --artist (Cycles as artists run it in Blender 5) is refused by Blender 3.4: exit 2, a message.
+"$blender" -b --factory-startup --python-exit-code 1 -P "$SCRIPT" -- scenes/tiny/scene.json --out artist \
+    --artist >artist.log 2>&1
+RC=$?
+[ "$RC" -eq 2 ] || fail "--artist under $blender: exit code $RC, expected 2: $(tail -5 artist.log)"
+grep -q "^error: --artist needs Blender 5 " artist.log || fail "--artist under $blender: no clear message: $(tail -5 artist.log)"
+[ ! -e artist/renders.json ] || fail "--artist under $blender rendered"
 run bench scenes/tiny -o rows.json --methods cycles --blender "$blender" --max-seconds-standard 0.5 --threads 2
 expect_rc 0 "bench --methods cycles with $blender"
 python3 - rows.json <<'PY' || fail "Cycles' bench rows are incomplete or wrong"
