@@ -50,7 +50,12 @@ Image blend_by_noise(const Image& raw, const Image& denoised, const Image& varia
         const double var = variance[i].x;
         v[i] = std::isnan(var) || var < 0 ? 0.0 : std::isinf(var) ? d2[i] : var;  // unknown: all noise
     }
-    const BoxMean noise(W, H, v), moved(W, H, d2);
+    std::vector<double> value(raw.size());
+    for (size_t i = 0; i < raw.size(); ++i) {
+        const double l = luminance(raw[i]);
+        value[i] = std::isfinite(l) ? std::abs(l) : 0.0;
+    }
+    const BoxMean noise(W, H, v), moved(W, H, d2), level(W, H, value);
     Image out(W, H);
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
@@ -63,7 +68,11 @@ Image blend_by_noise(const Image& raw, const Image& denoised, const Image& varia
             // difference beyond two of those counts as the filter's bias.
             const double V = noise(x, y, kNoiseBlendRadius);
             const double bias2 = std::max(0.0, moved(x, y, kNoiseBlendRadius) - V * (1.0 + 2.0 * kScatter));
-            const double w = V + bias2 > 0 ? V / (V + bias2) : 0.0;
+            // A raw picture this noisy also carries the photon estimate's early bias, which its
+            // variance does not show: the filter is trusted there.
+            const double rel = std::sqrt(V) / std::max(level(x, y, kNoiseBlendRadius), 1e-6);
+            const double trust = std::clamp((rel - kRawTrusted) / (kFilterTrusted - kRawTrusted), 0.0, 1.0);
+            const double w = std::max(trust, V + bias2 > 0 ? V / (V + bias2) : 0.0);
             const vec3 o = raw[i] + float(w) * (denoised[i] - raw[i]);
             out[i] = is_finite(o) ? o : raw[i];
         }

@@ -69,7 +69,8 @@ public:
     /// Fraction of samples that saw a virtual object first (grey RGB).
     Image alpha_layer() const override;
     /// From the two interleaved halves of the passes (TileAccumulator::error2); empty before
-    /// the second pass.
+    /// the second pass. It leaves out the photon estimate's bias, which both halves share
+    /// (early on, several times the variance: see blend_by_noise).
     Image variance_layer() const override;
     /// Fraction of pixels the last pass left as the photo, with no ray and no gather.
     double skipped_fraction() const;
