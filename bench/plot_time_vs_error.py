@@ -21,6 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 THRESHOLDS = (0.05, 0.02, 0.01)
 CYCLES_THRESHOLDS = (0.05, 0.02, 0.01, 0.005)  # levels of the speed-up against Cycles
 STYLE = {"differential": ("tab:blue", "differential photon mapping"),
+         "differential-denoised": ("navy", "differential, denoised (filter time included)"),
          "differential-photons": ("tab:cyan", "differential, all-photon estimator"),
          "differential-random": ("tab:purple", "differential, no low-discrepancy points"),
          "differential-uniform": ("tab:gray", "differential, no adaptive sampling"),
@@ -30,6 +31,21 @@ STYLE = {"differential": ("tab:blue", "differential photon mapping"),
          "cycles5": ("tab:olive", "Blender 5 Cycles, shadow catcher"),
          "cycles5-artist": ("tab:brown", "Blender 5 Cycles as artists run it (denoised)")}
 CYCLES_METHODS = ("cycles", "cycles5", "cycles5-artist")
+# The Cycles runs our methods' speed-ups are measured against, with their column titles.
+CYCLES_REFERENCES = (("cycles", "Cycles 3.4"), ("cycles5-artist", "Cycles 5 as artists run it"))
+
+
+def add_denoised_rows(doc):
+    """`bench --denoise` rows of differential photon mapping as a method of their own: the
+    denoised image's error, at the render's time plus the filter's."""
+    for r in list(doc["rows"]):
+        if r["method"] == "differential" and "rel_rmse_changed_denoised" in r:
+            d = dict(r, method="differential-denoised", seconds=r["seconds"] + r.get("denoise_seconds", 0.0),
+                     rel_rmse_changed=r["rel_rmse_changed_denoised"])
+            d.pop("rel_rmse", None)  # not measured denoised: the no-op scene has no such row
+            doc["rows"].append(d)
+    doc["rows"] = [r for r in doc["rows"] if r["method"] != "differential-denoised" or "rel_rmse" in r
+                   or any(s["scene"] == r["scene"] and s["changed_pixels"] > 0 for s in doc["scenes"])]
 
 
 def error_key(scene):
@@ -81,18 +97,20 @@ def fmt_time(t):
     return "not reached" if t is None else (f"{t:.2f} s" if t < 100 else f"{t:.0f} s")
 
 
-def cycles_cell(with_cycles, method, reach, levels):
-    """The speed-up-against-Cycles cell of one of our methods' rows ("" when no scene has Cycles
-    rows, so that the table keeps its old columns)."""
-    if not with_cycles:
-        return ""
-    if method in CYCLES_METHODS:
-        return " | "
-    if "cycles" not in levels:
-        return " | n/a"
-    final = reach["cycles"][4]
-    return " | " + " / ".join(speedup_against_cycles(t, tc, final)
-                              for t, tc in zip(levels[method], levels["cycles"]))
+def cycles_cells(references, method, levels):
+    """The speed-up-against-Cycles cells of one of our methods' rows, one per reference Cycles
+    run present ("" when none is, so that the table keeps its old columns)."""
+    out = ""
+    for ref, _ in references:
+        if method in CYCLES_METHODS:
+            out += " | "
+        elif ref not in levels:
+            out += " | n/a"
+        else:
+            final = levels[ref][-1]
+            out += " | " + " / ".join(speedup_against_cycles(t, tc, final)
+                                      for t, tc in zip(levels[method][:-1], levels[ref][:-1]))
+    return out
 
 
 def main():
@@ -104,16 +122,18 @@ def main():
     ap.add_argument("--note", default="", help="a line about the machine, printed under the table")
     args = ap.parse_args()
     doc = json.load(open(args.rows))
+    add_denoised_rows(doc)
     os.makedirs(args.out, exist_ok=True)
     methods = [m for m in STYLE if any(r["method"] == m for r in doc["rows"])]
-    with_cycles = "cycles" in methods
-    cycles_head = (" | speed-up against Cycles at " + " / ".join(f"{100 * t:g}%" for t in CYCLES_THRESHOLDS)
-                   if with_cycles else "")
+    references = [(m, title) for m, title in CYCLES_REFERENCES if m in methods]
+    with_cycles = bool(references)
+    cycles_head = "".join(f" | speed-up against {title} at " + " / ".join(f"{100 * t:g}%" for t in CYCLES_THRESHOLDS)
+                          for _, title in references)
     lines = ["| scene | changed px | truth noise | method | " +
              " | ".join(f"time to {int(t * 100)}%" for t in THRESHOLDS) +
              " | time to 2x truth noise | final error (raw) | final time | speed-up at 5% | at 2% | at 2x noise" +
              cycles_head + " |",
-             "|---|---|---|---|" + "---|" * len(THRESHOLDS) + "---|---|---|---|---|---|" + ("---|" if with_cycles else "")]
+             "|---|---|---|---|" + "---|" * len(THRESHOLDS) + "---|---|---|---|---|---|" + "---|" * len(references)]
     pass_times = {}
     for scene in doc["scenes"]:
         name, key = scene["scene"], error_key(scene)
@@ -132,7 +152,7 @@ def main():
             reach[m] = [time_to_reach(rows, key, x, floor) for x in THRESHOLDS] + [
                 rows[-1][key], rows[-1]["seconds"], time_to_reach(rows, key, 2 * floor),
                 corrected(rows[-1][key], floor)]
-            reach_cycles_levels[m] = [time_to_reach(rows, key, x, floor) for x in CYCLES_THRESHOLDS]
+            reach_cycles_levels[m] = [time_to_reach(rows, key, x, floor) for x in CYCLES_THRESHOLDS] + [rows[-1]["seconds"]]
             if m in CYCLES_METHODS:  # a Cycles "pass" is one render: time per sample of the last one
                 pass_times[(name, m)] = rows[-1]["seconds"] / rows[-1]["passes"]
         for run in doc["runs"]:
@@ -156,7 +176,7 @@ def main():
                          " | ".join(fmt_time(t) for t in r[:3]) + f" | {fmt_time(r[5])}" +
                          f" | {100 * r[6]:.2f}% ({100 * r[3]:.2f}%) | {r[4]:.1f} s | " +
                          " | ".join(speedup(diff[i], r[i], r[4]) if m != "differential" else ""
-                                    for i in (0, 1, 5)) + cycles_cell(with_cycles, m, reach, reach_cycles_levels) + " |")
+                                    for i in (0, 1, 5)) + cycles_cells(references, m, reach_cycles_levels) + " |")
     out = ["Relative RMSE over the pixels the virtual objects change (whole image for the no-op "
            "scene) against render time, with the truth's own noise taken out in quadrature "
            "(sqrt(e^2 - noise^2); the raw figure in brackets and dashed in the plots); times "

@@ -201,6 +201,48 @@ Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal, DenoiseQual
     return out;
 }
 
+/// A rectangle of pixels, [x0, x1) x [y0, y1).
+struct Box {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+};
+
+/// Context (pixels) the filter sees around the pixels it must answer for.
+constexpr int kFilterContext = 16;
+
+/// The pixels of `support` (a W x H mask) and kFilterContext around them.
+Box support_box(const std::vector<uint8_t>& support, int W, int H) {
+    Box b{W, H, -1, -1};
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            if (support[size_t(y) * W + x])
+                b.x0 = std::min(b.x0, x), b.y0 = std::min(b.y0, y), b.x1 = std::max(b.x1, x), b.y1 = std::max(b.y1, y);
+    if (b.x1 < 0) return {};
+    return {std::max(0, b.x0 - kFilterContext), std::max(0, b.y0 - kFilterContext),
+            std::min(W, b.x1 + 1 + kFilterContext), std::min(H, b.y1 + 1 + kFilterContext)};
+}
+
+Image crop(const Image& im, const Box& b) {
+    if (im.empty()) return im;
+    Image out(b.width(), b.height());
+    for (int y = 0; y < b.height(); ++y)
+        for (int x = 0; x < b.width(); ++x) out.at(x, y) = im.at(x + b.x0, y + b.y0);
+    return out;
+}
+
+/// run_filter on the box only (the change's pixels and their context: the work follows the
+/// change, not the frame); the result at full size, 0 outside the box.
+Image run_filter_in(Oidn& o, const Box& box, const Image& color, const Image& albedo, const Image& normal,
+                    DenoiseQuality quality, const std::atomic<bool>* cancel) {
+    Image a = crop(albedo, box), n = crop(normal, box);
+    const Image part = run_filter(o, crop(color, box), a, n, quality, cancel);
+    Image out(color.width(), color.height());
+    for (int y = 0; y < box.height(); ++y)
+        for (int x = 0; x < box.width(); ++x) out.at(x + box.x0, y + box.y0) = part.at(x, y);
+    return out;
+}
+
 void check_size(const Image& a, const Image& b, const char* what) {
     if (a.width() != b.width() || a.height() != b.height())
         throw std::invalid_argument(std::string("denoise: ") + what +
@@ -250,15 +292,15 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
             any_pos |= v > 0;
             any_neg |= v < 0;
         }
-    Image albedo = albedo_in, normal = normal_in;  // shared with the filter, which wants non-const
+    Image albedo = albedo_in;
     for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
-    const Image dpos = any_pos ? run_filter(*o, std::move(pos), albedo, normal, quality, cancel) : Image(W, H);
-    const Image dneg = any_neg ? run_filter(*o, std::move(neg), albedo, normal, quality, cancel) : Image(W, H);
-
     // Support: the raw change's non-zero pixels grown by kDenoiseSupport.
     std::vector<uint8_t> support(size_t(W) * H, 0);
     for (size_t i = 0; i < change.size(); ++i) support[i] = change[i] != vec3(0);
     dilate_mask(support, W, H, kDenoiseSupport);
+    const Box box = support_box(support, W, H);
+    const Image dpos = any_pos ? run_filter_in(*o, box, pos, albedo, normal_in, quality, cancel) : Image(W, H);
+    const Image dneg = any_neg ? run_filter_in(*o, box, neg, albedo, normal_in, quality, cancel) : Image(W, H);
     Image out(W, H);
     for (size_t i = 0; i < out.size(); ++i) {
         if (!support[i]) continue;
@@ -318,15 +360,15 @@ static Image denoise_ratio(const Image& change, const Image& photo, float floor,
             any |= v != 0;
         }
     if (!any) return Image(W, H);
-    Image albedo = albedo_in, normal = normal_in;
+    Image albedo = albedo_in;
     for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
-    Image dq = run_filter(*o, std::move(q), albedo, normal, quality, cancel);
-    // A deep shadow's noise crosses zero, where the filter's input is clipped: its mean would
-    // come out light. The local mean of what the filter left out is put back.
-    add_local_residual(q_raw, dq, kResidualRadius);
     std::vector<uint8_t> support(size_t(W) * H, 0);
     for (size_t i = 0; i < change.size(); ++i) support[i] = change[i] != vec3(0);
     dilate_mask(support, W, H, kDenoiseSupport);
+    Image dq = run_filter_in(*o, support_box(support, W, H), q, albedo, normal_in, quality, cancel);
+    // A deep shadow's noise crosses zero, where the filter's input is clipped: its mean would
+    // come out light. The local mean of what the filter left out is put back.
+    add_local_residual(q_raw, dq, kResidualRadius);
     Image out(W, H);
     for (size_t i = 0; i < out.size(); ++i) {
         if (!support[i]) continue;
