@@ -96,9 +96,10 @@ for p in ("raw/cycles-2.exr", "artist/cycles-2.exr"):
         assert rmse(renders[p]) <= 1.5 * r34, f"{p}: RMSE {rmse(renders[p])} against Blender 3.4's {r34}"
 PY
 
-# The bench: both methods' rows at 1, 2, 4, ... spp until the budget.
+# The bench: both methods' rows at 1, 2, 4, ... spp until the budget (2 s: on a loaded machine the
+# artist's first render alone took 0.3 s, and a budget that short left it one row).
 DP_BPY5_PYTHON=$python run bench scenes/tiny -o rows.json --methods cycles5,cycles5-artist \
-    --max-seconds-standard 0.3 --threads 2
+    --max-seconds-standard 2 --threads 2
 expect_rc 0 "bench --methods cycles5,cycles5-artist"
 python3 - rows.json <<'PY' || fail "Blender 5's bench rows are incomplete or wrong"
 import json, math, sys
@@ -111,7 +112,7 @@ for m in ("cycles5", "cycles5-artist"):
         for k in ("seconds", "rmse", "rel_rmse", "rel_rmse_changed"):
             assert math.isfinite(r[k]) and r[k] >= 0, (k, r)
         assert r["samples_per_pixel"] == r["passes"], r
-    assert rows[-1]["seconds"] >= 0.3, rows[-1]
+    assert rows[-1]["seconds"] >= 2, rows[-1]
     assert rows[-1]["rel_rmse_changed"] < rows[0]["rel_rmse_changed"], (rows[0], rows[-1])
 assert [r["method"] for r in doc["runs"]] == ["cycles5", "cycles5-artist"], doc["runs"]
 PY
