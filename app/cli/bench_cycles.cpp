@@ -2,6 +2,7 @@
 // Blender 5's Python (`cycles5`, `cycles5-artist`) and hand its renders to the bench one by one,
 // as passes.
 #include "bench_cycles.h"
+#include "base/deps_path.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -222,17 +223,8 @@ std::string prepare_cycles_method(std::vector<std::string>& methods, const std::
 
 std::string find_bpy5_python() {
     if (const char* env = std::getenv("DP_BPY5_PYTHON"); env && *env) return is_executable(env) ? env : "";
-    const fs::path rel = fs::path(".deps") / "bpy5" / "bin" / "python";
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec)  // build/app/diffphoton reaches the repository's .deps
-        for (fs::path d = exe.parent_path(); !d.empty(); d = d.parent_path()) {
-            if (is_executable(d / rel)) return (d / rel).string();
-            if (d == d.root_path()) break;
-        }
-#ifdef DP_SOURCE_DIR
-    if (is_executable(fs::path(DP_SOURCE_DIR) / rel)) return (fs::path(DP_SOURCE_DIR) / rel).string();
-#endif
+    for (const auto& p : deps_candidates(fs::path("bpy5") / "bin" / "python"))
+        if (is_executable(p)) return p.string();
     return "";
 }
 

@@ -16,6 +16,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "base/deps_path.h"
+#include "image/box_mean.h"
 #include "image/image_metrics.h"
 
 namespace dp {
@@ -54,23 +56,10 @@ struct Oidn {
 
 std::vector<std::string> candidates() {
     if (const char* env = std::getenv("DP_OIDN_LIBRARY"); env && *env) return {env};
-    namespace fs = std::filesystem;
     std::vector<std::string> out;
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec)  // build/app/cli/diffphoton and build/tests/unit/x reach the repository's .deps
-        for (fs::path d = exe.parent_path(); !d.empty(); d = d.parent_path()) {
-            out.push_back((d / ".deps/oidn/lib" / kLibraryName).string());
-            if (d == d.root_path()) break;
-        }
-#ifdef DP_SOURCE_DIR
-    out.push_back(std::string(DP_SOURCE_DIR) + "/.deps/oidn/lib/" + kLibraryName);
-#endif
+    for (const auto& p : deps_candidates(std::filesystem::path("oidn/lib") / kLibraryName)) out.push_back(p.string());
     out.push_back(kLibraryName);  // the default loader path
-    std::vector<std::string> unique;
-    for (const std::string& c : out)
-        if (std::find(unique.begin(), unique.end(), c) == unique.end()) unique.push_back(c);
-    return unique;
+    return out;
 }
 
 // Opens `path` and makes a CPU device; nullptr with `why` set on failure.
@@ -177,7 +166,6 @@ Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal, DenoiseQual
         o.setFilterBool(f, "cleanAux", true);  // one ray per pixel centre: no noise to remove
     }
     o.setFilterBool(f, "hdr", true);
-    // OIDNQuality: 5 balanced, 6 high (the library's default for CPUs).
     // OIDNQuality: 4 fast, 6 high (the library's default for CPUs). On our scenes the fast
     // network's error is within a few percent of the high one's at a quarter of the time.
     o.setFilterInt(f, "quality", quality == DenoiseQuality::Interactive ? 4 : 6);
@@ -199,6 +187,14 @@ Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal, DenoiseQual
     // a stop takes effect between filter runs at the latest.
     if (cancel && cancel->load()) throw std::runtime_error("Open Image Denoise: execution was cancelled");
     return out;
+}
+
+/// The raw change's non-zero pixels grown by kDenoiseSupport: where a denoised change may be.
+std::vector<uint8_t> change_support(const Image& change) {
+    std::vector<uint8_t> support(change.size(), 0);
+    for (size_t i = 0; i < change.size(); ++i) support[i] = change[i] != vec3(0);
+    dilate_mask(support, change.width(), change.height(), kDenoiseSupport);
+    return support;
 }
 
 /// A rectangle of pixels, [x0, x1) x [y0, y1).
@@ -294,10 +290,7 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
         }
     Image albedo = albedo_in;
     for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
-    // Support: the raw change's non-zero pixels grown by kDenoiseSupport.
-    std::vector<uint8_t> support(size_t(W) * H, 0);
-    for (size_t i = 0; i < change.size(); ++i) support[i] = change[i] != vec3(0);
-    dilate_mask(support, W, H, kDenoiseSupport);
+    const std::vector<uint8_t> support = change_support(change);
     const Box box = support_box(support, W, H);
     const Image dpos = any_pos ? run_filter_in(*o, box, pos, albedo, normal_in, quality, cancel) : Image(W, H);
     const Image dneg = any_neg ? run_filter_in(*o, box, neg, albedo, normal_in, quality, cancel) : Image(W, H);
@@ -317,21 +310,16 @@ constexpr int kResidualRadius = 6;
 /// the local mean is the raw one's again, and the noise put back is that box's average.
 static void add_local_residual(const Image& raw, Image& clean, int radius) {
     const int w = raw.width(), h = raw.height();
-    std::vector<dvec3> sum(size_t(w + 1) * (h + 1), dvec3(0.0));
+    std::vector<double> r[3];
+    for (int c = 0; c < 3; ++c) r[c].resize(raw.size());
+    for (size_t i = 0; i < raw.size(); ++i) {
+        const vec3 d = raw[i] - clean[i];
+        for (int c = 0; c < 3; ++c) r[c][i] = is_finite(d) ? d[c] : 0.0;
+    }
+    const BoxSums box[3] = {BoxSums(w, h, r[0]), BoxSums(w, h, r[1]), BoxSums(w, h, r[2])};
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const size_t i = size_t(y) * w + x, o = size_t(y + 1) * (w + 1) + x + 1;
-            const vec3 r = raw[i] - clean[i];
-            sum[o] = dvec3(is_finite(r) ? r : vec3(0.0f)) + sum[o - 1] + sum[o - size_t(w + 1)] - sum[o - size_t(w + 1) - 1];
-        }
-    auto at = [&](int x, int y) { return sum[size_t(y) * (w + 1) + x]; };
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const int x0 = std::max(0, x - radius), y0 = std::max(0, y - radius);
-            const int x1 = std::min(w, x + radius + 1), y1 = std::min(h, y + radius + 1);
-            const dvec3 box = at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0);
-            clean[size_t(y) * w + x] += vec3(box / double((x1 - x0) * (y1 - y0)));
-        }
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) clean[size_t(y) * w + x][c] += float(box[c].mean(x, y, radius));
 }
 
 /// The real surfaces' change demodulated: filtered as the ratio of the new radiance to the
@@ -362,9 +350,7 @@ static Image denoise_ratio(const Image& change, const Image& photo, float floor,
     if (!any) return Image(W, H);
     Image albedo = albedo_in;
     for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
-    std::vector<uint8_t> support(size_t(W) * H, 0);
-    for (size_t i = 0; i < change.size(); ++i) support[i] = change[i] != vec3(0);
-    dilate_mask(support, W, H, kDenoiseSupport);
+    const std::vector<uint8_t> support = change_support(change);
     Image dq = run_filter_in(*o, support_box(support, W, H), q, albedo, normal_in, quality, cancel);
     // A deep shadow's noise crosses zero, where the filter's input is clipped: its mean would
     // come out light. The local mean of what the filter left out is put back.
@@ -426,26 +412,15 @@ void fill_holes(Image& img, std::vector<uint8_t> known) {
 static void keep_local_mean(const Image& raw, const std::vector<uint8_t>& known, Image& clean) {
     constexpr int kMeanRadius = 6;
     const int w = raw.width(), h = raw.height();
-    // Integral images of the known pixels' luminance, raw and filtered.
-    std::vector<double> sr(size_t(w + 1) * (h + 1), 0.0), sc(sr.size(), 0.0);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const size_t i = size_t(y) * w + x, o = size_t(y + 1) * (w + 1) + x + 1;
-            const double r = known[i] ? luminance(raw[i]) : 0.0, c = known[i] ? luminance(clean[i]) : 0.0;
-            sr[o] = r + sr[o - 1] + sr[o - size_t(w + 1)] - sr[o - size_t(w + 1) - 1];
-            sc[o] = c + sc[o - 1] + sc[o - size_t(w + 1)] - sc[o - size_t(w + 1) - 1];
-        }
-    auto box = [&](const std::vector<double>& s, int x0, int y0, int x1, int y1) {
-        auto at = [&](int x, int y) { return s[size_t(y) * (w + 1) + x]; };
-        return at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0);
-    };
+    std::vector<double> lr(raw.size(), 0.0), lc(raw.size(), 0.0);
+    for (size_t i = 0; i < raw.size(); ++i)
+        if (known[i]) lr[i] = luminance(raw[i]), lc[i] = luminance(clean[i]);
+    const BoxSums sr(w, h, lr), sc(w, h, lc);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * w + x;
             if (!known[i]) continue;
-            const int x0 = std::max(0, x - kMeanRadius), y0 = std::max(0, y - kMeanRadius);
-            const int x1 = std::min(w, x + kMeanRadius + 1), y1 = std::min(h, y + kMeanRadius + 1);
-            const double r = box(sr, x0, y0, x1, y1), c = box(sc, x0, y0, x1, y1);
+            const double r = sr.sum(x, y, kMeanRadius), c = sc.sum(x, y, kMeanRadius);
             if (r > 0 && c > 0) clean[i] *= float(std::clamp(r / c, 0.5, 2.0));
         }
 }

@@ -34,7 +34,7 @@ bool denoiser_available(std::string* why = nullptr);
 /// std::invalid_argument for mismatched sizes, std::runtime_error when the library fails.
 /// How hard the filter works. Final: the library's best network, the change's signed parts
 /// filtered apart (two runs). Interactive: its fast network and, in denoise_augmented, the real
-/// surfaces' change demodulated by the photo (one run): about an eighth of the time, a few
+/// surfaces' change demodulated by the photo (one run): about a sixth of the time, a few
 /// percent more error.
 enum class DenoiseQuality { Final, Interactive };
 

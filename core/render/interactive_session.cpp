@@ -281,7 +281,7 @@ void InteractiveSession::step() {
         u.time_budget_s = r.settings.time_budget_s;
         u.finished = finished;
         u.source = r.renderer.get();
-        u.pull_images();
+        u.pull_images(r.phase != Phase::Drag);  // drag frames are never denoised
         u.source = nullptr;
         frame->photo = r.photo;
         frame->preview = !full;

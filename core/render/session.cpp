@@ -16,12 +16,12 @@ std::unique_ptr<PassRenderer> make_differential(std::shared_ptr<const RenderScen
 
 }  // namespace
 
-void RenderUpdate::pull_images() {
+void RenderUpdate::pull_images(bool with_variance) {
     if (!source) return;
     image = source->image();
     dL = source->dL_layer();
     alpha = source->alpha_layer();
-    variance = source->variance_layer();
+    if (with_variance) variance = source->variance_layer();
 }
 
 RenderSession::RenderSession(RenderSink* sink) : sink_(sink), factory_(make_differential) {}

@@ -25,8 +25,9 @@ struct RenderUpdate {
     Image dL;     ///< signed change of the real surfaces' radiance, after pull_images()
     Image alpha;  ///< virtual-object coverage, after pull_images()
     Image variance;  ///< the renderer's variance_layer(), after pull_images() (may be empty)
-    /// Builds image, dL and alpha from the renderer. Only during RenderSink::on_update.
-    void pull_images();
+    /// Builds image, dL, alpha and (unless `with_variance` is false: a picture no denoiser
+    /// will see) variance from the renderer. Only during RenderSink::on_update.
+    void pull_images(bool with_variance = true);
     bool has_images() const { return !image.empty(); }
 
     const PassRenderer* source = nullptr;  ///< valid only during on_update
