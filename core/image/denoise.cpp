@@ -52,7 +52,54 @@ struct Oidn {
     void (*releaseFilter)(OIDNFilter);
     OIDNDevice device = nullptr;
     std::mutex run;  // one filter at a time on the shared device
+
+    /// A filter kept for the next run of the same size, quality and guides: the library plans
+    /// its network's memory on a filter's first run, which a viewer filtering again skips.
+    struct Kept {
+        size_t w, h;
+        int quality;
+        bool aux;
+        OIDNFilter filter;
+    };
+    std::vector<Kept> kept;  ///< most recently used last; guarded by `run`
+
+    /// The kept filter for these, or a new one set up for them (the least recently used one
+    /// released beyond kKeptFilters). Call with `run` locked.
+    OIDNFilter filter_for(size_t w, size_t h, int quality, bool aux);
+    /// Releases a filter that failed instead of keeping it.
+    void forget(OIDNFilter f);
 };
+
+/// Filters kept: a viewer's real change and objects, and one more size. Each holds the
+/// network's working memory (tens of MB at 720p).
+constexpr size_t kKeptFilters = 3;
+
+OIDNFilter Oidn::filter_for(size_t w, size_t h, int quality, bool aux) {
+    for (size_t i = 0; i < kept.size(); ++i)
+        if (kept[i].w == w && kept[i].h == h && kept[i].quality == quality && kept[i].aux == aux) {
+            const Kept k = kept[i];
+            kept.erase(kept.begin() + long(i));
+            kept.push_back(k);
+            return k.filter;
+        }
+    OIDNFilter f = newFilter(device, "RT");
+    if (!f) return nullptr;
+    setFilterBool(f, "hdr", true);
+    setFilterInt(f, "quality", quality);
+    if (aux) setFilterBool(f, "cleanAux", true);  // one ray per pixel centre: no noise to remove
+    if (kept.size() == kKeptFilters) {
+        releaseFilter(kept.front().filter);
+        kept.erase(kept.begin());
+    }
+    kept.push_back({w, h, quality, aux, f});
+    return f;
+}
+
+void Oidn::forget(OIDNFilter f) {
+    for (size_t i = 0; i < kept.size(); ++i)
+        if (kept[i].filter == f) kept.erase(kept.begin() + long(i));
+    releaseFilter(f);
+}
 
 std::vector<std::string> candidates() {
     if (const char* env = std::getenv("DP_OIDN_LIBRARY"); env && *env) return {env};
@@ -156,33 +203,29 @@ Image run_filter(Oidn& o, Image color, Image& albedo, Image& normal, DenoiseQual
     const size_t w = size_t(color.width()), h = size_t(color.height());
     Image out(color.width(), color.height());
     std::lock_guard<std::mutex> lock(o.run);
-    OIDNFilter f = o.newFilter(o.device, "RT");
+    // OIDNQuality: 4 fast, 6 high (the library's default for CPUs). On our scenes the fast
+    // network's error is within a few percent of the high one's at a quarter of the time.
+    OIDNFilter f = o.filter_for(w, h, quality == DenoiseQuality::Interactive ? 4 : 6, !albedo.empty());
     if (!f) throw std::runtime_error("Open Image Denoise: cannot make the RT filter");
+    // Only the images' addresses change for a kept filter: its commit does not plan again.
     o.setSharedFilterImage(f, "color", color.data(), kFormatFloat3, w, h, 0, 0, 0);
     o.setSharedFilterImage(f, "output", out.data(), kFormatFloat3, w, h, 0, 0, 0);
     if (!albedo.empty()) {
         o.setSharedFilterImage(f, "albedo", albedo.data(), kFormatFloat3, w, h, 0, 0, 0);
         o.setSharedFilterImage(f, "normal", normal.data(), kFormatFloat3, w, h, 0, 0, 0);
-        o.setFilterBool(f, "cleanAux", true);  // one ray per pixel centre: no noise to remove
     }
-    o.setFilterBool(f, "hdr", true);
-    // OIDNQuality: 4 fast, 6 high (the library's default for CPUs). On our scenes the fast
-    // network's error is within a few percent of the high one's at a quarter of the time.
-    o.setFilterInt(f, "quality", quality == DenoiseQuality::Interactive ? 4 : 6);
-    if (cancel) {
-        // The library asks as it goes whether to go on: a viewer's drag stops it.
-        auto go_on = [](void* flag, double) { return !static_cast<const std::atomic<bool>*>(flag)->load(); };
-        o.setFilterProgressMonitorFunction(f, go_on, const_cast<std::atomic<bool>*>(cancel));
-    }
+    // The library asks as it goes whether to go on: a viewer's drag stops it.
+    auto go_on = [](void* flag, double) { return !flag || !static_cast<const std::atomic<bool>*>(flag)->load(); };
+    o.setFilterProgressMonitorFunction(f, go_on, const_cast<std::atomic<bool>*>(cancel));
     const auto t0 = std::chrono::steady_clock::now();
     o.commitFilter(f);
     o.executeFilter(f);
-    o.releaseFilter(f);
     note_filter_cost(quality, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), w * h);
     const char* msg = nullptr;
-    if (o.getDeviceError(o.device, &msg) != kErrorNone)
-        throw std::runtime_error(std::string("Open Image Denoise: ") +
-                                 (msg ? msg : "unknown error"));
+    if (o.getDeviceError(o.device, &msg) != kErrorNone) {
+        o.forget(f);
+        throw std::runtime_error(std::string("Open Image Denoise: ") + (msg ? msg : "unknown error"));
+    }
     // The library (2.3, CPU) notes a stop asked for but runs the rest of a one-tile image anyway:
     // a stop takes effect between filter runs at the latest.
     if (cancel && cancel->load()) throw std::runtime_error("Open Image Denoise: execution was cancelled");
@@ -206,6 +249,8 @@ struct Box {
 
 /// Context (pixels) the filter sees around the pixels it must answer for.
 constexpr int kFilterContext = 16;
+/// The step (pixels) of the filtered box's sizes.
+constexpr int kBoxStep = 32;
 
 /// The pixels of `support` (a W x H mask) and kFilterContext around them.
 Box support_box(const std::vector<uint8_t>& support, int W, int H) {
@@ -215,8 +260,18 @@ Box support_box(const std::vector<uint8_t>& support, int W, int H) {
             if (support[size_t(y) * W + x])
                 b.x0 = std::min(b.x0, x), b.y0 = std::min(b.y0, y), b.x1 = std::max(b.x1, x), b.y1 = std::max(b.y1, y);
     if (b.x1 < 0) return {};
-    return {std::max(0, b.x0 - kFilterContext), std::max(0, b.y0 - kFilterContext),
+    Box box{std::max(0, b.x0 - kFilterContext), std::max(0, b.y0 - kFilterContext),
             std::min(W, b.x1 + 1 + kFilterContext), std::min(H, b.y1 + 1 + kFilterContext)};
+    // Sizes in steps of kBoxStep, so that the next edit's box often has this one's size and
+    // finds its filter kept (grown to the right and down, or left and up at the frame's edge).
+    auto grow = [](int& lo, int& hi, int limit) {
+        const int want = std::min(limit, (hi - lo + kBoxStep - 1) / kBoxStep * kBoxStep);
+        hi = std::min(limit, lo + want);
+        lo = hi - want;
+    };
+    grow(box.x0, box.x1, W);
+    grow(box.y0, box.y1, H);
+    return box;
 }
 
 Image crop(const Image& im, const Box& b) {
@@ -307,61 +362,29 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
 constexpr int kResidualRadius = 6;
 
 /// Adds to `clean` the mean of `raw - clean` over the (2 radius + 1)^2 box around each pixel:
-/// the local mean is the raw one's again, and the noise put back is that box's average.
-static void add_local_residual(const Image& raw, Image& clean, int radius) {
+/// the local mean is the raw one's again, and the noise put back is that box's average. With a
+/// `mask`, only its pixels are changed and the mean is over its pixels in the box.
+static void add_local_residual(const Image& raw, Image& clean, int radius, const std::vector<uint8_t>& mask = {}) {
     const int w = raw.width(), h = raw.height();
-    std::vector<double> r[3];
-    for (int c = 0; c < 3; ++c) r[c].resize(raw.size());
+    std::vector<double> r[3], n(raw.size(), 1.0);
+    for (int c = 0; c < 3; ++c) r[c].assign(raw.size(), 0.0);
     for (size_t i = 0; i < raw.size(); ++i) {
+        if (!mask.empty() && !mask[i]) {
+            n[i] = 0.0;
+            continue;
+        }
         const vec3 d = raw[i] - clean[i];
         for (int c = 0; c < 3; ++c) r[c][i] = is_finite(d) ? d[c] : 0.0;
     }
     const BoxSums box[3] = {BoxSums(w, h, r[0]), BoxSums(w, h, r[1]), BoxSums(w, h, r[2])};
+    const BoxSums count(w, h, n);
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c) clean[size_t(y) * w + x][c] += float(box[c].mean(x, y, radius));
-}
-
-/// The real surfaces' change demodulated: filtered as the ratio of the new radiance to the
-/// photo's, q = 1 + change / base (base: the photo floored at `floor`), which is non-negative
-/// (one filter run for both signs) and free of the photo's texture where the change carries it
-/// (dL = albedo x change of irradiance); then change = base (q - 1). Highlights and support as
-/// denoise_change.
-static Image denoise_ratio(const Image& change, const Image& photo, float floor, const Image& albedo_in,
-                    const Image& normal_in, float ceiling, DenoiseQuality quality, const std::atomic<bool>* cancel) {
-    std::string why;
-    Oidn* o = library(&why);
-    if (!o) throw DenoiserUnavailable(why);
-    const int W = change.width(), H = change.height();
-    if (change.empty()) return change;
-    Image q(W, H), base(W, H), q_raw(W, H);
-    std::vector<uint8_t> highlight(change.size(), 0);
-    bool any = false;
-    for (size_t i = 0; i < change.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            float v = std::isfinite(change[i][c]) ? change[i][c] : 0.0f;
-            if (std::abs(v) > ceiling) highlight[i] = 1, v = std::clamp(v, -ceiling, ceiling);
-            const float p = std::isfinite(photo[i][c]) ? photo[i][c] : 0.0f;
-            base[i][c] = std::max(p, floor);
-            q_raw[i][c] = 1.0f + v / base[i][c];
-            q[i][c] = std::max(0.0f, q_raw[i][c]);
-            any |= v != 0;
+        for (int x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            if (!mask.empty() && !mask[i]) continue;
+            const double k = std::max(count.sum(x, y, radius), 1.0);
+            for (int c = 0; c < 3; ++c) clean[i][c] += float(box[c].sum(x, y, radius) / k);
         }
-    if (!any) return Image(W, H);
-    Image albedo = albedo_in;
-    for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
-    const std::vector<uint8_t> support = change_support(change);
-    Image dq = run_filter_in(*o, support_box(support, W, H), q, albedo, normal_in, quality, cancel);
-    // A deep shadow's noise crosses zero, where the filter's input is clipped: its mean would
-    // come out light. The local mean of what the filter left out is put back.
-    add_local_residual(q_raw, dq, kResidualRadius);
-    Image out(W, H);
-    for (size_t i = 0; i < out.size(); ++i) {
-        if (!support[i]) continue;
-        const vec3 v = highlight[i] ? change[i] : base[i] * (dq[i] - vec3(1.0f));
-        for (int c = 0; c < 3; ++c) out[i][c] = std::isfinite(v[c]) ? v[c] : 0.0f;
-    }
-    return out;
 }
 
 namespace {
@@ -429,6 +452,18 @@ static void keep_local_mean(const Image& raw, const std::vector<uint8_t>& known,
 /// radiance recovered from them would carry the pixel's noise divided by its coverage.
 constexpr float kObjectShare = 0.25f;
 
+/// The radiance of the object seen in pixel i, recovered from the augmented pixel: false where
+/// the object covers less than kObjectShare of it, or a partly covered pixel has no `dL`.
+static bool object_radiance(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
+                            size_t i, vec3& o) {
+    const float a = std::clamp(alpha[i].x, 0.0f, 1.0f);
+    if (a < kObjectShare || (a < kCovered && dL.empty())) return false;
+    // augmented = photo + a (object - photo) + dL, with dL the real share's change.
+    const vec3 real = a < kCovered ? (1.0f - a) * photo[i] + dL[i] : vec3(0.0f);
+    o = a < kCovered ? (augmented[i] - real) / a : augmented[i];
+    return is_finite(o);
+}
+
 /// The objects' own radiance, filtered apart from the real surfaces' change (so that neither
 /// spreads into the other), guided by their albedo and normal (for mirrors and glass, those of
 /// what they show), in the box around them; `out` gets each pixel's object share replaced.
@@ -455,12 +490,8 @@ static void denoise_objects(const Image& photo, const Image& augmented, const Im
         for (int x = 0; x < bw; ++x) {
             const size_t i = size_t(y + y0) * W + size_t(x + x0), b = size_t(y) * bw + x;
             if (!albedo.empty()) box_albedo[b] = albedo[i], box_normal[b] = normal[i];
-            const float a = std::clamp(alpha[i].x, 0.0f, 1.0f);
-            if (a < kObjectShare || (a < kCovered && dL.empty())) continue;
-            // augmented = photo + a (object - photo) + dL, with dL the real share's change.
-            const vec3 real = a < kCovered ? (1.0f - a) * photo[i] + dL[i] : vec3(0.0f);
-            const vec3 o = a < kCovered ? (augmented[i] - real) / a : augmented[i];
-            if (!is_finite(o)) continue;
+            vec3 o;
+            if (!object_radiance(photo, augmented, alpha, dL, i, o)) continue;
             raw[b] = o;
             radiance[b] = glm::max(o, vec3(0.0f));
             known[b] = 1;
@@ -476,6 +507,116 @@ static void denoise_objects(const Image& photo, const Image& augmented, const Im
             const vec3 v = out[i] + a * (clean[b] - raw[b]);
             if (is_finite(v)) out[i] = v;
         }
+}
+
+/// The augmented picture with the real surfaces' change replaced by `change` (per unit of the
+/// pixel's real share): the photo's own bits where alpha and the change are 0.
+static Image with_real_change(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
+                              const Image& change) {
+    Image out(augmented.width(), augmented.height());
+    for (size_t i = 0; i < out.size(); ++i) {
+        const float a = alpha.empty() ? 0.0f : std::clamp(alpha[i].x, 0.0f, 1.0f);
+        if (a == 0)
+            out[i] = change[i] == vec3(0) ? photo[i] : photo[i] + change[i];
+        else if (a >= kCovered || dL.empty())
+            out[i] = augmented[i];  // without dL the real share of a partly covered pixel is unknown
+        else
+            out[i] = augmented[i] + (1.0f - a) * change[i] - dL[i];  // the real share's change, denoised
+    }
+    return out;
+}
+
+/// What the viewer's single filter run sees: the real surfaces' change demodulated by the photo,
+/// q = 1 + change / base (base: the photo floored), which is non-negative (both signs in one
+/// run) and free of the photo's texture where the change carries it (dL = albedo x change of
+/// irradiance); the objects' radiance divided by its mean luminance. Both lie near 1 for the
+/// filter's HDR transfer, and the guides keep them apart at the objects' edges.
+struct JointInput {
+    Image in, raw, base, object;  ///< filter input (clipped at 0), unclipped, photo floored, object radiance
+    std::vector<uint8_t> real, is_object, highlight;  ///< composed real change, object pixels, kept raw
+    float scale = 1.0f;                               ///< object radiance per filter unit
+    bool any = false;                                 ///< some change or object to filter
+};
+
+/// Width (pixels) of the real surface around the objects whose change sets the objects' scale.
+constexpr int kRingWidth = 6;
+
+static JointInput joint_input(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
+                              const Image& signal, float ceiling) {
+    const int W = photo.width(), H = photo.height();
+    const size_t n = photo.size();
+    const float floor = value_floor(photo);
+    JointInput j{Image(W, H), Image(W, H), Image(W, H), Image(W, H), std::vector<uint8_t>(n, 0),
+                 std::vector<uint8_t>(n, 0), std::vector<uint8_t>(n, 0)};
+    double lum = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < n && !alpha.empty(); ++i)
+        if (object_radiance(photo, augmented, alpha, dL, i, j.object[i]))
+            j.is_object[i] = 1, lum += std::max(luminance(j.object[i]), 0.0f), ++count;
+    // The objects' scale: their mean at the level of the real change around them (a contact
+    // shadow's), so what the filter spreads across an edge moves neither side's mean.
+    std::vector<uint8_t> ring = j.is_object;
+    dilate_mask(ring, W, H, kRingWidth);
+    double ring_q = 0.0;
+    size_t ring_n = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (ring[i] && !j.is_object[i] && is_finite(signal[i]))
+            ring_q += luminance(vec3(1.0f) + signal[i] / glm::max(photo[i], vec3(floor))), ++ring_n;
+    const double level = ring_n ? std::clamp(ring_q / double(ring_n), 0.05, 20.0) : 1.0;
+    j.scale = std::max(count ? float(lum / double(count) / level) : 1.0f, floor);
+    for (size_t i = 0; i < n; ++i) {
+        const bool obj = j.is_object[i];
+        j.real[i] = !obj && (alpha.empty() || alpha[i].x < kObjectShare);
+        for (int c = 0; c < 3; ++c) {
+            float v = obj ? j.object[i][c] : signal[i][c];
+            if (!std::isfinite(v)) v = 0.0f;
+            if (std::abs(v) > ceiling) j.highlight[i] = 1, v = std::clamp(v, -ceiling, ceiling);
+            const float p = std::isfinite(photo[i][c]) ? photo[i][c] : 0.0f;
+            j.base[i][c] = std::max(p, floor);
+            j.raw[i][c] = obj ? v / j.scale : 1.0f + v / j.base[i][c];
+            j.in[i][c] = std::max(0.0f, j.raw[i][c]);
+            j.any |= obj || v != 0;
+        }
+    }
+    return j;
+}
+
+/// Interactive: the real surfaces' change and the objects' radiance in one filter run (see
+/// JointInput), each given back its local mean. A partly covered pixel's real share stays raw
+/// where its object share is filtered. `signal`: the real change per unit of real share, filled
+/// where objects cover the real surface.
+static Image denoise_joint(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
+                           const Image& signal, const Image& albedo_in, const Image& normal, float ceiling,
+                           const std::atomic<bool>* cancel) {
+    std::string why;
+    Oidn* o = library(&why);
+    if (!o) throw DenoiserUnavailable(why);
+    const int W = photo.width(), H = photo.height();
+    const JointInput j = joint_input(photo, augmented, alpha, dL, signal, ceiling);
+    if (!j.any) return augmented;
+    Image albedo = albedo_in;
+    for (size_t i = 0; i < albedo.size(); ++i) albedo[i] = glm::clamp(albedo[i], vec3(0), vec3(1));
+    std::vector<uint8_t> support = change_support(signal), area = support;
+    for (size_t i = 0; i < area.size(); ++i) area[i] |= j.is_object[i];
+    Image dq = run_filter_in(*o, support_box(area, W, H), j.in, albedo, normal, DenoiseQuality::Interactive, cancel);
+    // A deep shadow's noise crosses zero, where the filter's input is clipped: its mean would
+    // come out light. The local mean of what the filter left out is put back.
+    add_local_residual(j.raw, dq, kResidualRadius, j.real);
+    keep_local_mean(j.raw, j.is_object, dq);
+    Image change(W, H);
+    for (size_t i = 0; i < change.size(); ++i) {
+        if (j.real[i] && !support[i]) continue;
+        const vec3 v = !j.real[i] || j.highlight[i] ? signal[i] : j.base[i] * (dq[i] - vec3(1.0f));
+        for (int c = 0; c < 3; ++c) change[i][c] = std::isfinite(v[c]) ? v[c] : 0.0f;
+    }
+    Image out = with_real_change(photo, augmented, alpha, dL, change);
+    for (size_t i = 0; i < out.size(); ++i) {
+        if (!j.is_object[i]) continue;
+        const vec3 clean = j.highlight[i] ? j.object[i] : dq[i] * j.scale;
+        const vec3 v = out[i] + std::min(1.0f, alpha[i].x) * (clean - j.object[i]);
+        if (is_finite(v)) out[i] = v;
+    }
+    return out;
 }
 
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
@@ -501,20 +642,12 @@ Image denoise_augmented(const Image& photo, const Image& augmented, const Image&
     for (uint8_t k : known) holes |= !k;
     if (holes) fill_holes(signal, std::move(known));
     const float ceiling = denoise_ceiling(photo);
-    // A viewer's picture in one filter run (the change demodulated by the photo); a final
-    // render's signed parts apart, which keeps a few percent less error.
-    Image out = quality == DenoiseQuality::Interactive
-                    ? denoise_ratio(signal, photo, value_floor(photo), albedo, normal, ceiling, quality, cancel)
-                    : denoise_change(signal, albedo, normal, ceiling, quality, cancel);
-    for (size_t i = 0; i < out.size(); ++i) {
-        const float a = covered(i);
-        if (a == 0)
-            out[i] = out[i] == vec3(0) ? photo[i] : photo[i] + out[i];
-        else if (a >= kCovered || dL.empty())
-            out[i] = augmented[i];  // without dL the real share of a partly covered pixel is unknown
-        else
-            out[i] = augmented[i] + (1.0f - a) * out[i] - dL[i];  // the real share's change, denoised
-    }
+    // A viewer's picture in one filter run; a final render's real change (its signed parts apart)
+    // and objects in three, which keeps a few percent less error.
+    if (quality == DenoiseQuality::Interactive)
+        return denoise_joint(photo, augmented, alpha, dL, signal, albedo, normal, ceiling, cancel);
+    Image out = with_real_change(photo, augmented, alpha, dL,
+                                 denoise_change(signal, albedo, normal, ceiling, quality, cancel));
     if (!alpha.empty()) denoise_objects(photo, augmented, alpha, dL, albedo, normal, ceiling, quality, cancel, out);
     return out;
 }

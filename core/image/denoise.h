@@ -32,10 +32,12 @@ bool denoiser_available(std::string* why = nullptr);
 /// a mirror) is not noise: it keeps its raw value, and the filter sees it clamped so that its
 /// energy does not spread. Every value returned is finite. Throws DenoiserUnavailable, or
 /// std::invalid_argument for mismatched sizes, std::runtime_error when the library fails.
-/// How hard the filter works. Final: the library's best network, the change's signed parts
-/// filtered apart (two runs). Interactive: its fast network and, in denoise_augmented, the real
-/// surfaces' change demodulated by the photo (one run): about a sixth of the time, a few
-/// percent more error.
+/// How hard the filter works. Final: the library's best network; the real surfaces' change
+/// (its signed parts apart) and the objects' radiance in separate runs. Interactive: its fast
+/// network, and in denoise_augmented one run for both, the change demodulated by the photo and
+/// the objects scaled to the change around them: about a sixth of Final's time, a few percent
+/// more error. Filters are kept between calls for the same box size (boxes grow in steps of 32
+/// pixels), so a viewer's next denoise skips the library's planning.
 enum class DenoiseQuality { Final, Interactive };
 
 /// The share of a render's time its denoise may take.
@@ -58,7 +60,8 @@ Image denoise_change(const Image& change, const Image& albedo = {}, const Image&
 /// are filtered apart, each with the guides, so neither spreads into the other (a bright object
 /// does not light the shadow beside it) and the photo behind an object is never smeared. A
 /// pixel's object share is filtered where the object covers at least a quarter of it (with `dL`
-/// for partly covered pixels); a partly covered pixel's real share is filtered with `dL` only.
+/// for partly covered pixels); a partly covered pixel's real share is filtered with `dL` only
+/// (at Interactive quality only where its object share is not).
 /// Pixels where alpha is 0 and the denoised change is 0 keep the photo's bits. The ceiling is
 /// denoise_ceiling(photo). Same sizes required; throws as denoise_change.
 Image denoise_augmented(const Image& photo, const Image& augmented, const Image& alpha, const Image& dL,
