@@ -100,6 +100,7 @@ std::function<void(RenderSettings&)> variant_edit(const std::string& method) {
     if (method == "differential-photons") return [](RenderSettings& s) { s.estimator = Estimator::Photons; };
     if (method == "differential-random") return [](RenderSettings& s) { s.low_discrepancy = false; };
     if (method == "differential-uniform") return [](RenderSettings& s) { s.adaptive_threshold = 0; };
+    if (method == "differential-fixed-photons") return [](RenderSettings& s) { s.balance_photons = false; };
     return {};
 }
 
@@ -178,7 +179,9 @@ nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::strin
                         {"rel_rmse_objects", objects.rel_rmse},
                         {"rel_rmse_real_changed", real.rel_rmse},
                         {"estimated_rel_error", st.estimated_rel_error},
-                        {"tiles_stopped", st.tiles_stopped}});
+                        {"tiles_stopped", st.tiles_stopped},
+                        {"photons_last_pass", st.photons_per_pass},
+                        {"photon_variance_share", st.photon_variance_share}});
         std::printf("%-14s %-12s %8.2fs  passes %5d  rel. RMSE %.4f  changed %.4f (objects %.4f, real %.4f, "
                     "estimated %.4f)",
                     b.name.c_str(), method.c_str(), st.seconds, st.passes, whole.rel_rmse,
@@ -215,7 +218,7 @@ int run_bench(BenchOptions o) {
             throw InputError("", "--methods",
                              "unknown method '" + m +
                                  "' (differential, differential-photons, differential-random, "
-                                 "differential-uniform, standard, standard-correlated, cycles, cycles5 or "
+                                 "differential-uniform, differential-fixed-photons, standard, standard-correlated, cycles, cycles5 or "
                                  "cycles5-artist)");
     if (o.denoise) {
         std::string why;
@@ -258,7 +261,8 @@ Command add_bench_command(CLI::App& app) {
     sub->add_option("--methods", o->methods,
                     "Comma-separated: differential (split estimator), differential-photons (all-photon "
                     "estimator), differential-random (no low-discrepancy points), differential-uniform "
-                    "(no adaptive sampling), standard, standard-correlated, cycles (Blender 3.4), cycles5 "
+                    "(no adaptive sampling), differential-fixed-photons (the project's photons in every "
+                    "pass), standard, standard-correlated, cycles (Blender 3.4), cycles5 "
                     "(Blender 5: $DP_BPY5_PYTHON, else .deps/bpy5/bin/python), cycles5-artist (Blender 5 "
                     "as artists run it: denoised, adaptive sampling, path guiding, light tree, MNEE)")
         ->delimiter(',');

@@ -33,6 +33,10 @@ struct RenderStats {
     /// Where the last pass's time went (seconds): photons, maps, marking the pixels the photons
     /// reach, shading the tiles, adding them up.
     double trace_s = 0, maps_s = 0, mark_s = 0, shade_s = 0, accumulate_s = 0;
+    int64_t photons_per_pass = 0;  ///< photons the last pass traced
+    /// The photons' share of the per-pass variance over the changed pixels, as last measured
+    /// when balancing photons (PhotonBalance); negative while unknown.
+    double photon_variance_share = -1;
 };
 
 /// A progressive renderer driven one pass at a time: the differential photon mapper, or the

@@ -28,14 +28,17 @@ CameraGather::CameraGather(const RenderScene& scene, const PassMaps& maps, int c
     inv_area_ = maps.radius > 0 ? 1.0 / (double(kPi) * maps.radius * maps.radius) : 0.0;
 }
 
-vec3 CameraGather::real_dL(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct, bool gather) const {
+vec3 CameraGather::real_dL(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct, bool gather,
+                           float* photon) const {
     const vec3 n = facing_normal(hit.ng, dir);
-    dvec3 E(0);
+    dvec3 E(0), E_photons(0);
     if (direct_ && direct && direct->weight > 0)
         E += direct_->estimate(hit, n, direct->u, rng) * direct->weight;
-    if (gather && !maps_.real.empty()) E += maps_.real.gather(hit.p, n) * inv_area_;
-    if (E == dvec3(0)) return vec3(0);
-    return vec3(dvec3(hit.surface->reflectance_at(hit.uv)) * double(kInvPi) * E);
+    if (gather && !maps_.real.empty()) E_photons = maps_.real.gather(hit.p, n) * inv_area_;
+    if (E == dvec3(0) && E_photons == dvec3(0)) return vec3(0);
+    const dvec3 rho_over_pi = dvec3(hit.surface->reflectance_at(hit.uv)) * double(kInvPi);
+    if (photon) *photon = float(luminance(rho_over_pi * E_photons));
+    return vec3(rho_over_pi * (E + E_photons));
 }
 
 vec3 CameraGather::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
@@ -134,7 +137,7 @@ SampleResult CameraGather::shade_camera(int x, int y, float px, float py, PixelS
     if (!hit) return r;  // nothing modelled here: the photo stands
     if (!hit.surface->is_virtual) {
         const DirectSamples direct = DirectSamples::from(sampler, work.direct_weight);
-        r.dL = real_dL(hit, ray.dir, rng, work.direct_weight > 0 ? &direct : nullptr, work.gather);
+        r.dL = real_dL(hit, ray.dir, rng, work.direct_weight > 0 ? &direct : nullptr, work.gather, &r.photon);
         r.pixel_change = r.dL;
         return r;
     }

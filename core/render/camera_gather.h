@@ -19,6 +19,7 @@ struct SampleResult {
     vec3 pixel_change{0};  ///< L' - L_photo(pixel): what the pixel gains or loses
     vec3 dL{0};      ///< change of radiance on a real surface seen directly (signed)
     float alpha = 0; ///< 1 if the sample sees a virtual object first
+    float photon = 0; ///< luminance of the part of pixel_change the pass's photons estimated
 };
 
 /// Estimates per camera sample on virtual diffuse surfaces, the noisiest pixels: chosen so that
@@ -77,8 +78,9 @@ public:
 
     /// dL at a real hit seen from direction `dir`: rho/pi (dE_direct + sum(phi) / (pi r^2)).
     /// `direct` null leaves the direct-light estimate out (or there is no DirectChange).
+    /// `photon`, if given, gets the luminance of the photons' part.
     vec3 real_dL(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct,
-                    bool gather = true) const;
+                    bool gather = true, float* photon = nullptr) const;
     /// Radiance leaving a real point towards -dir in the augmented scene: the photo where the
     /// camera sees the point, rho E / pi elsewhere, plus dL.
     vec3 real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const;

@@ -133,7 +133,8 @@ ProjectFingerprint fingerprint_project(const Project& project) {
     // What does not change a pass's samples, or what the shard's header states apart.
     if (doc.contains("render"))
         for (const char* key :
-             {"passes", "time_budget_s", "threads", "seed", "adaptive_threshold", "adaptive_min_passes"})
+             {"passes", "time_budget_s", "threads", "seed", "adaptive_threshold", "adaptive_min_passes",
+              "balance_photons"})
             doc["render"].erase(key);
     doc.erase("display");
     Fingerprint files;

@@ -12,6 +12,7 @@
 #include "render/photon_tracer.h"
 #include "assets/render_scene.h"
 #include "render/camera_gather.h"
+#include "render/photon_balance.h"
 #include "render/tile_accumulator.h"
 
 namespace dp {
@@ -111,8 +112,15 @@ private:
     /// Shades the pass's tiles into `out` (kTile^2 samples per tile, in work.tiles order).
     bool shade_tiles(int pass, const PassMaps& maps, const PassWork& work, std::vector<SampleResult>& out,
                      const std::atomic<bool>* cancel, size_t& shaded, size_t& direct) const;
+    /// Whether the objects change pixel i so far: it sees one, or its mean change exceeds 1% of
+    /// its value.
+    bool changed_pixel(size_t i) const;
     /// Stops converged tiles and refreshes the error estimate.
     void update_convergence();
+    /// Adds the pass's samples to the photon balance and, when one is due, sets the next passes'
+    /// photon count.
+    void balance_photons(const PassWork& work, const std::vector<SampleResult>& samples, uint64_t photon_rays,
+                         size_t shaded);
     /// Builds the frame plan and what depends on it, once; false if `cancel` stopped it.
     bool ensure_plan(const std::atomic<bool>* cancel);
 
@@ -129,6 +137,7 @@ private:
     bool planned_ = false;
     int diffuse_samples_ = 2;
     TileAccumulator sums_;
+    std::optional<PhotonBalance> balance_;  ///< with adaptive sampling and the split estimator
     int first_pass_ = 1;  ///< the index of this renderer's first pass (start_at_pass)
     float ceiling_ = 0;  ///< pixel luminance clamped here when errors are estimated
     RenderStats stats_;

@@ -241,7 +241,7 @@ RenderSettings parse_render(const JsonReader& r, const json& j) {
     r.object(j, "render",
              {"photons_per_pass", "passes", "time_budget_s", "initial_radius", "alpha", "max_depth",
               "seed", "threads", "estimator", "adaptive_threshold", "adaptive_min_passes",
-              "low_discrepancy"});
+              "low_discrepancy", "balance_photons"});
     constexpr int64_t kIntMax = std::numeric_limits<int>::max();
     constexpr int64_t kInt64Max = std::numeric_limits<int64_t>::max();
     RenderSettings s;
@@ -284,6 +284,8 @@ RenderSettings parse_render(const JsonReader& r, const json& j) {
         s.adaptive_min_passes = int(r.integer(*v, "render.adaptive_min_passes", 2, kIntMax));
     if (auto* v = r.optional(j, "low_discrepancy"))
         s.low_discrepancy = r.boolean(*v, "render.low_discrepancy");
+    if (auto* v = r.optional(j, "balance_photons"))
+        s.balance_photons = r.boolean(*v, "render.balance_photons");
     return s;
 }
 
@@ -433,6 +435,7 @@ J write_project(const Project& p) {
     render["adaptive_threshold"] = num(s.adaptive_threshold);
     render["adaptive_min_passes"] = s.adaptive_min_passes;
     render["low_discrepancy"] = s.low_discrepancy;
+    render["balance_photons"] = s.balance_photons;
     doc["render"] = render;
     doc["display"] = J{{"exposure", num(p.display.exposure)}};
     if (p.display.view != DisplaySettings{}.view) doc["display"]["view"] = p.display.view;
