@@ -183,7 +183,7 @@ struct RenderSettings {
     /// (false: independent random numbers, to measure what the points buy).
     bool low_discrepancy = true;
     /// With adaptive sampling and the split estimator: each pass's photon count follows what the
-    /// photons add to the error per unit of work (render/photon_balance.h), between an eighth of
+    /// photons add to the error per unit of work (render/photon_balance.h), between a quarter of
     /// photons_per_pass and photons_per_pass (false: every pass traces photons_per_pass).
     bool balance_photons = true;
     bool operator==(const RenderSettings&) const = default;
