@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "base/error.h"
+#include "base/input_file.h"
 #include "calibration/exif.h"
 #include "common.h"
 #include "image/image_io.h"
@@ -52,6 +53,8 @@ LineSegment parse_segment(const std::string& text, const std::string& option) {
 }
 
 nlohmann::json read_json(const std::string& path) {
+    // Clicks and segments take kilobytes; a FIFO or a device would block or feed the parser.
+    check_input_file(path, "", "a JSON file of points", 16u << 20);
     std::ifstream in(path);
     if (!in) throw InputError(path, "", "cannot open the file");
     try {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "base/error.h"
+#include "base/error_reason.h"
 #include "commands.h"
 #include "common.h"
 #include "image/denoise.h"
@@ -56,6 +57,33 @@ void apply_overrides(const RenderOptions& o, Project& p) {
         p.render.adaptive_threshold = RenderSettings{}.adaptive_threshold;
 }
 
+/// The project fields the command line set, each with the flag that set it.
+std::vector<std::pair<std::string, std::string>> overridden_fields(const RenderOptions& o) {
+    std::vector<std::pair<std::string, std::string>> fields;
+    if (o.passes_opt->count()) fields.emplace_back("render.passes", "--passes");
+    if (o.time_opt->count()) fields.emplace_back("render.time_budget_s", "--time");
+    if (o.photons_opt->count()) fields.emplace_back("render.photons_per_pass", "--photons");
+    if (o.seed_opt->count()) fields.emplace_back("render.seed", "--seed");
+    if (o.threads_opt->count()) fields.emplace_back("render.threads", "--threads");
+    if (o.probe_max_width_opt->count()) fields.emplace_back("probe.max_width", "--probe-max-width");
+    if (!o.adaptive.empty()) fields.emplace_back("render.adaptive_threshold", "--adaptive");
+    return fields;
+}
+
+/// Runs `work`; a value the command line gave that is refused (by the scene's or the render's
+/// checks, which know only project fields) is reported under the flag the user typed, with no
+/// project file: "--photons", not "render.photons_per_pass".
+template <class F>
+int reported_under_flags(const RenderOptions& o, F&& work) {
+    try {
+        return work();
+    } catch (const InputError& e) {
+        for (const auto& [field, flag] : overridden_fields(o))
+            if (e.field() == field) throw InputError("", flag, error_reason(e));
+        throw;
+    }
+}
+
 /// `--pass-range`: a shard of the passes, written as exact sums for `merge` (render_shard.h).
 /// Refuses what would make its passes depend on passes it does not render.
 int run_shard(const RenderOptions& o) {
@@ -74,7 +102,7 @@ int run_shard(const RenderOptions& o) {
     parse_pass_range(o.pass_range, r.pass_begin, r.pass_end);
     r.threads = o.threads;
     r.edit = [&o](Project& p) { apply_overrides(o, p); };
-    return render_shard(r);
+    return reported_under_flags(o, [&] { return render_shard(r); });
 }
 
 /// The denoised augmented photo and change (docs/method-notes.md, "Denoising"): only the
@@ -118,6 +146,8 @@ void write_result(const RenderOptions& o, ImageKind kind, const LoadedScene& loa
         warn(o.output + ": " + w);
 }
 
+int render_loaded(const RenderOptions& o, ImageKind kind, bool debug, int px, int py);
+
 int run_render(const RenderOptions& o) {
     if (o.range_opt->count()) return run_shard(o);
     const bool debug = o.pixel_opt->count() > 0;
@@ -147,6 +177,13 @@ int run_render(const RenderOptions& o) {
     if (standard && o.photons_opt->count())
         warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
 
+    return reported_under_flags(o, [&] { return render_loaded(o, kind, debug, px, py); });
+}
+
+/// The render itself, once the command line is checked: loads the project with the command
+/// line's overrides, renders and writes the output.
+int render_loaded(const RenderOptions& o, ImageKind kind, bool debug, int px, int py) {
+    const bool standard = o.method != "differential";
     return with_threads(o.threads, [&]() -> int {
         LoadedScene loaded = load_scene(o.project, [&](Project& p) { apply_overrides(o, p); });
         auto scene = loaded.scene;

@@ -9,6 +9,7 @@
 #include "assets/mesh_units.h"
 #include "assets/scene_checks.h"
 #include "base/error.h"
+#include "base/error_reason.h"
 #include "base/euler.h"
 #include "base/memory.h"
 #include "base/text.h"
@@ -450,7 +451,15 @@ std::shared_ptr<RenderScene> build_scene(AssetLibrary& library, const Project& p
     const int pw = full->width(), ph = full->height();
     if (width > 0 && height > 0 && (width != pw || height != ph))
         p.camera = scaled_camera(project.camera, pw, ph, width, height);
-    auto scene = std::make_shared<RenderScene>(p, std::move(a), std::move(lit));
+    std::shared_ptr<RenderScene> scene;
+    try {
+        scene = std::make_shared<RenderScene>(p, std::move(a), std::move(lit));
+    } catch (const InputError& e) {
+        // The scene's checks (its extent, its camera) know fields, not files: the fields are
+        // the project file's.
+        if (!e.file().empty() || project_file.empty()) throw;
+        throw InputError(project_file, e.field(), error_reason(e));
+    }
     check_scene(*scene, project_file);
     return scene;
 }

@@ -39,11 +39,13 @@ Image decode_embedded_texture(const EmbeddedTexture& texture, int index,
                               ImageLoadReport* report) {
     // The image decoders read files: the bytes go through a private temporary file, so that an
     // embedded texture meets every check a texture file meets (its header's size first).
+    // The reader takes the format from the file's name: the name follows the bytes, as the
+    // mesh file's own format hint may be missing or wrong.
+    std::string ext = image_extension_for_content(texture.bytes.data(), texture.bytes.size());
+    if (ext.empty()) ext = texture.format.empty() ? std::string("img") : texture.format;
     static std::atomic<unsigned> counter{0};
-    const fs::path temp =
-        fs::temp_directory_path() /
-        ("dp_embedded_texture_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) +
-         "." + (texture.format.empty() ? std::string("img") : texture.format));
+    const fs::path temp = fs::temp_directory_path() / ("dp_embedded_texture_" + std::to_string(::getpid()) + "_" +
+                                                       std::to_string(counter++) + "." + ext);
     struct Remove {
         fs::path path;
         ~Remove() {

@@ -162,9 +162,13 @@ void RenderScene::check_extent() const {
         if (good) return;
         const std::string list = s.is_virtual ? "objects" : "real";
         const std::string& name = s.is_virtual ? project_.objects[size_t(s.index)].name : project_.real[size_t(s.index)].name;
+        const Shape& shape = s.is_virtual ? project_.objects[size_t(s.index)].shape : project_.real[size_t(s.index)].shape;
+        // The mesh file is named too: its own coordinates may be what is out of reach.
+        const std::string mesh =
+            shape.kind == Shape::Kind::Mesh ? " (mesh '" + shorten_path(shape.mesh_path) + "')" : std::string();
         throw InputError("", list + "[" + std::to_string(s.index) + "]",
-                         "'" + name + "' reaches beyond 1e9 m from the origin (or is not finite) once placed: "
-                         "check its size, scale and translation");
+                         "'" + name + "' reaches beyond 1e9 m from the origin (or is not finite) once placed" + mesh +
+                             ": check its size, scale and translation");
     };
     for (const Surface& s : real_surfaces_) check(s);
     for (const Surface& s : virtual_surfaces_) check(s);

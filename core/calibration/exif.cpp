@@ -7,6 +7,7 @@
 #include <exiv2/exiv2.hpp>
 
 #include "base/error.h"
+#include "base/input_file.h"
 
 namespace dp {
 namespace {
@@ -112,6 +113,11 @@ ExifFocal read_exif_focal(const std::string& path, std::optional<double> sensor_
 }
 
 int exif_orientation(const std::string& path) {
+    try {
+        check_input_file(path, "", "a photo");  // opening a FIFO would block
+    } catch (const InputError&) {
+        return 1;  // the photo's own loading says what is wrong with it
+    }
     try {
         Exiv2::Image::AutoPtr image = Exiv2::ImageFactory::open(path);
         if (!image.get()) return 1;

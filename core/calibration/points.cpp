@@ -1,5 +1,6 @@
 // Camera from general world-image correspondences.
 #include <cmath>
+#include <cstdio>
 
 #include <opencv2/calib3d.hpp>
 
@@ -84,34 +85,29 @@ Intrinsics dlt_intrinsics(const std::vector<PointCorrespondence>& pts, int width
     return k;
 }
 
-}  // namespace
-
-CalibrationResult calibrate_points(const std::vector<PointCorrespondence>& points,
-                                   int image_width, int image_height,
-                                   const std::optional<Intrinsics>& intrinsics,
-                                   const std::string& source, double click_sigma_px) {
-    const bool known = intrinsics && intrinsics->fx != 0;
-    std::vector<ImagePoint> image_points;
-    for (const auto& p : points) {
-        if (!std::isfinite(p.world.x) || !std::isfinite(p.world.y) || !std::isfinite(p.world.z))
-            throw InputError(source, "points", "world coordinates must be finite");
-        image_points.push_back(p.image);
+/// Throws InputError for a point far outside the photo: more than the photo's own size beyond
+/// its border. A point a little outside is a known point just out of frame; one that far is a
+/// slip (a wrong --size, a click on another picture), and OpenCV's solvers fail on such points
+/// with their own assertion text.
+void check_points_near_photo(const std::vector<ImagePoint>& points, int width, int height, const std::string& source) {
+    for (size_t i = 0; i < points.size(); ++i) {
+        const ImagePoint& p = points[i];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;  // check_image_points says so
+        if (p.x >= -width && p.x <= 2.0 * width && p.y >= -height && p.y <= 2.0 * height) continue;
+        char buf[240];
+        std::snprintf(buf, sizeof buf,
+                      "point %zu at (%.6g, %.6g) is far outside the %dx%d photo (more than its own size beyond its "
+                      "border): image points are pixels of the photo",
+                      i + 1, p.x, p.y, width, height);
+        throw InputError(source, "points", buf);
     }
-    check_image_points(image_points, 4, source, "points", "points");
-    if (!known && points.size() < 6)
-        throw InputError(source, "points",
-                         "without a focal length, need at least 6 points (not all in one "
-                         "plane), got " + std::to_string(points.size()) +
-                             "; or give the focal length");
-    const auto [line, flat] = spreads(points);
-    if (line < 1e-3)
-        throw InputError(source, "points",
-                         "the world points are collinear (or coincide): they fix no pose");
-    if (!known && flat < 0.02)
-        throw InputError(source, "points",
-                         "the world points lie (nearly) in one plane: that fixes the pose but "
-                         "not the focal length; give the focal length, or add points off the "
-                         "plane");
+}
+
+/// The camera from points that passed calibrate_points' checks; OpenCV may still throw.
+CalibrationResult solve_points(const std::vector<PointCorrespondence>& points, const std::vector<ImagePoint>& image_points,
+                               int image_width, int image_height, const std::optional<Intrinsics>& intrinsics,
+                               const std::string& source, double click_sigma_px) {
+    const bool known = intrinsics && intrinsics->fx != 0;
     std::vector<cv::Point3d> world;
     for (const auto& p : points) world.emplace_back(p.world.x, p.world.y, p.world.z);
     const std::vector<cv::Point2d> image = calib::to_cv(image_points);
@@ -158,6 +154,47 @@ CalibrationResult calibrate_points(const std::vector<PointCorrespondence>& point
         known ? calib::FreeIntrinsics::None : calib::FreeIntrinsics::All, click_sigma_px);
     add_quality_warnings(r);
     return r;
+}
+
+}  // namespace
+
+CalibrationResult calibrate_points(const std::vector<PointCorrespondence>& points,
+                                   int image_width, int image_height,
+                                   const std::optional<Intrinsics>& intrinsics,
+                                   const std::string& source, double click_sigma_px) {
+    const bool known = intrinsics && intrinsics->fx != 0;
+    std::vector<ImagePoint> image_points;
+    for (const auto& p : points) {
+        if (!std::isfinite(p.world.x) || !std::isfinite(p.world.y) || !std::isfinite(p.world.z))
+            throw InputError(source, "points", "world coordinates must be finite");
+        image_points.push_back(p.image);
+    }
+    // Near the photo first: one far-off click would also make the others look collinear.
+    check_points_near_photo(image_points, image_width, image_height, source);
+    check_image_points(image_points, 4, source, "points", "points");
+    if (!known && points.size() < 6)
+        throw InputError(source, "points",
+                         "without a focal length, need at least 6 points (not all in one "
+                         "plane), got " + std::to_string(points.size()) +
+                             "; or give the focal length");
+    const auto [line, flat] = spreads(points);
+    if (line < 1e-3)
+        throw InputError(source, "points",
+                         "the world points are collinear (or coincide): they fix no pose");
+    if (!known && flat < 0.02)
+        throw InputError(source, "points",
+                         "the world points lie (nearly) in one plane: that fixes the pose but "
+                         "not the focal length; give the focal length, or add points off the "
+                         "plane");
+    try {
+        return solve_points(points, image_points, image_width, image_height, intrinsics, source, click_sigma_px);
+    } catch (const cv::Exception&) {
+        // OpenCV's text names its own source lines and conditions; what it means for the user:
+        throw InputError(source, "points",
+                         "no camera fits these points: they are degenerate as the camera would see them "
+                         "(a world point clicked far from where it is, or world and image points that "
+                         "do not belong together)");
+    }
 }
 
 }  // namespace dp

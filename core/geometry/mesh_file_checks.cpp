@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "geometry/mesh_limits.h"
 
 namespace dp {
 
@@ -70,6 +71,8 @@ void check_ply_header(const std::string& path, const std::string& field) {
             have_format = true;
         } else if (key == "element") {
             if (w.size() != 3 || !is_count(w[2])) fail(n, "expected \"element NAME COUNT\"");
+            // Assimp allocates by the declared count: each face is a triangle at the least.
+            if (w[1] == "face") check_mesh_triangles(path, field, std::stoull(w[2]), "faces (declared in its header)");
             have_element = true;
         } else if (key == "property") {
             if (!have_element) fail(n, "a property before any element");

@@ -2,18 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "image/image_io.h"
 #include "base/text.h"
-#include "base/input_file.h"
 #include "base/atomic_file.h"
 #include "image/image_io_internal.h"
 
@@ -22,20 +18,6 @@ namespace dp {
 namespace fs = std::filesystem;
 
 namespace image_io_detail {
-
-bool check_image_file(const std::string& path, const std::string& field) {
-    if (path.empty()) throw InputError(path, field, "no image file given");
-    const uint64_t bytes = check_input_file(path, field, "an image");
-    if (bytes == 0) throw InputError(path, field, "image has zero size (the file is empty)");
-
-    std::ifstream in(path, std::ios::binary);
-    if (!in)
-        throw InputError(path, field, std::string("cannot open file: ") + std::strerror(errno));
-    unsigned char magic[4] = {};
-    in.read(reinterpret_cast<char*>(magic), sizeof(magic));
-    return in.gcount() == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 &&
-           magic[3] == 0x01;
-}
 
 void check_output_folder(const std::string& path) {
     const fs::path folder = fs::path(path).parent_path();
@@ -53,19 +35,13 @@ Image load_image(const std::string& path, const std::string& field, ImageLoadRep
     ImageLoadReport& out = report ? *report : local;
     out = ImageLoadReport{};
 
-    // OpenImageIO sniffs the format from the content; the header's size is checked first.
-    image_io_detail::check_image_file(path, field);
-    int64_t width = 0, height = 0;
-    bool known_format = false;
-    if (image_io_detail::header_size(path, width, height, &known_format)) {
-        check_image_size(path, field, width, height);
-    } else if (known_format) {
-        // A decoder handed a header it cannot size would guess, and may allocate gigabytes.
-        throw InputError(path, field, "corrupt image: its header gives no valid size");
-    }
+    // The format from the name, confirmed by the magic number; the header's size before any
+    // decoder sees the file.
+    const image_io_detail::ImageFormat& format = image_io_detail::check_image_format(path, field);
+    image_io_detail::check_declared_size(path, field);
     Image image;
     try {
-        image = image_io_detail::load_with_oiio(path, field, options, out);
+        image = image_io_detail::load_with_oiio(path, field, format, options, out);
     } catch (const InputError&) {
         throw;
     } catch (const std::bad_alloc&) {

@@ -40,16 +40,22 @@ struct ImageLoadOptions {
     std::string colorspace;
 };
 
-/// Loads any format OpenImageIO reads: float data (EXR, HDR, float TIFF) as linear, integer
-/// data (PNG, JPEG, 8/16-bit TIFF, BMP) as sRGB decoded to linear, unless `options` says
-/// otherwise; an embedded RGB matrix/TRC ICC profile (Display P3, Adobe RGB) is converted to
-/// linear Rec.709. An EXR loads as its display window.
+/// Loads the documented formats, picked by the file's extension and confirmed by its first
+/// bytes: OpenEXR (.exr), Radiance HDR (.hdr), PNG, JPEG (.jpg, .jpeg), TIFF (.tif, .tiff) and
+/// BMP, each through OpenImageIO's reader of that format alone (its other readers are never
+/// tried on a file). Float data (EXR, HDR, float TIFF) loads as linear, integer data (PNG,
+/// JPEG, 8/16-bit TIFF, BMP) as sRGB decoded to linear, unless `options` says otherwise; an
+/// embedded RGB matrix/TRC ICC profile (Display P3, Adobe RGB) is converted to linear Rec.709.
+/// An EXR loads as its display window.
 /// JPEG and TIFF come upright by their EXIF Orientation tag, as viewers show them (a phone's
 /// portrait photo, stored landscape with orientation 6 or 8, loads portrait); a PNG's tag is
 /// not applied (OpenCV does not), so a PNG loads as stored.
-/// Throws InputError naming `path` and `field` when the file is missing, unreadable, corrupt,
-/// empty or over check_image_size (measured from the header for EXR, PNG, JPEG, HDR and BMP: a
-/// tiny file declaring a huge size allocates nothing). NaN/Inf become 0, counted in `report`.
+/// Throws InputError naming `path` and `field` when the file is missing, not a regular file,
+/// over kMaxImageFileBytes, of another extension, not what its extension says ("not a PNG
+/// file (its first bytes are ...)"), unreadable, corrupt, empty, over check_image_size, or
+/// smaller than a complete file of the size its header declares (all measured from the
+/// header, before decoding: a tiny file declaring a huge size allocates nothing). NaN/Inf
+/// become 0, counted in `report`.
 Image load_image(const std::string& path, const std::string& field = "",
                  ImageLoadReport* report = nullptr, const ImageLoadOptions& options = {});
 
@@ -66,10 +72,20 @@ struct ExrLayer {
 /// EXIF exposure, lens, date) as name/value pairs, from its header alone; empty if unreadable.
 std::vector<std::pair<std::string, std::string>> read_image_metadata(const std::string& path);
 
-/// Reads an image's size from its header (EXR, PNG, JPEG, HDR, BMP) without decoding it, as
-/// load_image returns the picture (a JPEG's EXIF orientation 5 to 8 swaps width and height);
-/// false for other formats or an unreadable header (decode the image then).
+/// Reads an image's size from its header (EXR, PNG, JPEG, HDR, BMP, TIFF) without decoding it,
+/// as load_image returns the picture (a JPEG's or TIFF's EXIF orientation 5 to 8 swaps width
+/// and height); false for other content, an unreadable header, or a path that is not a regular
+/// file (a FIFO is never opened: decode the image then, which says what is wrong).
 bool read_image_size(const std::string& path, int& width, int& height);
+
+/// The extension ("png", "jpg", "exr", "hdr", "tif", "bmp") of the accepted format whose magic
+/// number starts `bytes`, "" for none: the name a texture embedded in a mesh file is decoded
+/// under, whatever format the mesh file claims for it.
+std::string image_extension_for_content(const void* bytes, size_t size);
+
+/// The largest image file load_image opens: 8 GiB, more than any file within the pixel limit
+/// needs (an 8192 x 4096 multilayer EXR of 40 float channels is 5.4 GB).
+inline constexpr uint64_t kMaxImageFileBytes = uint64_t(8) << 30;
 
 /// The most pixels load_image decodes: 2^28 (16384 x 16384, 3.2 GB as linear float), fewer
 /// where that would take more than half of this machine's memory or where the environment's

@@ -85,20 +85,20 @@ std::vector<T> read_span(ImageInput& in, int subimage, int lo, int hi, TypeDesc 
     return buffer;
 }
 
-/// True when some OpenImageIO reader claims the extension (".exr", ".jpg").
-bool known_extension(const std::string& ext) {
-    if (ext.size() < 2) return false;
-    // "openexr:exr,sxr,mxr;jpeg:jpg,jpe,jpeg;..."
-    const std::string list = OIIO::get_string_attribute("extension_list");
-    size_t pos = 0;
-    while (pos < list.size()) {
-        const size_t end = std::min(list.find_first_of(",;", pos), list.size());
-        std::string item = list.substr(pos, end - pos);
-        if (const size_t colon = item.find(':'); colon != std::string::npos) item = item.substr(colon + 1);
-        if (item == ext.substr(1)) return true;
-        pos = end + 1;
+/// An OpenImageIO reader of `format` alone, opened on `path`; null with `why` set when it
+/// declines the file. Created by the format's name, never by the file's: OpenImageIO would
+/// otherwise try every other reader it has on a file its own reader declines.
+std::unique_ptr<ImageInput> open_input(const std::string& path, const ImageFormat& format, std::string& why) {
+    std::unique_ptr<ImageInput> in = ImageInput::create(format.oiio);
+    if (!in) {
+        why = "no " + std::string(format.name) + " reader in this OpenImageIO: " + OIIO::geterror();
+        return nullptr;
     }
-    return false;
+    ImageSpec spec;
+    if (in->open(path, spec)) return in;
+    why = in->geterror();
+    if (why.empty()) why = OIIO::geterror();
+    return nullptr;
 }
 
 /// Moves the pixels of the data window into an image of the display window.
@@ -157,6 +157,105 @@ const std::vector<float>& srgb_table() {
     return table;
 }
 
+/// The layer `wanted` names ("" for the plain R, G, B one, or a lone "...Combined" layer when
+/// there is none); throws InputError listing the layers when there is no such one.
+const LayerChannels& choose_layer(const std::vector<std::pair<std::string, LayerChannels>>& layers,
+                                  const std::string& wanted, const std::string& path, const std::string& field,
+                                  std::string& chosen_name) {
+    auto find = [&](const std::string& name) -> const LayerChannels* {
+        for (const auto& [n, l] : layers)
+            if (n == name && l.colour()) return &l;
+        return nullptr;
+    };
+    if (!wanted.empty()) {
+        const LayerChannels* chosen = find(wanted);
+        if (!chosen)
+            throw InputError(path, field,
+                             "has no layer \"" + wanted + "\" with colour channels (layers: " + layer_list(layers) + ")");
+        chosen_name = wanted;
+        return *chosen;
+    }
+    if (const LayerChannels* plain = find("")) return *plain;
+    // A Blender multilayer render: its picture is the "<view layer>.Combined" pass.
+    for (const auto& [n, l] : layers)
+        if (l.colour() && n.size() >= 8 && n.compare(n.size() - 8, 8, "Combined") == 0) {
+            chosen_name = n;
+            return l;
+        }
+    throw InputError(path, field,
+                     "has no R, G, B or Y channels of its own; choose one of its layers (" + layer_list(layers) +
+                         ") as the photo's \"layer\"");
+}
+
+/// The embedded ICC profile of integer data, named in `report` (float data is linear by
+/// definition); none where it is sRGB by another name or cannot be read (then warned about
+/// where the colour space is automatic).
+std::optional<IccRgbProfile> read_icc(const ImageSpec& spec, const std::string& space, ImageLoadReport& report) {
+    const OIIO::ParamValue* p = spec.find_attribute("ICCProfile");
+    if (!p) return std::nullopt;
+    const auto* bytes = static_cast<const uint8_t*>(p->data());
+    const size_t size = size_t(p->type().size()) * size_t(p->nvalues());
+    report.icc_profile = icc_description(bytes, size);
+    if (report.icc_profile.empty()) report.icc_profile = "unnamed";
+    std::string why;
+    std::optional<IccRgbProfile> icc = parse_icc_rgb_profile(bytes, size, why);
+    if ((space.empty() || space == "auto") && !icc)
+        report.warnings.push_back("its ICC profile \"" + report.icc_profile + "\" is " + why +
+                                  ": it is read as sRGB, so its colours may be off");
+    if (icc && icc->is_srgb()) icc.reset();  // sRGB by another name: read exactly as sRGB
+    return icc;
+}
+
+/// Which channels of a part make R, G and B (a grey layer's Y thrice), and the span [lo, hi)
+/// read to get them.
+struct ChannelSpan {
+    int subimage = 0;
+    int channels[3] = {-1, -1, -1};
+    int lo = 0, hi = 0;
+};
+
+ChannelSpan channel_span(const LayerChannels& l, const ImageSpec& spec) {
+    ChannelSpan s;
+    s.subimage = l.subimage;
+    const bool grey = l.r < 0 && l.g < 0 && l.b < 0;
+    s.channels[0] = grey ? l.y : l.r;
+    s.channels[1] = grey ? l.y : l.g;
+    s.channels[2] = grey ? l.y : l.b;
+    s.lo = spec.nchannels;
+    for (int c : s.channels)
+        if (c >= 0) s.lo = std::min(s.lo, c), s.hi = std::max(s.hi, c + 1);
+    return s;
+}
+
+/// Integer codes to linear values in `data`: by the ICC profile, as sRGB, or as they are
+/// ("linear" or a named colour space, converted later); clipped pixels counted.
+void decode_codes(ImageInput& in, const ChannelSpan& s, const ImageSpec& spec, const std::string& space,
+                  const std::optional<IccRgbProfile>& icc, const std::string& path, const std::string& field,
+                  Image& data, ImageLoadReport& report) {
+    // 8-bit codes arrive scaled exactly to 16 bits (v * 257), so one table serves both.
+    const std::vector<uint16_t> buf = read_span<uint16_t>(in, s.subimage, s.lo, s.hi, TypeDesc::UINT16, spec, path, field);
+    const std::vector<float>& srgb = srgb_table();
+    const bool linear = space == "linear", named = !(space.empty() || space == "auto" || space == "srgb" || linear);
+    const size_t n = data.size(), span = size_t(s.hi - s.lo);
+    for (size_t i = 0; i < n; ++i) {
+        bool clipped = false;
+        for (int c = 0; c < 3; ++c) {
+            const uint16_t code = s.channels[c] >= 0 ? buf[i * span + size_t(s.channels[c] - s.lo)] : 0;
+            clipped |= code == 65535;
+            const float v = float(code) / 65535.0f;
+            data[i][c] = icc && !linear && !named ? icc->decode(c, v) : (linear || named) ? v : srgb[code];
+        }
+        report.clipped += clipped;
+    }
+    if (icc && !linear && !named) {
+        const glm::dmat3 m = icc->to_rec709;
+        for (size_t i = 0; i < n; ++i) data[i] = vec3(m * glm::dvec3(data[i]));
+        report.icc_converted = true;
+    }
+    report.linear_source = linear;
+    report.colorspace = space.empty() || space == "auto" ? (report.icc_converted ? "icc" : "srgb") : space;
+}
+
 }  // namespace
 
 /// Metadata worth carrying from a plate into what is made of it.
@@ -171,11 +270,11 @@ static void collect_metadata(const ImageSpec& spec, ImageLoadReport& report) {
         }
 }
 
-Image load_with_oiio(const std::string& path, const std::string& field, const ImageLoadOptions& options,
-                     ImageLoadReport& report) {
-    auto in = ImageInput::open(path);
+Image load_with_oiio(const std::string& path, const std::string& field, const ImageFormat& format,
+                     const ImageLoadOptions& options, ImageLoadReport& report) {
+    std::string why;
+    auto in = open_input(path, format, why);
     if (!in) {
-        const std::string why = OIIO::geterror();
         // OpenImageIO refuses subsampled (luminance/chroma) EXRs; OpenEXR's RGBA interface reads them.
         if (why.find("Subsampled") != std::string::npos) {
             report.linear_source = true;
@@ -183,50 +282,19 @@ Image load_with_oiio(const std::string& path, const std::string& field, const Im
             report.layers = {""};
             return load_exr_main(path, field);
         }
-        std::string ext = std::filesystem::path(path).extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-        if (!known_extension(ext))
-            throw_unreadable(path, field, "unrecognised extension '" + ext + "' and no decoder accepts the content");
         throw_unreadable(path, field, why);
     }
     const auto layers = list_layers(*in);
     for (const auto& [name, l] : layers)
         if (l.colour()) report.layers.push_back(name);
-
-    const LayerChannels* chosen = nullptr;
     std::string chosen_name;
-    auto find = [&](const std::string& name) -> const LayerChannels* {
-        for (const auto& [n, l] : layers)
-            if (n == name && l.colour()) return &l;
-        return nullptr;
-    };
-    if (!options.layer.empty()) {
-        chosen = find(options.layer);
-        if (!chosen)
-            throw InputError(path, field,
-                             "has no layer \"" + options.layer + "\" with colour channels (layers: " +
-                                 layer_list(layers) + ")");
-        chosen_name = options.layer;
-    } else if ((chosen = find(""))) {
-    } else {
-        // A Blender multilayer render: its picture is the "<view layer>.Combined" pass.
-        for (const auto& [n, l] : layers)
-            if (l.colour() && n.size() >= 8 && n.compare(n.size() - 8, 8, "Combined") == 0) {
-                chosen = &l;
-                chosen_name = n;
-                break;
-            }
-        if (!chosen)
-            throw InputError(path, field,
-                             "has no R, G, B or Y channels of its own; choose one of its layers (" +
-                                 layer_list(layers) + ") as the photo's \"layer\"");
-    }
+    const LayerChannels& chosen = choose_layer(layers, options.layer, path, field, chosen_name);
     report.layer = chosen_name;
-    const ImageSpec spec = in->spec(chosen->subimage, 0);
+    const ImageSpec spec = in->spec(chosen.subimage, 0);
     check_image_size(path, field, spec.width, spec.height);
     if (spec.full_width > 0 && spec.full_height > 0) check_image_size(path, field, spec.full_width, spec.full_height);
     if (spec.width <= 0 || spec.height <= 0) throw InputError(path, field, "image has zero size");
-    if (chosen->ry >= 0 && std::string(in->format_name()) == "openexr" && chosen_name.empty()) {
+    if (chosen.ry >= 0 && std::string(in->format_name()) == "openexr" && chosen_name.empty()) {
         in.reset();  // luminance/chroma: subsampled channels only OpenEXR's RGBA interface rebuilds
         report.linear_source = true;
         return load_exr_main(path, field);
@@ -237,73 +305,32 @@ Image load_with_oiio(const std::string& path, const std::string& field, const Im
     std::string space = options.colorspace;
     const std::string lowered = lower(space);
     if (lowered.empty() || lowered == "auto" || lowered == "srgb" || lowered == "linear") space = lowered;
-
-    // ICC profiles matter for encoded (integer) data only; float data is linear by definition.
-    std::optional<IccRgbProfile> icc;
-    if (const OIIO::ParamValue* p = spec.find_attribute("ICCProfile"); p && !float_data) {
-        const auto* bytes = static_cast<const uint8_t*>(p->data());
-        const size_t size = size_t(p->type().size()) * size_t(p->nvalues());
-        report.icc_profile = icc_description(bytes, size);
-        if (report.icc_profile.empty()) report.icc_profile = "unnamed";
-        std::string why;
-        icc = parse_icc_rgb_profile(bytes, size, why);
-        if ((space.empty() || space == "auto") && !icc)
-            report.warnings.push_back("its ICC profile \"" + report.icc_profile + "\" is " + why +
-                                      ": it is read as sRGB, so its colours may be off");
-        if (icc && icc->is_srgb()) icc.reset();  // sRGB by another name: read exactly as sRGB
-    }
-
-    const LayerChannels& l = *chosen;
-    const bool grey = l.r < 0 && l.g < 0 && l.b < 0;
-    const int channels[3] = {grey ? l.y : l.r, grey ? l.y : l.g, grey ? l.y : l.b};
-    int lo = spec.nchannels, hi = 0;
-    for (int c : channels)
-        if (c >= 0) lo = std::min(lo, c), hi = std::max(hi, c + 1);
-    const size_t n = size_t(spec.width) * size_t(spec.height), span = size_t(hi - lo);
-
+    const ChannelSpan s = channel_span(chosen, spec);
     Image data(spec.width, spec.height);
     if (float_data) {
-        const std::vector<float> buf = read_span<float>(*in, l.subimage, lo, hi, TypeDesc::FLOAT, spec, path, field);
+        const std::vector<float> buf = read_span<float>(*in, s.subimage, s.lo, s.hi, TypeDesc::FLOAT, spec, path, field);
+        const size_t n = data.size(), span = size_t(s.hi - s.lo);
         for (size_t i = 0; i < n; ++i)
-            for (int c = 0; c < 3; ++c) data[i][c] = channels[c] >= 0 ? buf[i * span + size_t(channels[c] - lo)] : 0.0f;
+            for (int c = 0; c < 3; ++c)
+                data[i][c] = s.channels[c] >= 0 ? buf[i * span + size_t(s.channels[c] - s.lo)] : 0.0f;
         report.linear_source = space.empty() || space == "auto" || space == "linear";
         report.colorspace = space.empty() || space == "auto" ? "linear" : space;
         if (space == "srgb")
             for (size_t i = 0; i < n; ++i)
                 for (int c = 0; c < 3; ++c) data[i][c] = data[i][c] >= 0 ? srgb_to_linear(data[i][c]) : data[i][c];
     } else {
-        // 8-bit codes arrive scaled exactly to 16 bits (v * 257), so one table serves both.
-        const std::vector<uint16_t> buf =
-            read_span<uint16_t>(*in, l.subimage, lo, hi, TypeDesc::UINT16, spec, path, field);
-        const std::vector<float>& srgb = srgb_table();
-        const bool linear = space == "linear", named = !(space.empty() || space == "auto" || space == "srgb" || linear);
-        for (size_t i = 0; i < n; ++i) {
-            bool clipped = false;
-            for (int c = 0; c < 3; ++c) {
-                const uint16_t code = channels[c] >= 0 ? buf[i * span + size_t(channels[c] - lo)] : 0;
-                clipped |= code == 65535;
-                const float v = float(code) / 65535.0f;
-                data[i][c] = icc && !linear && !named ? icc->decode(c, v) : (linear || named) ? v : srgb[code];
-            }
-            report.clipped += clipped;
-        }
-        if (icc && !linear && !named) {
-            const glm::dmat3 m = icc->to_rec709;
-            for (size_t i = 0; i < n; ++i) data[i] = vec3(m * glm::dvec3(data[i]));
-            report.icc_converted = true;
-        }
-        report.linear_source = linear;
-        report.colorspace = space.empty() || space == "auto" ? (report.icc_converted ? "icc" : "srgb") : space;
+        // ICC profiles matter for encoded (integer) data only.
+        decode_codes(*in, s, spec, space, read_icc(spec, space, report), path, field, data, report);
     }
     if (!space.empty() && space != "auto" && space != "srgb" && space != "linear")
         convert_colorspace_to_linear(data, space, field.empty() ? "colorspace" : field);
 
     collect_metadata(spec, report);
-    const std::string format = in->format_name();
+    const std::string reader = in->format_name();
     Image image = to_display_window(std::move(data), spec, report);
     // JPEG and TIFF come upright by their EXIF orientation (as read_image_size says); a PNG's
     // tag is not applied, as before.
-    if (format == "jpeg" || format == "tiff") image = reoriented(image, spec.get_int_attribute("Orientation", 1));
+    if (reader == "jpeg" || reader == "tiff") image = reoriented(image, spec.get_int_attribute("Orientation", 1));
     return image;
 }
 
@@ -312,20 +339,26 @@ Image load_with_oiio(const std::string& path, const std::string& field, const Im
 std::vector<std::pair<std::string, std::string>> read_image_metadata(const std::string& path) {
     ImageLoadReport report;
     try {
-        if (auto in = OIIO::ImageInput::open(path)) image_io_detail::collect_metadata(in->spec(), report);
+        // The same file checks as load_image: a FIFO or a misnamed file yields no metadata
+        // rather than a blocked or misdirected reader.
+        const image_io_detail::ImageFormat& format = image_io_detail::check_image_format(path, "");
+        std::string why;
+        if (auto in = image_io_detail::open_input(path, format, why))
+            image_io_detail::collect_metadata(in->spec(), report);
     } catch (const std::exception&) {  // metadata is a courtesy: an unreadable header gives none
     }
     return report.metadata;
 }
 
 Image load_exr_layer(const std::string& path, const std::string& layer) {
-    image_io_detail::check_image_file(path, "");
+    const image_io_detail::ImageFormat& format = image_io_detail::check_image_format(path, "");
+    image_io_detail::check_declared_size(path, "");
     ImageLoadOptions options;
     options.layer = layer;
     options.colorspace = "linear";
     ImageLoadReport report;
     try {
-        return image_io_detail::load_with_oiio(path, "", options, report);
+        return image_io_detail::load_with_oiio(path, "", format, options, report);
     } catch (const InputError&) {
         throw;
     } catch (const std::bad_alloc&) {

@@ -4,12 +4,15 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <vector>
 #include <cstdio>
 
 #include <nlohmann/json.hpp>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/input_file.h"
+#include "base/memory.h"
 #include "base/rng.h"
 #include "scene/project_io.h"
 
@@ -124,6 +127,46 @@ ShardHeader parse_header(const Reader& r, const std::string& text) {
     return h;
 }
 
+/// The largest file a shard of `h`'s frame is: every tile touched.
+uint64_t max_shard_bytes(const ShardHeader& h, uint64_t header_bytes) {
+    const uint64_t tiles = uint64_t((h.width + h.tile - 1) / h.tile) * uint64_t((h.height + h.tile - 1) / h.tile);
+    const uint64_t per_tile = 4 + uint64_t(h.tile) * uint64_t(h.tile) * 8 * 16;  // index, 8 sums of 128 bits
+    return sizeof kMagic + 8 + header_bytes + 8 + tiles * per_tile + 8 + sizeof kEnd;
+}
+
+/// A shard file's bytes. Refused before the bulk of it is read: a path that is not a regular
+/// file (a FIFO or /dev/zero would block or feed the merge without end), a file larger than a
+/// merge can hold beside the sums, one that does not start as a shard, or one larger than a
+/// shard of the frame its header declares can be.
+std::string read_shard_bytes(const std::string& path) {
+    const uint64_t ram = physical_memory_bytes();
+    // A merge holds the file's bytes, this shard's sums and the running sums at once.
+    const uint64_t size = check_input_file(path, "", "a render shard", ram / 4);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path, "", "cannot be read");
+    std::string head(sizeof kMagic + 8, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(size_t(in.gcount()));
+    Reader r(path, head);
+    if (head.size() < sizeof kMagic || std::memcmp(head.data(), kMagic, sizeof kMagic) != 0)
+        r.fail("not a render shard (written by 'diffphoton render --pass-range')");
+    r.take(sizeof kMagic);
+    const uint64_t header_bytes = r.u64();
+    if (header_bytes > kMaxHeader || header_bytes > size - head.size()) r.fail("damaged shard header: impossible length");
+    std::string text(size_t(header_bytes), '\0');
+    in.read(text.data(), std::streamsize(text.size()));
+    const ShardHeader h = parse_header(r, text);
+    const uint64_t most = max_shard_bytes(h, header_bytes);
+    if (size > most)
+        r.fail("is " + std::to_string(size) + " bytes, more than a shard of " + std::to_string(h.width) + " x " +
+               std::to_string(h.height) + " pixels can be (" + std::to_string(most) + "): it is damaged");
+    in.seekg(0);
+    std::string bytes(size_t(size), '\0');
+    in.read(bytes.data(), std::streamsize(size));
+    bytes.resize(size_t(in.gcount()));
+    return bytes;
+}
+
 std::string range(const ShardHeader& h) { return std::to_string(h.pass_begin) + ":" + std::to_string(h.pass_end); }
 
 }  // namespace
@@ -138,11 +181,20 @@ ProjectFingerprint fingerprint_project(const Project& project) {
             doc["render"].erase(key);
     doc.erase("display");
     Fingerprint files;
+    std::vector<char> chunk(size_t(1) << 20);
     for (const auto& [field, path] : project_inputs(project)) {
+        const uint64_t size = check_input_file(path.string(), field, "an input file");
         std::ifstream in(path, std::ios::binary);
         if (!in) throw InputError(path.string(), field, "cannot be read");
         files.add(field);
-        files.add(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+        // Streamed, a file may be gigabytes: its length first, then its bytes, as add(string).
+        files.add(&size, sizeof size);
+        uint64_t hashed = 0;
+        while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0) {
+            files.add(chunk.data(), size_t(in.gcount()));
+            hashed += uint64_t(in.gcount());
+        }
+        if (hashed != size) throw InputError(path.string(), field, "changed while it was read");
     }
     Fingerprint all = files;
     all.add(doc.dump());
@@ -178,12 +230,8 @@ void write_shard(const std::string& path, const ShardHeader& header, const TileA
 }
 
 Shard read_shard(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path, "", "cannot be read");
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string bytes = read_shard_bytes(path);
     Reader r(path, bytes);
-    if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
-        r.fail("not a render shard (written by 'diffphoton render --pass-range')");
     // The end marker and checksum first: a truncated or altered file is refused as such,
     // whatever part of it is missing.
     if (bytes.size() < sizeof kMagic + 24 || std::memcmp(bytes.data() + bytes.size() - 8, kEnd, 8) != 0)

@@ -148,16 +148,3 @@ TEST(ImageIo, RadianceHdrLoadsAsLinearFloat) {
     EXPECT_NEAR(loaded.at(3, 2).z, 0.01f, 3e-4f);
 }
 
-TEST(ImageIo, UnknownExtensionIsDecodedByContent) {
-    TempDir dir;
-    const Image image = random_image(5, 4, 12, 0.0f, 1.0f);
-    save_ldr(dir.file("a.png"), image);
-    std::filesystem::copy_file(dir.file("a.png"), dir.file("a.data"));
-    EXPECT_EQ(load_image(dir.file("a.data")), load_image(dir.file("a.png")));
-
-    save_exr(dir.file("b.exr"), {{"", &image}});
-    std::filesystem::copy_file(dir.file("b.exr"), dir.file("b.bin"));
-    ImageLoadReport report;
-    EXPECT_EQ(load_image(dir.file("b.bin"), "", &report), image);
-    EXPECT_TRUE(report.linear_source);
-}

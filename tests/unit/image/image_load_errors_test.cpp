@@ -73,14 +73,14 @@ TEST(ImageLoadErrors, GarbageBytesWithPngExtensionThrowInputError) {
     TempDir dir;
     const std::string path = dir.file("garbage.png");
     write_bytes(path, std::string(300, '\x5a') + "not an image at all");
-    expect_input_error(path, "photo", "cannot read image");
+    expect_input_error(path, "photo", "not a PNG file (its first bytes are 5a 5a 5a 5a");
 }
 
 TEST(ImageLoadErrors, GarbageBytesWithExrExtensionThrowInputError) {
     TempDir dir;
     const std::string path = dir.file("garbage.exr");
     write_bytes(path, std::string(300, '\x11'));
-    expect_input_error(path, "background", "cannot read image");
+    expect_input_error(path, "background", "not an OpenEXR file (its first bytes are 11 11 11 11");
 }
 
 TEST(ImageLoadErrors, GarbageWithUnknownExtensionSaysTheFormatIsUnrecognised) {
