@@ -74,9 +74,10 @@ void expect_light_kept(const Image& big, const Image& small, double tolerance, b
         << "the mean direction of the light moved";
     // Without a sun the brightest pixel is a detail (a lamp, a glint) that an average over a
     // coarser pixel may well lose to a wider bright patch.
-    if (sun)
+    if (sun) {
         EXPECT_LT(angle_between(brightest_direction(big), brightest_direction(small)), pixel)
             << "the brightest direction moved";
+    }
     std::printf("%dx%d -> %dx%d: power ratios %.9f %.9f %.9f\n", big.width(), big.height(), small.width(),
                 small.height(), after.x / before.x, after.y / before.y, after.z / before.z);
 }
