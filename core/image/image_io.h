@@ -68,7 +68,8 @@ std::vector<std::pair<std::string, std::string>> read_image_metadata(const std::
 
 /// Reads an image's size from its header (EXR, PNG, JPEG, HDR, BMP) without decoding it, as
 /// load_image returns the picture (a JPEG's EXIF orientation 5 to 8 swaps width and height);
-/// false for other formats or an unreadable header (decode the image then).
+/// false for other formats, an unreadable header or a path that is not a regular file (decode the
+/// image then: load_image says what is wrong).
 bool read_image_size(const std::string& path, int& width, int& height);
 
 /// The most pixels load_image decodes: 2^28 (16384 x 16384, 3.2 GB as linear float), fewer

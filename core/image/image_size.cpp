@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -188,6 +189,9 @@ bool header_size(const std::string& path, int64_t& width, int64_t& height, bool*
 }  // namespace image_io_detail
 
 bool read_image_size(const std::string& path, int& width, int& height) {
+    // A FIFO or a device would block or feed the header reader; load_image refuses them by name.
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return false;
     int64_t w = 0, h = 0;
     if (!image_io_detail::header_size(path, w, h) || w > std::numeric_limits<int>::max() ||
         h > std::numeric_limits<int>::max())
