@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "base/error.h"
+#include "calibrate_scene_common.h"
 #include "calibration/exif.h"
 #include "common.h"
 #include "image/image_io.h"
@@ -169,7 +170,7 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
         std::printf("note: created a new project; set probe.path to the light probe\n");
     }
     p.camera = r.camera_spec();
-    save_project(p, project_path);
+    save_calibrated(p, project_path, r.intrinsics.width, r.intrinsics.height);
     std::printf("wrote the camera to %s\n", project_path.c_str());
 }
 

@@ -51,7 +51,8 @@ ImageSize image_size(const std::string& photo, const std::string& size_text);
 /// project keeps everything else; if its photo exists at another resolution of the same aspect
 /// ratio, the intrinsics are scaled to it (a different aspect ratio is an InputError). A
 /// missing project is created with `photo` as its photograph (a placeholder to fill in if
-/// `photo` is empty: the camera was matched on a --size) and a probe path to fill in.
+/// `photo` is empty: the camera was matched on a --size) and a probe path to fill in. A camera
+/// the project would not load again with is refused (save_calibrated), the old file kept.
 void write_camera(const std::string& project_path, const CalibrationResult& result,
                   const std::string& photo);
 

@@ -21,7 +21,14 @@ Camera project_camera(const Project& p);
 /// units) when set, 0.99 for an 8-bit photo (sRGB 254 and 255), none for EXR/HDR.
 float clip_level(const Project& p, const std::optional<float>& given);
 
-/// Saves `p` to `output`, or back to `input` when no output was given, and says where.
+/// Saves a calibration's project `p` to `path` once it passes what loading it again checks: the
+/// project loader's checks (save_project runs them) and the scene's checks of its placement
+/// (check_placement) for the photo's size, or `width` x `height` where the photo cannot be read
+/// (a new project's placeholder). Throws InputError naming `path` and the field, the old file
+/// kept as it was.
+void save_calibrated(const Project& p, const std::string& path, int width = 0, int height = 0);
+
+/// save_calibrated to `output`, or back to `input` when no output was given, and says where.
 void write_back(const Project& p, const std::string& input, const std::string& output);
 
 }  // namespace dp::cli
