@@ -174,6 +174,15 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
     std::printf("wrote the camera to %s\n", project_path.c_str());
 }
 
+void check_camera_outputs(const std::string& project_path, std::vector<Output> extra, ReadSet read, bool force) {
+    std::error_code ec;
+    if (fs::exists(project_path, ec)) read.add_project(load_project(project_path), project_path);
+    Output project{project_path, "project"};
+    project.updates = project_path;
+    extra.insert(extra.begin(), project);
+    check_outputs(extra, read, force);
+}
+
 nlohmann::json& last_result_json() {
     static nlohmann::json result;
     return result;

@@ -30,6 +30,16 @@ float clip_level(const Project& p, const std::optional<float>& given) {
     return assets.photo_clip_level(p);
 }
 
+void check_scene_outputs(const Project& p, const std::string& input, const std::string& output,
+                         std::vector<Output> extra, bool force) {
+    ReadSet read;
+    read.add_project(p, input);
+    Output project{output.empty() ? input : output, output.empty() ? "project" : "--output"};
+    project.updates = input;
+    extra.insert(extra.begin(), project);
+    check_outputs(extra, read, force);
+}
+
 void save_calibrated(const Project& p, const std::string& path, int width, int height) {
     Project placed = p;
     if (placed.base_dir.empty()) placed.base_dir = std::filesystem::absolute(path).parent_path();
