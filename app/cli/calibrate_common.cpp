@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "base/input_file.h"
+#include "calibrate_scene_common.h"
 #include "calibration/exif.h"
 #include "common.h"
 #include "image/image_io.h"
@@ -172,8 +173,17 @@ void write_camera(const std::string& project_path, const CalibrationResult& resu
         std::printf("note: created a new project; set probe.path to the light probe\n");
     }
     p.camera = r.camera_spec();
-    save_project(p, project_path);
+    save_calibrated(p, project_path, r.intrinsics.width, r.intrinsics.height);
     std::printf("wrote the camera to %s\n", project_path.c_str());
+}
+
+void check_camera_outputs(const std::string& project_path, std::vector<Output> extra, ReadSet read, bool force) {
+    std::error_code ec;
+    if (fs::exists(project_path, ec)) read.add_project(load_project(project_path), project_path);
+    Output project{project_path, "project"};
+    project.updates = project_path;
+    extra.insert(extra.begin(), project);
+    check_outputs(extra, read, force);
 }
 
 nlohmann::json& last_result_json() {

@@ -11,6 +11,7 @@
 #include "calibration/calibration.h"
 #include "calibration/vanishing.h"
 #include "commands.h"
+#include "outputs.h"
 
 namespace dp::cli {
 
@@ -51,9 +52,16 @@ ImageSize image_size(const std::string& photo, const std::string& size_text);
 /// project keeps everything else; if its photo exists at another resolution of the same aspect
 /// ratio, the intrinsics are scaled to it (a different aspect ratio is an InputError). A
 /// missing project is created with `photo` as its photograph (a placeholder to fill in if
-/// `photo` is empty: the camera was matched on a --size) and a probe path to fill in.
+/// `photo` is empty: the camera was matched on a --size) and a probe path to fill in. A camera
+/// the project would not load again with is refused (save_calibrated), the old file kept.
 void write_camera(const std::string& project_path, const CalibrationResult& result,
                   const std::string& photo);
+
+/// check_outputs for a camera calibration, before its work: the project (created, or updated in
+/// place) and the command's `extra` outputs (--poses, --extract-photo), none of which may be
+/// one of `read` (the command's own inputs: photos, points files) or, where the project exists,
+/// a file it reads; the project file itself only the project output may replace.
+void check_camera_outputs(const std::string& project_path, std::vector<Output> extra, ReadSet read, bool force);
 
 /// Prints the camera, the error figure ("rms_px <value>", or "rms_px n/a" for NaN) and the
 /// uncertainty ("uncertainty: fx 495 ± 12 px ..."), and the result's warnings on stderr.

@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "assets/asset_library.h"
+#include "assets/render_scene.h"
 #include "scene/project_io.h"
 
 namespace dp::cli {
@@ -28,9 +30,41 @@ float clip_level(const Project& p, const std::optional<float>& given) {
     return assets.photo_clip_level(p);
 }
 
+void check_scene_outputs(const Project& p, const std::string& input, const std::string& output,
+                         std::vector<Output> extra, bool force) {
+    ReadSet read;
+    read.add_project(p, input);
+    Output project{output.empty() ? input : output, output.empty() ? "project" : "--output"};
+    project.updates = input;
+    extra.insert(extra.begin(), project);
+    check_outputs(extra, read, force);
+}
+
+void save_calibrated(const Project& p, const std::string& path, int width, int height) {
+    Project placed = p;
+    if (placed.base_dir.empty()) placed.base_dir = std::filesystem::absolute(path).parent_path();
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(placed.resolve(placed.photo.path), ec)) {
+        AssetLibrary assets;
+        assets.photo_size(placed, width, height);
+    }
+    if (width > 0 && height > 0) {
+        try {
+            check_placement(placed, width, height);
+        } catch (const InputError& e) {
+            std::string what = e.what();
+            const std::string prefix = InputError(e.file(), e.field(), "").what();
+            if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+            // The words save_project uses for what its own checks refuse.
+            throw InputError(path, e.field(), what + "; the project would not load again, so it was not saved");
+        }
+    }
+    save_project(p, path);
+}
+
 void write_back(const Project& p, const std::string& input, const std::string& output) {
     const std::string path = output.empty() ? input : output;
-    save_project(p, path);
+    save_calibrated(p, path);
     std::printf("wrote %s\n", path.c_str());
 }
 

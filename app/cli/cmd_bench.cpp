@@ -15,11 +15,13 @@
 #include "bench_cycles.h"
 #include "commands.h"
 #include "common.h"
+#include "outputs.h"
 #include "image/denoise.h"
 #include "image/image_io.h"
 #include "image/image_metrics.h"
 #include "reference/standard_differential.h"
 #include "render/denoise_aovs.h"
+#include "scene/project_io.h"
 #include "image/noise_blend.h"
 #include "render/progressive.h"
 
@@ -38,6 +40,7 @@ struct BenchOptions {
     double max_seconds_differential = 30, max_seconds_standard = 120;
     int threads = 0;
     bool denoise = false;  ///< also measure the denoised image of our methods at each snapshot
+    bool force = false;    ///< replace a read-only output
 };
 
 /// A scene folder: scene.json (what both methods render) and two independent halves of the
@@ -224,7 +227,15 @@ int run_bench(BenchOptions o) {
         std::string why;
         if (!denoiser_available(&why)) throw InputError("", "--denoise", why);
     }
-    check_output_folder(o.output, "--output");
+    ReadSet inputs;
+    for (const std::string& dir : o.scenes) {
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(dir, ec))
+            inputs.add(entry.path().string(), "a file of scene folder " + dir);
+        const std::string project = (fs::path(dir) / "scene.json").string();
+        if (fs::is_regular_file(project, ec)) inputs.add_project(load_project(project), project);
+    }
+    check_outputs({{o.output, "--output"}}, inputs, o.force);
     o.blender = prepare_cycles_method(o.methods, o.blender);
     o.bpy5_python = prepare_cycles5_methods(o.methods);
     if (!o.images.empty()) fs::create_directories(o.images);
@@ -279,6 +290,7 @@ Command add_bench_command(CLI::App& app) {
     sub->add_flag("--denoise", o->denoise,
                   "Also measure our methods' images denoised (Open Image Denoise, final quality) at "
                   "each measurement; the filter's time is reported apart from the render's");
+    add_force_flag(sub, o->force);
     return {sub, [o] { return run_bench(*o); }};
 }
 

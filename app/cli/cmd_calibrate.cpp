@@ -29,6 +29,7 @@ struct ChessboardOptions {
     double square = 0;
     FocalOptions focal;
     std::string poses;
+    bool force = false;
 };
 
 /// The photo among `photos` that an existing project shows (its pose is the one to keep),
@@ -62,6 +63,11 @@ ChessboardSpec parse_board(const std::string& text, double square) {
 
 int run_chessboard(const ChessboardOptions& o) {
     const ChessboardSpec spec = parse_board(o.board, o.square);
+    ReadSet read;
+    for (const std::string& photo : o.photos) read.add(photo, "a photo being calibrated");
+    std::vector<Output> extra;
+    if (!o.poses.empty()) extra.push_back({o.poses, "--poses"});
+    check_camera_outputs(o.project, extra, read, o.force);
     std::vector<ChessboardView> views;
     for (const std::string& photo : o.photos) views.push_back(detect_chessboard(photo, spec));
     CalibrationResult r;
@@ -117,11 +123,15 @@ int run_chessboard(const ChessboardOptions& o) {
 struct ExifOptions {
     std::string project, photo;
     std::optional<double> sensor_width;
+    bool force = false;
 };
 
 /// Sets the focal length from EXIF and centres the principal point; the pose is kept (a
 /// look-at camera is converted to the same pose).
 int run_exif(const ExifOptions& o) {
+    ReadSet read;
+    read.add(o.photo, "the photo being calibrated");
+    check_camera_outputs(o.project, {}, read, o.force);
     ExifFocal e = read_exif_focal(o.photo, o.sensor_width);
     CalibrationResult r;
     r.intrinsics = Intrinsics::centred(e.width, e.height, e.focal_px);
@@ -140,33 +150,36 @@ int run_exif(const ExifOptions& o) {
 
 struct FspyOptions {
     std::string project, file, extract;
+    bool force = false;
 };
 
 int run_fspy(const FspyOptions& o) {
     FspyImport f = read_fspy(o.file);
-    std::string photo;
-    if (!o.extract.empty()) {
-        if (f.from_json_export)
-            throw InputError(o.file, "--extract-photo",
-                             "fSpy's exported camera parameters hold no photo (the .fspy "
-                             "project does)");
-        try {
-            write_file_atomically(o.extract, std::string(f.image.begin(), f.image.end()));
-        } catch (const std::runtime_error& e) {
-            throw InputError(o.extract, "--extract-photo", e.what());
-        }
-        std::printf("wrote the embedded photo (%s) to %s\n",
-                    f.image_extension.empty() ? "unknown format" : f.image_extension.c_str(),
-                    o.extract.c_str());
-        photo = o.extract;
-    }
+    if (!o.extract.empty() && f.from_json_export)
+        throw InputError(o.file, "--extract-photo",
+                         "fSpy's exported camera parameters hold no photo (the .fspy project does)");
+    ReadSet read;
+    read.add(o.file, "the fSpy file being read");
+    std::vector<Output> extra;
+    if (!o.extract.empty()) extra.push_back({o.extract, "--extract-photo", double(f.image.size())});
+    check_camera_outputs(o.project, extra, read, o.force);
     if (f.from_json_export)
         std::printf("fspy: exported camera parameters (no distance unit)\n");
     else
         std::printf("fspy: distance unit %s\n", f.unit.c_str());
     const char* what = f.from_json_export ? "fSpy camera parameters " : "fSpy project ";
     print_result(f.result, what + o.file);
-    write_camera(o.project, f.result, photo);
+    // The project first, as with --poses: a camera the project refuses writes nothing.
+    write_camera(o.project, f.result, o.extract);
+    if (!o.extract.empty()) {
+        try {
+            write_file_atomically(o.extract, std::string(f.image.begin(), f.image.end()));
+        } catch (const std::runtime_error& e) {
+            throw InputError(o.extract, "--extract-photo", e.what());
+        }
+        std::printf("wrote the embedded photo (%s) to %s\n",
+                    f.image_extension.empty() ? "unknown format" : f.image_extension.c_str(), o.extract.c_str());
+    }
     return 0;
 }
 
@@ -188,6 +201,7 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
         o->focal.add_to(sub);
         sub->add_option("--poses", o->poses,
                         "Write every photo's pose (and its corners) to this JSON file");
+        add_force_flag(sub, o->force);
         out.push_back({sub, [o] { return run_chessboard(*o); }});
     }
     {
@@ -199,6 +213,7 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
         sub->add_option("--sensor-width", o->sensor_width,
                         "Sensor width in millimetres, across its rows (the stored image's)")
             ->check(kFinite);
+        add_force_flag(sub, o->force);
         out.push_back({sub, [o] { return run_exif(*o); }});
     }
     {
@@ -212,6 +227,7 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
             ->required();
         sub->add_option("--extract-photo", o->extract,
                         "Write the embedded photo to this file (and use it for a new project)");
+        add_force_flag(sub, o->force);
         out.push_back({sub, [o] { return run_fspy(*o); }});
     }
     for (Command& c : add_calibrate_point_commands(calibrate)) out.push_back(std::move(c));

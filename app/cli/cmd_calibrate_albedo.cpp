@@ -27,6 +27,7 @@ struct AlbedoOptions {
     int resolution = 256, subsamples = 3, samples = 512, bounce = 64, threads = 0;
     std::optional<float> clip;
     uint64_t seed = 1;
+    bool force = false;
 };
 
 /// Which proxies: the named ones, else every one that has a texture layout.
@@ -58,9 +59,28 @@ void print_texture(const Project& p, size_t i, const AlbedoTexture& t, const std
     std::printf("  texture %s  mask %s\n", texture.c_str(), mask.c_str());
 }
 
+/// check_scene_outputs with the textures and masks the chosen proxies get; each texture may
+/// replace the one its proxy has now (it is estimated anew), no other input.
+void check_albedo_outputs(const Project& p, const AlbedoOptions& o) {
+    const std::string project_file = o.output.empty() ? o.project : o.output;
+    std::vector<Output> textures;
+    for (size_t i : chosen_proxies(p, o)) {
+        const AlbedoTextureFiles files = albedo_texture_files(p, int(i), project_file);
+        const std::string field = "real[" + std::to_string(i) + "].albedo.texture";
+        const double bytes = image_output_bytes(".exr", {}, o.resolution, o.resolution);
+        Output texture{files.texture.string(), field, bytes};
+        const Albedo& now = p.real[i].albedo;
+        if (now.kind == Albedo::Kind::Texture) texture.updates = p.resolve(now.texture_path).string();
+        textures.push_back(texture);
+        textures.push_back({files.mask.string(), field, bytes});
+    }
+    check_scene_outputs(p, o.project, o.output, textures, o.force);
+}
+
 void run_albedo(const AlbedoOptions& o) {
     with_threads(o.threads, [&] {
-        LoadedScene loaded = load_scene(o.project);
+        LoadedScene loaded =
+            load_scene(o.project, {}, [&](const Project& p, AssetLibrary&) { check_albedo_outputs(p, o); });
         auto scene = loaded.scene;
         Project p = loaded.project;
         const std::vector<size_t> chosen = chosen_proxies(p, o);
@@ -115,6 +135,7 @@ void add_calibrate_albedo_command(CLI::App& calibrate) {
         ->check(kNonNegative);
     sub->add_option("-o,--output", o->output,
                     "Write the project here instead of updating it (the textures go beside it)");
+    add_force_flag(sub, o->force);
     sub->callback([o] { run_albedo(*o); });
 }
 

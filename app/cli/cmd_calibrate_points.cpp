@@ -21,6 +21,7 @@ struct PhotoOptions {
     std::string project, photo, size, file;
     FocalOptions focal;
     double click_sigma = 0.5;
+    bool force = false;
 
     void add_to(CLI::App* sub, const char* file_help) {
         sub->add_option("project", project, "Project file to write or update")->required();
@@ -32,6 +33,14 @@ struct PhotoOptions {
                         "uncertainty's floor")
             ->check(kFinite);
         focal.add_to(sub);
+        add_force_flag(sub, force);
+    }
+    /// check_camera_outputs, before the work: the project is none of the files given.
+    void check_project_output() const {
+        ReadSet read;
+        read.add(photo, "the photo being calibrated (--photo)");
+        read.add(file, "the points file (--file)");
+        check_camera_outputs(project, {}, read, force);
     }
     /// Throws InputError for a click precision < 0.
     double click_sigma_px() const {
@@ -59,6 +68,7 @@ struct RectangleOptions : PhotoOptions {
 };
 
 int run_rectangle(const RectangleOptions& o) {
+    o.check_project_output();
     const json doc = o.document();
     std::vector<ImagePoint> corners;
     double width = o.width.value_or(0), height = o.height.value_or(0);
@@ -93,6 +103,7 @@ struct PointsOptions : PhotoOptions {
 };
 
 int run_points(const PointsOptions& o) {
+    o.check_project_output();
     const json doc = o.document();
     std::vector<PointCorrespondence> pts;
     if (const json* list = member(doc, "points")) {
@@ -144,6 +155,7 @@ std::optional<VanishingInput::Distance> scale_length(const json& doc, const std:
 }
 
 int run_vanishing(const VanishingOptions& o) {
+    o.check_project_output();
     const json doc = o.document();
     VanishingInput in;
     const std::pair<const char*, std::vector<LineSegment>*> axes[3] = {

@@ -27,7 +27,7 @@ struct ProbeOptions {
     std::vector<float> shadow, card;
     float object_height = 0, reflectance = 0.18f;
     bool object_base = false;
-    bool white_balance = false;
+    bool white_balance = false, force = false;
     int samples = 256;
 };
 
@@ -117,6 +117,7 @@ void run_probe(const ProbeOptions& o) {
                          "nothing to do: give --fov, --shadow (with --object-height), --grey-card "
                          "(with --reflectance) or --intensity");
     Project p = load_project(o.project);
+    check_scene_outputs(p, o.project, o.output, {}, o.force);
     if (o.fov) set_mirror_ball_fov(p, o);
     if (!o.shadow.empty()) align_to_shadow(p, o);
     if (o.intensity) {
@@ -170,6 +171,7 @@ void add_calibrate_probe_command(CLI::App& calibrate) {
     sub->add_option("--samples", o->samples, "Probe samples per card pixel (default 256)")
         ->check(kPositive);
     sub->add_option("-o,--output", o->output, "Write the project here instead of updating it");
+    add_force_flag(sub, o->force);
     sub->callback([o] { run_probe(*o); });
 }
 

@@ -21,6 +21,7 @@ struct ProxyOptions {
     std::string project, output, kind, name;
     std::vector<float> points;
     float height = 0, thickness = 0.2f, max_distance = 0;
+    bool force = false;
 };
 
 /// Image points from a flat list of numbers "x1 y1 x2 y2 ...".
@@ -69,6 +70,7 @@ void print_fit(const ProxyFit& fit, bool replaced) {
 
 void run_proxy(const ProxyOptions& o) {
     Project p = load_project(o.project);
+    check_scene_outputs(p, o.project, o.output, {}, o.force);
     const Camera camera = project_camera(p);
     const std::string name = o.name.empty() ? o.kind : o.name;
     ProxyFit fit;
@@ -106,6 +108,7 @@ void add_calibrate_proxy_command(CLI::App& calibrate) {
     sub->add_option("--name", o->name,
                     "Proxy name (default: the kind); an existing one is replaced");
     sub->add_option("-o,--output", o->output, "Write the project here instead of updating it");
+    add_force_flag(sub, o->force);
     sub->callback([o] { run_proxy(*o); });
 }
 

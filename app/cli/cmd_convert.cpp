@@ -1,12 +1,13 @@
 // `diffphoton convert` (HDR to 8-bit) and `diffphoton compare` (difference figures).
-#include <filesystem>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "base/error.h"
 #include "commands.h"
 #include "common.h"
+#include "outputs.h"
 #include "image/image_io.h"
 #include "image/image_metrics.h"
 #include "render/progressive.h"
@@ -30,20 +31,28 @@ Image load_input(const std::string& path, const std::string& field, const ImageL
 struct ConvertOptions {
     std::string input, output;
     float exposure = 0;
+    bool force = false;
     ImageLoadOptions read;
     OutputFormat format;
 };
 
 int run_convert(const ConvertOptions& o) {
     check_output_path(o.output, "output");
-    std::error_code ec;
-    if (std::filesystem::equivalent(o.input, o.output, ec))
-        throw InputError(o.output, "output", "is the input image itself: choose another output");
     const DisplayTransform view = output_view(o.format, o.exposure);
     ImageLoadReport report;
-    Image image = load_input(o.input, "input", o.read, &report);
+    std::optional<Image> image;
+    int width = 0, height = 0;
+    // The size from the header where the format says it there; decoded first where not.
+    if (!read_image_size(o.input, width, height)) {
+        image = load_input(o.input, "input", o.read, &report);
+        width = image->width(), height = image->height();
+    }
+    ReadSet inputs;
+    inputs.add(o.input, "the input image itself");
+    check_outputs({{o.output, "output", image_output_bytes(o.output, o.format, width, height)}}, inputs, o.force);
+    if (!image) image = load_input(o.input, "input", o.read, &report);
     // The plate's camera and exposure data travel with what is made of it.
-    write_image(o.output, std::move(image), view, write_options(o.format, report.metadata));
+    write_image(o.output, std::move(*image), view, write_options(o.format, report.metadata));
     return 0;
 }
 
@@ -116,6 +125,7 @@ Command add_convert_command(CLI::App& app) {
     sub->add_option("--colorspace", o->read.colorspace,
                     "How the input's values are read: auto (default), srgb, linear, or an OpenColorIO colour space");
     add_output_format_options(sub, o->format);
+    add_force_flag(sub, o->force);
     return {sub, [o] { return run_convert(*o); }};
 }
 

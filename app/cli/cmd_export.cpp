@@ -1,15 +1,16 @@
 // `diffphoton export blender`: a project as one self-contained Python script that builds the
 // Blender Cycles scene (shadow catchers, objects, probe, camera, compositor) for an artist.
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
 #include "scene/project_io.h"
 #include "blender_script.h"
 #include "commands.h"
 #include "common.h"
+#include "outputs.h"
 #include "dp_cycles_source.h"
 
 namespace dp::cli {
@@ -21,6 +22,7 @@ struct ExportBlenderOptions {
     std::string output;
     std::string blend;
     int samples = 128;
+    bool force = false;
 };
 
 namespace fs = std::filesystem;
@@ -75,16 +77,18 @@ Project hand_off_project(const std::string& file, const LoadedScene& loaded) {
 }
 
 int run_export_blender(const ExportBlenderOptions& o) {
-    check_output_folder(o.output, "-o");
     if (fs::path(o.output).extension() != ".py")
         throw InputError(o.output, "-o", "the script's name must end in .py");
-    if (!o.blend.empty()) {
-        check_output_folder(o.blend, "--blend");
-        if (fs::path(o.blend).extension() != ".blend")
-            throw InputError(o.blend, "--blend", "the file's name must end in .blend");
-    }
-    const LoadedScene loaded = load_scene(o.project);
-    refuse_overwriting_inputs(o.output, "-o", loaded.project, o.project);
+    if (!o.blend.empty() && fs::path(o.blend).extension() != ".blend")
+        throw InputError(o.blend, "--blend", "the file's name must end in .blend");
+    const LoadedScene loaded = load_scene(o.project, {}, [&](const Project& p, AssetLibrary&) {
+        ReadSet inputs;
+        inputs.add_project(p, o.project);
+        // The .blend is Blender's to write when the script runs; it must not be an input either.
+        std::vector<Output> outputs = {{o.output, "-o"}};
+        if (!o.blend.empty()) outputs.push_back({o.blend, "--blend"});
+        check_outputs(outputs, inputs, o.force);
+    });
     const Project p = hand_off_project(o.project, loaded);
     BlenderScriptInputs in;
     in.converter_source = kDpCyclesSource;
@@ -96,11 +100,11 @@ int run_export_blender(const ExportBlenderOptions& o) {
     for (char& c : in.script_name)
         if (static_cast<unsigned char>(c) < 0x20) c = '?';
     in.blend = o.blend.empty() ? "" : fs::absolute(o.blend).lexically_normal().string();
-    const std::string script = blender_script(in);
-    std::ofstream f(o.output, std::ios::binary);
-    f << script;
-    f.close();
-    if (!f) throw InputError(o.output, "-o", "cannot write the script");
+    try {
+        write_file_atomically(o.output, blender_script(in));
+    } catch (const std::runtime_error& e) {
+        throw InputError(o.output, "-o", e.what());
+    }
     std::printf("wrote %s (run it with: blender -b --python %s)\n", o.output.c_str(),
                 o.output.c_str());
     return 0;
@@ -121,6 +125,7 @@ Command add_export_command(CLI::App& app) {
     blender->add_option("--blend", o->blend, "Have the script save the scene as this .blend file");
     blender->add_option("--samples", o->samples, "Cycles samples per pixel the scene is set to")
         ->check(CLI::Range(1, 1 << 24));
+    add_force_flag(blender, o->force);
     return {sub, [o] { return run_export_blender(*o); }};
 }
 

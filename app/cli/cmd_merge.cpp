@@ -1,7 +1,6 @@
 // `diffphoton merge part.dpp... -o final.exr`: sums render shards (render --pass-range) into the
 // image a single `render --passes N --adaptive off` writes, bit for bit (docs/farm.md).
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -9,6 +8,7 @@
 #include "base/error.h"
 #include "commands.h"
 #include "common.h"
+#include "outputs.h"
 #include "render/pass_shard.h"
 #include "render/render_output.h"
 
@@ -16,12 +16,10 @@ namespace dp::cli {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 struct MergeOptions {
     std::vector<std::string> parts;
     std::string output, project;
-    bool layers = false, allow_gaps = false;
+    bool layers = false, allow_gaps = false, force = false;
 };
 
 std::string ranges_text(const std::vector<std::pair<int, int>>& ranges) {
@@ -33,10 +31,6 @@ std::string ranges_text(const std::vector<std::pair<int, int>>& ranges) {
 int run_merge(const MergeOptions& o) {
     if (check_output_path(o.output, "--output") != ImageKind::Exr)
         throw InputError(o.output, "--output", "merge writes an EXR file (convert it afterwards for PNG/JPEG)");
-    std::error_code ec;
-    for (const std::string& part : o.parts)
-        if (fs::equivalent(part, o.output, ec))
-            throw InputError(o.output, "--output", "is one of the shards being merged");
 
     // Everything is read and checked before anything is written: a refused merge writes nothing.
     // Each shard is summed as soon as it is read and checked against those before, so a merge
@@ -66,16 +60,20 @@ int run_merge(const MergeOptions& o) {
     // The photo the change is added to comes from the project, which must still read the files
     // the shards were rendered against.
     const std::string project = o.project.empty() ? first.project_path : o.project;
-    LoadedScene loaded = load_scene(project);
+    LoadedScene loaded = load_scene(project, {}, [&](const Project& p, AssetLibrary&) {
+        ReadSet inputs;
+        for (const std::string& part : o.parts) inputs.add(part, "one of the shards being merged");
+        inputs.add_project(p, project);
+        const int channels = render_exr_channels(o.layers);
+        check_outputs({{o.output, "--output", image_output_bytes(o.output, {}, first.width, first.height, channels)}},
+                      inputs, o.force);
+    });
     if (fingerprint_project(loaded.project).inputs != first.inputs_hash)
         throw InputError(project, "", "its files (photo, probe, meshes, textures) are not those the shards were "
                                       "rendered with: they changed since, or this is another project");
     const Image& photo = loaded.scene->photo();
     if (photo.width() != first.width || photo.height() != first.height)
         throw InputError(project, "", "its photo is not the shards' frame size");
-    refuse_overwriting_inputs(o.output, "--output", loaded.project, project);
-    check_output_space(o.output, "--output",
-                       output_bytes(ImageKind::Exr, first.width, first.height, o.layers ? 4 : 1));
 
     RenderUpdate update;
     update.image = accumulated_image(photo, sums);
@@ -104,6 +102,7 @@ Command add_merge_command(CLI::App& app) {
     sub->add_flag("--layers", o->layers, "Also write layers dL, alpha, shadow, objects and catcher");
     sub->add_flag("--allow-gaps", o->allow_gaps,
                   "Merge even if some passes are in no shard (the mean of those there are)");
+    add_force_flag(sub, o->force);
     return {sub, [o] { return run_merge(*o); }};
 }
 

@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "common.h"
+#include "outputs.h"
 #include "progress.h"
 #include "reference/path_tracer.h"
 
@@ -16,17 +17,21 @@ struct ReferenceCliOptions {
     int spp = 64, threads = 0;
     uint64_t seed = 0;
     float exposure = 0;
-    bool real_only = false;
+    bool real_only = false, force = false;
     CLI::Option* seed_opt = nullptr;
 };
 
 int run_reference(const ReferenceCliOptions& o) {
-    const ImageKind kind = check_output_path(o.output, "--output");
+    check_output_path(o.output, "--output");
     return with_threads(o.threads, [&]() -> int {
-        LoadedScene loaded = load_scene(o.project);
+        LoadedScene loaded = load_scene(o.project, {}, [&](const Project& p, AssetLibrary& library) {
+            ReadSet inputs;
+            inputs.add_project(p, o.project);
+            int width = 0, height = 0;
+            library.photo_size(p, width, height);
+            check_outputs({{o.output, "--output", image_output_bytes(o.output, {}, width, height)}}, inputs, o.force);
+        });
         auto scene = loaded.scene;
-        check_output_space(o.output, "--output",
-                           output_bytes(kind, scene->camera().width(), scene->camera().height()));
         ReferenceOptions ro;
         ro.samples_per_pixel = o.spp;
         ro.max_depth = loaded.settings.max_depth;
@@ -65,6 +70,7 @@ Command add_reference_command(CLI::App& app) {
         ->check(kNonNegative);
     sub->add_option("--exposure", o->exposure, "PNG/JPEG only: exposure in stops")
         ->check(kFinite);
+    add_force_flag(sub, o->force);
     return {sub, [o] { return run_reference(*o); }};
 }
 

@@ -16,6 +16,7 @@
 #include "reference/standard_differential.h"
 #include "render/denoise_aovs.h"
 #include "image/noise_blend.h"
+#include "outputs.h"
 #include "render/progressive.h"
 #include "render/render_limits.h"
 #include "render/render_output.h"
@@ -35,7 +36,7 @@ struct RenderOptions {
     int64_t photons = 0;
     uint64_t seed = 0;
     float exposure = 0;
-    bool layers = false, denoise = false;
+    bool layers = false, denoise = false, force = false;
     OutputFormat format;
     CLI::Option *passes_opt = nullptr, *time_opt = nullptr, *photons_opt = nullptr,
                 *seed_opt = nullptr, *threads_opt = nullptr, *pixel_opt = nullptr, *range_opt = nullptr,
@@ -101,6 +102,7 @@ int run_shard(const RenderOptions& o) {
     r.output = o.output;
     parse_pass_range(o.pass_range, r.pass_begin, r.pass_end);
     r.threads = o.threads;
+    r.force = o.force;
     r.edit = [&o](Project& p) { apply_overrides(o, p); };
     return reported_under_flags(o, [&] { return render_shard(r); });
 }
@@ -146,6 +148,35 @@ void write_result(const RenderOptions& o, ImageKind kind, const LoadedScene& loa
         warn(o.output + ": " + w);
 }
 
+/// check_outputs for a render's image: its size from the photo's, its channels from the options.
+void check_render_output(const RenderOptions& o, ImageKind kind, const Project& p, AssetLibrary& library) {
+    ReadSet inputs;
+    inputs.add_project(p, o.project);
+    int width = 0, height = 0;
+    library.photo_size(p, width, height);
+    const int channels =
+        kind == ImageKind::Exr ? render_exr_channels(o.layers) + (o.denoise ? 6 : 0) : 3;  // denoised, dL_denoised
+    check_outputs({{o.output, "--output", image_output_bytes(o.output, o.format, width, height, channels)}}, inputs,
+                  o.force);
+}
+
+/// The options that only some methods take, refused (exit 2) before any pass.
+void check_method_options(const RenderOptions& o, bool standard, bool debug) {
+    if (standard && debug)
+        throw InputError("", "--pixel", "the per-pixel debugger is for --method differential");
+    if (!standard && o.focus_after > 0)
+        throw InputError("", "--focus-after", "only the path-traced methods (standard, standard-correlated) focus");
+    if (!standard && o.samples_per_pass != 1)
+        throw InputError("", "--samples-per-pass", "only the path-traced methods take camera samples per pass");
+    if (o.denoise && debug) throw InputError("", "--denoise", "the per-pixel debugger does not denoise");
+    if (o.denoise) {
+        std::string why;
+        if (!denoiser_available(&why)) throw InputError("", "--denoise", why);
+    }
+    if (standard && o.photons_opt->count())
+        warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
+}
+
 int render_loaded(const RenderOptions& o, ImageKind kind, bool debug, int px, int py);
 
 int run_render(const RenderOptions& o) {
@@ -163,19 +194,7 @@ int run_render(const RenderOptions& o) {
     if (debug) parse_pixel(o.pixel, px, py);
     if (debug && !o.output.empty()) warn("--output is ignored with --pixel; nothing is written");
     const bool standard = o.method != "differential";
-    if (standard && debug)
-        throw InputError("", "--pixel", "the per-pixel debugger is for --method differential");
-    if (!standard && o.focus_after > 0)
-        throw InputError("", "--focus-after", "only the path-traced methods (standard, standard-correlated) focus");
-    if (!standard && o.samples_per_pass != 1)
-        throw InputError("", "--samples-per-pass", "only the path-traced methods take camera samples per pass");
-    if (o.denoise && debug) throw InputError("", "--denoise", "the per-pixel debugger does not denoise");
-    if (o.denoise) {  // bad input, exit 2, before any pass
-        std::string why;
-        if (!denoiser_available(&why)) throw InputError("", "--denoise", why);
-    }
-    if (standard && o.photons_opt->count())
-        warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
+    check_method_options(o, standard, debug);
 
     return reported_under_flags(o, [&] { return render_loaded(o, kind, debug, px, py); });
 }
@@ -185,15 +204,12 @@ int run_render(const RenderOptions& o) {
 int render_loaded(const RenderOptions& o, ImageKind kind, bool debug, int px, int py) {
     const bool standard = o.method != "differential";
     return with_threads(o.threads, [&]() -> int {
-        LoadedScene loaded = load_scene(o.project, [&](Project& p) { apply_overrides(o, p); });
+        LoadedScene loaded = load_scene(
+            o.project, [&](Project& p) { apply_overrides(o, p); },
+            [&](const Project& p, AssetLibrary& library) {
+                if (!debug) check_render_output(o, kind, p, library);  // --pixel writes nothing
+            });
         auto scene = loaded.scene;
-        if (!o.output.empty()) {
-            refuse_overwriting_inputs(o.output, "--output", loaded.project, o.project);
-            const Camera& camera = scene->camera();
-            check_output_space(o.output, "--output",
-                               output_bytes(kind, camera.width(), camera.height(),
-                                            (o.layers ? 4 : 1) + (o.denoise && kind == ImageKind::Exr ? 2 : 0)));
-        }
         if (!standard) check_render_limits(*scene, loaded.settings);  // bad input, exit 2, before any pass
         if (debug) return debug_pixel(scene, loaded.settings, o.project, px, py, o.pass);
 
@@ -284,6 +300,7 @@ Command add_render_command(CLI::App& app) {
     sub->add_option("--exposure", o->exposure, "PNG/JPEG/TIFF only: exposure in stops")
         ->check(kFinite);
     add_output_format_options(sub, o->format);
+    add_force_flag(sub, o->force);
     sub->add_option("--method", o->method,
                     "differential (photon mapping of the change), standard (two independent "
                     "path-traced simulations, without and with the objects; one sample per pixel "

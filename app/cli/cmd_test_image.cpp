@@ -7,6 +7,7 @@
 #include "base/error.h"
 #include "commands.h"
 #include "common.h"
+#include "outputs.h"
 #include "image/image_io.h"
 #include "probe/probe.h"
 #include "probe/synthetic_probe.h"
@@ -21,7 +22,7 @@ struct TestImageOptions {
     std::vector<float> value{0.5f, 0.5f, 0.5f};
     std::vector<float> sun_dir{0.3f, 0.9f, 0.3f};
     float sun_irradiance = 3.0f;
-    bool probe_sun = false;
+    bool probe_sun = false, force = false;
     float sun_radius_deg = 0;
     std::vector<float> sky_zenith;
     int checker = 0;
@@ -62,6 +63,7 @@ Image sun_probe(int w, int h, vec3 dir, vec3 sky, float irradiance) {
 int run_make_test_image(const TestImageOptions& o) {
     const ImageKind kind = check_output_path(o.output, "output");
     const int w = o.size[0], h = o.size[1];
+    check_outputs({{o.output, "output", image_output_bytes(o.output, {}, w, h)}}, {}, o.force);
     const vec3 value(o.value[0], o.value[1], o.value[2]);
     const vec3 sun_dir(o.sun_dir[0], o.sun_dir[1], o.sun_dir[2]);
     const vec3 zenith = o.sky_zenith.empty() ? value : vec3(o.sky_zenith[0], o.sky_zenith[1], o.sky_zenith[2]);
@@ -113,6 +115,7 @@ Command add_make_test_image_command(CLI::App& app) {
         ->check(CLI::Range(1, 4096));
     sub->add_option("--value2", o->value2, "The checkerboard's second colour")->expected(3)->check(kFinite);
     sub->add_option("--nan", o->nan_pixels, "Number of pixels whose red channel is NaN");
+    add_force_flag(sub, o->force);
     return {sub, [o] { return run_make_test_image(*o); }};
 }
 

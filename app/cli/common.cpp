@@ -1,7 +1,4 @@
 #include "common.h"
-#include "base/text.h"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -68,10 +65,12 @@ const CLI::Validator kTimeBudget = number_check(
 
 void warn(const std::string& text) { std::cerr << "warning: " << text << "\n"; }
 
-LoadedScene load_scene(const std::string& project_path, const std::function<void(Project&)>& edit) {
+LoadedScene load_scene(const std::string& project_path, const std::function<void(Project&)>& edit,
+                       const std::function<void(const Project&, AssetLibrary&)>& before_build) {
     Project project = load_project(project_path);
     if (edit) edit(project);
     AssetLibrary library;
+    if (before_build) before_build(project, library);
     auto scene = build_scene(library, project, 0, 0, project_path);
     for (const std::string& w : scene->assets().warnings) warn(w);
     return {scene, project, project.render};
@@ -83,49 +82,9 @@ ImageKind check_output_path(const std::string& path, const std::string& option) 
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) {
         return char(std::tolower(c));
     });
-    ImageKind kind;
-    if (ext == ".exr") {
-        kind = ImageKind::Exr;
-    } else if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff") {
-        kind = ImageKind::Ldr;
-    } else {
-        throw InputError(path, option,
-                         "unknown output format '" + ext + "' (use .exr, .png, .jpg, .jpeg, .tif or .tiff)");
-    }
-    check_output_folder(path, option);
-    return kind;
-}
-
-void check_output_folder(const std::string& path, const std::string& option) {
-    if (path.empty()) throw InputError(path, option, "no output file given");
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) throw InputError(path, option, "is a directory");
-    fs::path folder = fs::path(path).parent_path();
-    if (folder.empty()) folder = ".";
-    if (!fs::is_directory(folder, ec))
-        throw InputError(path, option, "folder '" + shorten_path(folder.string()) + "' does not exist");
-    if (::access(folder.c_str(), W_OK) != 0)
-        throw InputError(path, option, "folder '" + shorten_path(folder.string()) + "' is not writable");
-}
-
-double output_bytes(ImageKind kind, int width, int height, int layers) {
-    const double channels = 3.0 * double(width) * double(height) * double(layers);
-    return kind == ImageKind::Exr ? 4.0 * channels : channels;
-}
-
-void check_output_space(const std::string& path, const std::string& option, double bytes) {
-    fs::path folder = fs::path(path).parent_path();
-    if (folder.empty()) folder = ".";
-    std::error_code ec;
-    const fs::space_info space = fs::space(folder, ec);
-    if (ec) return;  // no figure to compare with: the write itself will say what fails
-    // The new file is written beside the old one before it replaces it: the old one's space
-    // is not free until then.
-    if (double(space.available) >= bytes) return;
-    throw InputError(path, option,
-                     "the output needs up to " + format_bytes(bytes) + " but its folder '" +
-                         shorten_path(folder.string()) + "' has only " + format_bytes(double(space.available)) +
-                         " free: free some space or write elsewhere");
+    if (ext == ".exr") return ImageKind::Exr;
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff") return ImageKind::Ldr;
+    throw InputError(path, option, "unknown output format '" + ext + "' (use .exr, .png, .jpg, .jpeg, .tif or .tiff)");
 }
 
 size_t sanitize(Image& image, const std::string& path, const std::string& layer) {
@@ -189,8 +148,7 @@ ViewSettings project_view(const Project& project) {
 }
 
 void write_image(const std::string& path, Image image, const DisplayTransform& view, const ImageWriteOptions& options) {
-    ImageKind kind = check_output_path(path, "output");
-    check_output_space(path, "output", output_bytes(kind, image.width(), image.height()));
+    const ImageKind kind = check_output_path(path, "output");
     sanitize(image, path, "main");
     std::string ext = fs::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });

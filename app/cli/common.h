@@ -12,6 +12,7 @@
 #include "image/display_transform.h"
 #include "image/image.h"
 #include "image/image_io.h"
+#include "assets/asset_library.h"
 #include "assets/render_scene.h"
 #include "scene/project.h"
 
@@ -51,24 +52,19 @@ struct LoadedScene {
 };
 
 /// Loads a project and every file it names, lets `edit` override settings, builds the scene
-/// and checks it (check_scene). Asset and scene warnings go to stderr. Throws InputError.
-LoadedScene load_scene(const std::string& project_path, const std::function<void(Project&)>& edit = {});
+/// and checks it (check_scene). `before_build` sees the project (and the library the scene is
+/// built from) before any file but the project is decoded: commands check their outputs there
+/// (check_outputs), so a refusal costs no loading. Asset and scene warnings go to stderr.
+/// Throws InputError.
+LoadedScene load_scene(const std::string& project_path, const std::function<void(Project&)>& edit = {},
+                       const std::function<void(const Project&, AssetLibrary&)>& before_build = {});
 
 enum class ImageKind { Exr, Ldr };
 
-/// Checks an output path before any work is done, so a typo does not cost a render: the
-/// extension must be .exr, .png, .jpg, .jpeg, .tif or .tiff and the folder must exist and be
-/// writable.
-/// Throws InputError naming the path and `option`.
+/// The kind of output image `path` names by its extension: .exr, or .png, .jpg, .jpeg, .tif or
+/// .tiff; checked first, so that a typo does not cost a render. Throws InputError naming the
+/// path and `option`. Where it may be written is check_outputs' (outputs.h).
 ImageKind check_output_path(const std::string& path, const std::string& option);
-/// The folder part of check_output_path, for files of any kind.
-void check_output_folder(const std::string& path, const std::string& option);
-/// Bytes an output image of width x height with `layers` RGB layers may take at most: float
-/// channels uncompressed for EXR (its compression usually saves a part), 8-bit for PNG/JPEG.
-double output_bytes(ImageKind kind, int width, int height, int layers = 1);
-/// Refuses, before the work that would fill it, an output whose folder has less free space
-/// than `bytes` (the message gives both figures). Throws InputError naming the path and `option`.
-void check_output_space(const std::string& path, const std::string& option, double bytes);
 
 /// Replaces NaN/Inf channels by 0 and warns (naming `path` and `layer`) if there were any.
 size_t sanitize(Image& image, const std::string& path, const std::string& layer);
@@ -99,7 +95,8 @@ std::vector<std::pair<std::string, std::string>> render_metadata(const Project& 
 ViewSettings project_view(const Project& project);
 
 /// Writes `image` (after sanitize) as a single-layer EXR, or as PNG/JPEG/TIFF through `view`
-/// (exposure included) with negative values clamped to 0.
+/// (exposure included) with negative values clamped to 0. The command has checked `path`
+/// (check_outputs) before its work.
 void write_image(const std::string& path, Image image, const DisplayTransform& view, const ImageWriteOptions& options = {});
 
 /// Ctrl-C: the first one asks long commands to stop (they check interrupted()), a second one

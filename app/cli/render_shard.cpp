@@ -9,6 +9,7 @@
 
 #include "base/error.h"
 #include "common.h"
+#include "outputs.h"
 #include "progress.h"
 #include "render/pass_shard.h"
 #include "render/progressive.h"
@@ -39,13 +40,18 @@ int render_shard(const ShardRequest& r) {
     if (r.output.empty()) throw CLI::RequiredError("--output");
     if (fs::path(r.output).extension() != ".dpp")
         throw InputError(r.output, "--output", "a shard is written to a .dpp file (--pass-range)");
-    check_output_folder(r.output, "--output");
     return with_threads(r.threads, [&]() -> int {
-        LoadedScene loaded = load_scene(r.project, [&](Project& p) {
+        auto edit = [&](Project& p) {
             if (r.edit) r.edit(p);
             p.render.adaptive_threshold = 0;  // every tile in every pass: passes independent
+        };
+        LoadedScene loaded = load_scene(r.project, edit, [&](const Project& p, AssetLibrary& library) {
+            ReadSet inputs;
+            inputs.add_project(p, r.project);
+            int width = 0, height = 0;
+            library.photo_size(p, width, height);
+            check_outputs({{r.output, "--output", shard_bytes_at_most(width, height)}}, inputs, r.force);
         });
-        refuse_overwriting_inputs(r.output, "--output", loaded.project, r.project);
         check_render_limits(*loaded.scene, loaded.settings);  // bad input, exit 2, before any pass
         ShardHeader header;
         const ProjectFingerprint fingerprint = fingerprint_project(loaded.project);

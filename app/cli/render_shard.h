@@ -11,6 +11,7 @@ struct ShardRequest {
     std::string project, output;
     int pass_begin = 0, pass_end = 0;
     int threads = 0;
+    bool force = false;  ///< replace a read-only output (--force)
     std::function<void(Project&)> edit;  ///< the command line's overrides
 };
 

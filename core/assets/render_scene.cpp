@@ -62,6 +62,85 @@ PlacedShape placed(const Surface& s, bool present) {
     return p;
 }
 
+/// RenderScene::check_extent's test of surfaces placed from `project`, and of `camera`'s position.
+void check_extent_of(const Project& project, const std::vector<Surface>& real, const std::vector<Surface>& virt,
+                     const Camera& camera) {
+    // 1e9 m leaves ray arithmetic (squares of coordinates, t * dir) nine orders of magnitude
+    // below float's overflow; no photographed scene comes near it.
+    constexpr float kMaxCoordinate = 1e9f;
+    auto ok = [&](vec3 v) { return is_finite(v) && glm::all(glm::lessThanEqual(glm::abs(v), vec3(kMaxCoordinate))); };
+    auto check = [&](const Surface& s) {
+        bool good = true;
+        if (s.analytic_sphere) {
+            good = ok(s.sphere_center) && std::isfinite(s.sphere_radius) && s.sphere_radius <= kMaxCoordinate &&
+                   ok(s.sphere_center + vec3(s.sphere_radius)) && ok(s.sphere_center - vec3(s.sphere_radius));
+        } else if (s.mesh) {
+            for (const vec3& p : s.mesh->positions)
+                if (!ok(p)) {
+                    good = false;
+                    break;
+                }
+        }
+        if (good) return;
+        const std::string list = s.is_virtual ? "objects" : "real";
+        const std::string& name = s.is_virtual ? project.objects[size_t(s.index)].name : project.real[size_t(s.index)].name;
+        const Shape& shape = s.is_virtual ? project.objects[size_t(s.index)].shape : project.real[size_t(s.index)].shape;
+        // The mesh file is named too: its own coordinates may be what is out of reach.
+        const std::string mesh =
+            shape.kind == Shape::Kind::Mesh ? " (mesh '" + shorten_path(shape.mesh_path) + "')" : std::string();
+        throw InputError("", list + "[" + std::to_string(s.index) + "]",
+                         "'" + name + "' reaches beyond 1e9 m from the origin (or is not finite) once placed" + mesh +
+                             ": check its size, scale and translation");
+    };
+    for (const Surface& s : real) check(s);
+    for (const Surface& s : virt) check(s);
+    if (!ok(camera.position()))
+        throw InputError("", "camera", "the camera position is not finite or beyond 1e9 m from the origin");
+}
+
+/// RenderScene::check_camera's test of `camera`, built from `spec`.
+void check_camera_of(const CameraSpec& spec, const Camera& camera) {
+    const bool look_at = spec.model == CameraSpec::Model::LookAt;
+    char buf[256];
+    auto check_axis = [&](const char* focal_field, float f, const char* centre_field, float c, int size) {
+        // A look-at camera's focal length and principal point follow from vfov_deg alone.
+        const std::string field = look_at ? "camera.vfov_deg" : focal_field;
+        if (!(std::isfinite(f) && f > 0)) {
+            std::snprintf(buf, sizeof(buf), "gives a focal length of %g pixels: it must be finite and > 0", double(f));
+            throw InputError("", field, buf);
+        }
+        const double fov = 2.0 * std::atan(double(size) / (2.0 * double(f))) * 180.0 / std::numbers::pi;
+        if (!(fov >= kMinFovDeg && fov <= kMaxFovDeg)) {
+            std::snprintf(buf, sizeof(buf),
+                          "a focal length of %g pixels gives a field of view of %g degrees across the %d pixels "
+                          "of the photo: it must be within %g to %g degrees",
+                          double(f), fov, size, kMinFovDeg, kMaxFovDeg);
+            throw InputError("", field, buf);
+        }
+        const double offset = std::abs(double(c) - 0.5 * double(size - 1));
+        if (!(offset <= kMaxPrincipalOffset * size)) {
+            std::snprintf(buf, sizeof(buf),
+                          "the principal point %g lies %g pixels from the centre of the %d pixels of the photo: "
+                          "at most %g image sizes (%g pixels) are accepted",
+                          double(c), offset, size, kMaxPrincipalOffset, kMaxPrincipalOffset * size);
+            throw InputError("", look_at ? "camera" : centre_field, buf);
+        }
+    };
+    check_axis("camera.fx", camera.fx(), "camera.cx", camera.cx(), camera.width());
+    check_axis("camera.fy", camera.fy(), "camera.cy", camera.cy(), camera.height());
+    // The distortion polynomial can overflow where the intrinsics alone are fine.
+    const int W = camera.width(), H = camera.height();
+    for (int j = 0; j <= 4; ++j)
+        for (int i = 0; i <= 4; ++i) {
+            const float px = -0.5f + float(W) * float(i) / 4.0f, py = -0.5f + float(H) * float(j) / 4.0f;
+            const Ray ray = camera.generate_ray(px, py);
+            if (is_finite(ray.dir) && is_finite(ray.org)) continue;
+            std::snprintf(buf, sizeof(buf), "the camera's ray through pixel (%g, %g) is not finite%s", double(px),
+                          double(py), camera.distortion().is_zero() ? "" : ": check the distortion coefficients");
+            throw InputError("", camera.distortion().is_zero() ? "camera" : "camera.distortion", buf);
+        }
+}
+
 }  // namespace
 
 vec3 Surface::reflectance_at(const vec2& uv) const {
@@ -142,81 +221,25 @@ void RenderScene::place_surfaces() {
     }
 }
 
-void RenderScene::check_extent() const {
-    // 1e9 m leaves ray arithmetic (squares of coordinates, t * dir) nine orders of magnitude
-    // below float's overflow; no photographed scene comes near it.
-    constexpr float kMaxCoordinate = 1e9f;
-    auto ok = [&](vec3 v) { return is_finite(v) && glm::all(glm::lessThanEqual(glm::abs(v), vec3(kMaxCoordinate))); };
-    auto check = [&](const Surface& s) {
-        bool good = true;
-        if (s.analytic_sphere) {
-            good = ok(s.sphere_center) && std::isfinite(s.sphere_radius) && s.sphere_radius <= kMaxCoordinate &&
-                   ok(s.sphere_center + vec3(s.sphere_radius)) && ok(s.sphere_center - vec3(s.sphere_radius));
-        } else if (s.mesh) {
-            for (const vec3& p : s.mesh->positions)
-                if (!ok(p)) {
-                    good = false;
-                    break;
-                }
-        }
-        if (good) return;
-        const std::string list = s.is_virtual ? "objects" : "real";
-        const std::string& name = s.is_virtual ? project_.objects[size_t(s.index)].name : project_.real[size_t(s.index)].name;
-        const Shape& shape = s.is_virtual ? project_.objects[size_t(s.index)].shape : project_.real[size_t(s.index)].shape;
-        // The mesh file is named too: its own coordinates may be what is out of reach.
-        const std::string mesh =
-            shape.kind == Shape::Kind::Mesh ? " (mesh '" + shorten_path(shape.mesh_path) + "')" : std::string();
-        throw InputError("", list + "[" + std::to_string(s.index) + "]",
-                         "'" + name + "' reaches beyond 1e9 m from the origin (or is not finite) once placed" + mesh +
-                             ": check its size, scale and translation");
-    };
-    for (const Surface& s : real_surfaces_) check(s);
-    for (const Surface& s : virtual_surfaces_) check(s);
-    if (!ok(camera_.position()))
-        throw InputError("", "camera", "the camera position is not finite or beyond 1e9 m from the origin");
-}
+void RenderScene::check_extent() const { check_extent_of(project_, real_surfaces_, virtual_surfaces_, camera_); }
 
-void RenderScene::check_camera() const {
-    const CameraSpec& spec = project_.camera;
-    const bool look_at = spec.model == CameraSpec::Model::LookAt;
-    char buf[256];
-    auto check_axis = [&](const char* focal_field, float f, const char* centre_field, float c, int size) {
-        // A look-at camera's focal length and principal point follow from vfov_deg alone.
-        const std::string field = look_at ? "camera.vfov_deg" : focal_field;
-        if (!(std::isfinite(f) && f > 0)) {
-            std::snprintf(buf, sizeof(buf), "gives a focal length of %g pixels: it must be finite and > 0", double(f));
-            throw InputError("", field, buf);
-        }
-        const double fov = 2.0 * std::atan(double(size) / (2.0 * double(f))) * 180.0 / std::numbers::pi;
-        if (!(fov >= kMinFovDeg && fov <= kMaxFovDeg)) {
-            std::snprintf(buf, sizeof(buf),
-                          "a focal length of %g pixels gives a field of view of %g degrees across the %d pixels "
-                          "of the photo: it must be within %g to %g degrees",
-                          double(f), fov, size, kMinFovDeg, kMaxFovDeg);
-            throw InputError("", field, buf);
-        }
-        const double offset = std::abs(double(c) - 0.5 * double(size - 1));
-        if (!(offset <= kMaxPrincipalOffset * size)) {
-            std::snprintf(buf, sizeof(buf),
-                          "the principal point %g lies %g pixels from the centre of the %d pixels of the photo: "
-                          "at most %g image sizes (%g pixels) are accepted",
-                          double(c), offset, size, kMaxPrincipalOffset, kMaxPrincipalOffset * size);
-            throw InputError("", look_at ? "camera" : centre_field, buf);
-        }
-    };
-    check_axis("camera.fx", camera_.fx(), "camera.cx", camera_.cx(), camera_.width());
-    check_axis("camera.fy", camera_.fy(), "camera.cy", camera_.cy(), camera_.height());
-    // The distortion polynomial can overflow where the intrinsics alone are fine.
-    const int W = camera_.width(), H = camera_.height();
-    for (int j = 0; j <= 4; ++j)
-        for (int i = 0; i <= 4; ++i) {
-            const float px = -0.5f + float(W) * float(i) / 4.0f, py = -0.5f + float(H) * float(j) / 4.0f;
-            const Ray ray = camera_.generate_ray(px, py);
-            if (is_finite(ray.dir) && is_finite(ray.org)) continue;
-            std::snprintf(buf, sizeof(buf), "the camera's ray through pixel (%g, %g) is not finite%s", double(px),
-                          double(py), camera_.distortion().is_zero() ? "" : ": check the distortion coefficients");
-            throw InputError("", camera_.distortion().is_zero() ? "camera" : "camera.distortion", buf);
-        }
+void RenderScene::check_camera() const { check_camera_of(project_.camera, camera_); }
+
+void check_placement(const Project& project, int width, int height) {
+    std::vector<Surface> real(project.real.size()), virt(project.objects.size());
+    std::vector<TriangleMesh> meshes(real.size() + virt.size());
+    for (size_t i = 0; i < real.size(); ++i) {
+        real[i].index = int(i);
+        place_shape(project.real[i].shape, project.real[i].transform, nullptr, real[i], meshes[i]);
+    }
+    for (size_t i = 0; i < virt.size(); ++i) {
+        virt[i].is_virtual = true;
+        virt[i].index = int(i);
+        place_shape(project.objects[i].shape, project.objects[i].transform, nullptr, virt[i], meshes[real.size() + i]);
+    }
+    const Camera camera = project.camera.build(width, height);
+    check_extent_of(project, real, virt, camera);
+    check_camera_of(project.camera, camera);
 }
 
 void RenderScene::compute_scale() {

@@ -192,6 +192,14 @@ private:
     bool has_transmissive_ = false;
 };
 
+/// The checks a scene makes of its project before it builds anything, without its files: every
+/// proxy and object but mesh shapes (whose vertices are in their files) within 1e9 m of the
+/// origin once placed, the camera's position, and the camera for a `width` x `height` photo (its
+/// field of view, principal point and rays; RenderScene's check_camera). A calibration's result
+/// passes them before it is saved, so that the project loads again. Throws InputError naming the
+/// field, no file.
+void check_placement(const Project& project, int width, int height);
+
 /// The field of view (across the photo's width or height, degrees) a camera may have: beyond
 /// these, rays leave a pinhole almost parallel to the image plane or all in one direction.
 inline constexpr double kMinFovDeg = 1e-3, kMaxFovDeg = 179.9;

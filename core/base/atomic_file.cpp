@@ -2,10 +2,13 @@
 #include "base/text.h"
 
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
@@ -19,12 +22,21 @@ std::runtime_error file_error(const std::string& path, const std::string& what) 
     return std::runtime_error("cannot write '" + shorten_path(path) + "': " + what + " (" + std::strerror(errno) + ")");
 }
 
+/// FNV-1a, 64 bits: a short stand-in for a name too long to repeat in the temporary's.
+uint64_t name_hash(const std::string& name) {
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (unsigned char c : name) h = (h ^ c) * 0x100000001b3ull;
+    return h;
+}
+
 /// A name no other writer uses: hidden, beside the target, the target's extension kept.
 std::string temporary_name(const fs::path& target) {
     static std::atomic<unsigned> counter{0};
-    const std::string tag = "." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                            std::to_string(counter++);
-    return (target.parent_path() / (tag + target.extension().string())).string();
+    fs::path folder = target.parent_path();
+    const size_t limit = file_name_limit(folder.empty() ? "." : folder.string());
+    const std::string name =
+        temporary_file_name(target.filename().string(), limit, (unsigned long)::getpid(), counter++);
+    return (folder / name).string();
 }
 
 void sync_file(const std::string& path, const std::string& target) {
@@ -82,6 +94,31 @@ private:
 };
 
 }  // namespace
+
+std::string temporary_file_name(const std::string& target_name, size_t name_max, unsigned long pid,
+                                unsigned count) {
+    const fs::path target(target_name);
+    const std::string tag = ".tmp-" + std::to_string(pid) + "-" + std::to_string(count);
+    const std::string stem = target.stem().string(), ext = target.extension().string();
+    // The dot and the tag add 9 bytes and the digits of the process id and the count (up to 24
+    // on Linux): a name near the limit (NAME_MAX, usually 255) would fail "File name too long".
+    std::string name = "." + stem + tag + ext;
+    if (name.size() <= name_max) return name;
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)name_hash(target_name));
+    name = "." + std::string(hex) + tag + ext;
+    if (name.size() <= name_max) return name;
+    return "." + std::string(hex) + tag;  // an extension of some 200 bytes: no encoder reads it
+}
+
+size_t file_name_limit(const std::string& folder) {
+    errno = 0;
+    const long from_pathconf = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+    if (from_pathconf > 0) return size_t(from_pathconf);
+    struct statvfs vfs {};
+    if (::statvfs(folder.c_str(), &vfs) == 0 && vfs.f_namemax > 0) return size_t(vfs.f_namemax);
+    return 255;
+}
 
 void remove_temporaries_in_flight() noexcept {
     for (int i = 0; i < kSlots; ++i)

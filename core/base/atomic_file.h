@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <functional>
 #include <string>
 
@@ -19,5 +20,17 @@ void remove_temporaries_in_flight() noexcept;
 
 /// write_atomically for text or bytes already in memory.
 void write_file_atomically(const std::string& path, const std::string& bytes);
+
+/// The name (no folder) of write_atomically's temporary file for a target named `target_name`:
+/// hidden, unique to `pid` and `count`, the target's extension kept. A target whose own name
+/// leaves no room for the tag within `name_max` bytes (the file system's limit on one name)
+/// gets a 64-bit hash of its name instead of its stem, so that every name the file system
+/// takes can be written; the extension goes too where even that does not fit.
+std::string temporary_file_name(const std::string& target_name, size_t name_max, unsigned long pid,
+                                unsigned count);
+
+/// The longest file name, in bytes, the file system of `folder` takes (pathconf's NAME_MAX, else
+/// statvfs's f_namemax); 255 when neither says.
+size_t file_name_limit(const std::string& folder);
 
 }  // namespace dp

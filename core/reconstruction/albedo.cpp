@@ -396,21 +396,28 @@ std::string file_stem(const std::string& name, int index) {
 
 }  // namespace
 
-std::string attach_albedo_texture(Project& project, int proxy, const AlbedoTexture& texture,
-                                  const std::filesystem::path& project_file, bool saved_there) {
+AlbedoTextureFiles albedo_texture_files(const Project& project, int proxy,
+                                        const std::filesystem::path& project_file) {
     namespace fs = std::filesystem;
     const fs::path folder = fs::absolute(project_file).parent_path();
     const std::string stem = project_file.stem().string() + "_" +
                              file_stem(project.real[size_t(proxy)].name, proxy) + "_albedo";
-    save_exr((folder / (stem + ".exr")).string(), {{"", &texture.albedo}});
-    if (!texture.mask.empty())
-        save_exr((folder / (stem + "_mask.exr")).string(), {{"", &texture.mask}});
+    return {folder / (stem + ".exr"), folder / (stem + "_mask.exr")};
+}
+
+std::string attach_albedo_texture(Project& project, int proxy, const AlbedoTexture& texture,
+                                  const std::filesystem::path& project_file, bool saved_there) {
+    namespace fs = std::filesystem;
+    const AlbedoTextureFiles files = albedo_texture_files(project, proxy, project_file);
+    save_exr(files.texture.string(), {{"", &texture.albedo}});
+    if (!texture.mask.empty()) save_exr(files.mask.string(), {{"", &texture.mask}});
     RealProxy& r = project.real[size_t(proxy)];
     r.albedo.kind = Albedo::Kind::Texture;
     std::error_code ec;
+    const fs::path folder = files.texture.parent_path();
     const bool beside =
         saved_there || (!project.base_dir.empty() && fs::equivalent(project.base_dir, folder, ec));
-    r.albedo.texture_path = beside ? stem + ".exr" : (folder / (stem + ".exr")).string();
+    r.albedo.texture_path = beside ? files.texture.filename().string() : files.texture.string();
     return r.albedo.texture_path;
 }
 

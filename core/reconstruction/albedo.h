@@ -75,6 +75,14 @@ std::vector<size_t> texturable_real_proxies(const Project& project);
 /// Returns false when there is no valid texel at all (nothing is changed then).
 bool fill_flagged_texels(Image& image, const Image& mask);
 
+/// The files attach_albedo_texture writes for proxy `proxy` beside `project_file`: the texture
+/// "<project stem>_<proxy name>_albedo.exr" and its mask "..._albedo_mask.exr", absolute.
+struct AlbedoTextureFiles {
+    std::filesystem::path texture, mask;
+};
+AlbedoTextureFiles albedo_texture_files(const Project& project, int proxy,
+                                        const std::filesystem::path& project_file);
+
 /// Writes an estimated texture (and its mask) next to a project file as
 /// "<project stem>_<proxy name>_albedo.exr" (and "..._albedo_mask.exr") and points proxy
 /// `proxy` of `project` at it: by its name alone when the project resolves paths in that

@@ -1,6 +1,7 @@
 #include "render/pass_shard.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -14,6 +15,7 @@
 #include "base/input_file.h"
 #include "base/memory.h"
 #include "base/rng.h"
+#include "render/frame_plan.h"
 #include "scene/project_io.h"
 
 namespace dp {
@@ -199,6 +201,14 @@ ProjectFingerprint fingerprint_project(const Project& project) {
     Fingerprint all = files;
     all.add(doc.dump());
     return {all.hex(), files.hex()};
+}
+
+double shard_bytes_at_most(int width, int height) {
+    constexpr int kTile = FramePlan::kTile;
+    const double tiles = std::ceil(double(width) / kTile) * std::ceil(double(height) / kTile);
+    // Per touched tile: its index, then 8 sums of 16 bytes for each pixel; the JSON header, the
+    // checksum and the end mark fit in the fixed part.
+    return tiles * (4.0 + double(kTile) * kTile * 8 * 16) + 64.0 * 1024;
 }
 
 void write_shard(const std::string& path, const ShardHeader& header, const TileAccumulator& sums) {

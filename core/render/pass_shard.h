@@ -50,6 +50,9 @@ ProjectFingerprint fingerprint_project(const Project& project);
 /// Throws std::runtime_error if the file cannot be written.
 void write_shard(const std::string& path, const ShardHeader& header, const TileAccumulator& sums);
 
+/// The most a shard of a width x height frame may take: every tile touched.
+double shard_bytes_at_most(int width, int height);
+
 /// Reads a shard. Throws InputError naming the file for anything that is not a complete shard
 /// of this format (wrong magic, truncated, damaged, inconsistent sizes).
 Shard read_shard(const std::string& path);

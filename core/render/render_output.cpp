@@ -6,6 +6,11 @@
 
 namespace dp {
 
+int render_exr_channels(bool with_layers) {
+    // RGBA; dL, alpha, shadow and catcher RGB, objects RGBA.
+    return with_layers ? 4 + 4 * 3 + 4 : 4;
+}
+
 std::vector<std::string> save_render_exr(const std::string& path, RenderUpdate& update, const Image& photo,
                                          bool with_layers, const std::vector<ExrLayer>& extra,
                                          const ImageWriteOptions& options) {

@@ -8,6 +8,9 @@
 
 namespace dp {
 
+/// The channels save_render_exr writes before `extra`'s: RGBA, and 16 more with `with_layers`.
+int render_exr_channels(bool with_layers);
+
 /// Writes a render to the EXR file `path`: the augmented image as the main layer, RGBA with A the
 /// objects' coverage, and, with `with_layers`, the layers compositors ask for
 /// (docs/compositing.md): "dL" (signed change of the real surfaces), "alpha" (coverage, grey),

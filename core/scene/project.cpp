@@ -112,22 +112,4 @@ std::vector<std::pair<std::string, std::filesystem::path>> project_inputs(const 
     return in;
 }
 
-void refuse_overwriting_inputs(const std::string& output, const std::string& option,
-                               const Project& project, const std::string& project_file) {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path out = fs::weakly_canonical(fs::absolute(output, ec), ec);
-    auto same = [&](const fs::path& p) {
-        std::error_code e;
-        return fs::exists(p, e) && fs::equivalent(out, p, e);
-    };
-    if (!project_file.empty() && same(project_file))
-        throw InputError(output, option, "is the project file itself: choose another output");
-    for (const auto& [field, path] : project_inputs(project))
-        if (same(path))
-            throw InputError(output, option,
-                             "is the project's " + field + " ('" + shorten_path(path.string()) +
-                                 "'): a render must not overwrite its input");
-}
-
 }  // namespace dp

@@ -234,9 +234,4 @@ void for_each_input(const Project& project,
 /// that names it ("photo.path", "objects[2].shape.path", ...).
 std::vector<std::pair<std::string, std::filesystem::path>> project_inputs(const Project& project);
 
-/// Throws InputError(output, option, ...) when `output` is, after symlinks, the project file
-/// `project_file` or one of the project's inputs: a render must never overwrite what it reads.
-void refuse_overwriting_inputs(const std::string& output, const std::string& option, const Project& project,
-                               const std::string& project_file);
-
 }  // namespace dp

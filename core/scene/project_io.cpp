@@ -536,6 +536,25 @@ Project load_project(const std::string& path) {
     return parse_project(doc, path, base.lexically_normal());
 }
 
+namespace {
+
+/// Runs the loader's checks (load_project's: the JSON reader, then parse_project) on the text
+/// about to be saved, so that a value the loader refuses (a size beyond its range, a camera it
+/// cannot build) is refused here, naming the field, and the old file is kept.
+void check_loads(const std::string& text, const std::string& path, const std::filesystem::path& base_dir) {
+    try {
+        JsonReader r(path);
+        parse_project(r.parse(text), path, base_dir);
+    } catch (const InputError& e) {
+        std::string what = e.what();
+        const std::string prefix = InputError(e.file(), e.field(), "").what();
+        if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+        throw InputError(path, e.field(), what + "; the project would not load again, so it was not saved");
+    }
+}
+
+}  // namespace
+
 void save_project(const Project& project, const std::string& path) {
     // ordered_json keeps the natural reading order (schema_version, photo, probe, ...).
     const nlohmann::ordered_json doc = write_project<nlohmann::ordered_json>(project);
@@ -552,6 +571,7 @@ void save_project(const Project& project, const std::string& path) {
         };
     check_finite(doc, "");
     std::string text = doc.dump(2) + "\n";
+    check_loads(text, path, project.base_dir);
     try {
         write_file_atomically(path, text);  // the old file stays whole if this fails
     } catch (const std::runtime_error& e) {

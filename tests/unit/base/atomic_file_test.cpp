@@ -119,3 +119,61 @@ TEST(AtomicFile, CleaningUpAfterAWriteLeavesTheNewFile) {
     remove_temporaries_in_flight();  // nothing in flight: the finished file stays
     EXPECT_EQ(read(f), "new");
 }
+
+// ---- temporary names near the file system's limit on one name ------------------------------
+
+TEST(AtomicFileNames, AShortNameKeepsItsStemAndExtension) {
+    EXPECT_EQ(temporary_file_name("render.exr", 255, 1234, 7), ".render.tmp-1234-7.exr");
+    EXPECT_EQ(temporary_file_name("project.json", 255, 1, 0), ".project.tmp-1-0.json");
+}
+
+TEST(AtomicFileNames, NamesUpToTheLimitGetATemporaryWithinIt) {
+    // 246 to 255 bytes: the plain tag (".", ".tmp-PID-N") would push each past 255.
+    for (size_t length = 240; length <= 255; ++length) {
+        const std::string name = std::string(length - 4, 'n') + ".exr";
+        const std::string temp = temporary_file_name(name, 255, 4194304, 4294967295u);
+        EXPECT_LE(temp.size(), 255u) << length;
+        EXPECT_EQ(temp[0], '.') << "hidden";
+        EXPECT_EQ(temp.substr(temp.size() - 4), ".exr") << "the encoder picks the format by it";
+        EXPECT_NE(temp.find(".tmp-4194304-4294967295"), std::string::npos) << temp;
+    }
+}
+
+TEST(AtomicFileNames, LongNamesAreHashedApart) {
+    const std::string a = std::string(250, 'a') + ".exr", b = std::string(249, 'a') + "b.exr";
+    const std::string ta = temporary_file_name(a, 255, 1, 0), tb = temporary_file_name(b, 255, 1, 0);
+    EXPECT_NE(ta, tb);
+    EXPECT_LT(ta.size(), 64u) << "the stem is replaced by its hash: " << ta;
+    EXPECT_EQ(ta, temporary_file_name(a, 255, 1, 0)) << "the hash is the name's, not random";
+    // Hashed only where the tag does not fit: a name one byte shorter than needed keeps its stem.
+    const std::string fits = std::string(255 - 1 - 8 - 4, 'f') + ".exr";  // "." + stem + ".tmp-1-0" + ".exr"
+    EXPECT_EQ(temporary_file_name(fits, 255, 1, 0), "." + fits.substr(0, fits.size() - 4) + ".tmp-1-0.exr");
+    const std::string one_more = std::string(255 - 1 - 8 - 4 + 1, 'f') + ".exr";
+    EXPECT_LT(temporary_file_name(one_more, 255, 1, 0).size(), 64u);
+}
+
+TEST(AtomicFileNames, AnExtensionTooLongForTheLimitIsDropped) {
+    const std::string name = "a." + std::string(250, 'e');
+    const std::string temp = temporary_file_name(name, 255, 99, 3);
+    EXPECT_LE(temp.size(), 255u);
+    EXPECT_EQ(temp.substr(temp.size() - 9), ".tmp-99-3");
+}
+
+TEST(AtomicFileNames, TheLimitComesFromTheFileSystem) {
+    TempDir d;
+    const size_t limit = file_name_limit(d.path.string());
+    EXPECT_GE(limit, 14u);  // POSIX's least
+    EXPECT_LE(limit, 4096u);
+}
+
+TEST(AtomicFileNames, FilesNamedUpToTheLimitAreWrittenAndReplaced) {
+    TempDir d;
+    const size_t limit = file_name_limit(d.path.string());
+    for (size_t length = limit - 9; length <= limit; ++length) {
+        const fs::path f = d.path / (std::string(length - 5, 'p') + ".json");
+        ASSERT_NO_THROW(write_file_atomically(f.string(), "old")) << length;
+        ASSERT_NO_THROW(write_file_atomically(f.string(), "new")) << length;
+        EXPECT_EQ(read(f), "new");
+    }
+    EXPECT_EQ(d.entries(), 10u) << "no temporary file left behind";
+}

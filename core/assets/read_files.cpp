@@ -1,0 +1,51 @@
+#include "assets/read_files.h"
+
+#include <system_error>
+
+#include "geometry/mesh_side_files.h"
+#include "scene/relink.h"
+
+namespace dp {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// "the texture named by mesh chair.obj's material file chair.mtl (objects[0].shape.path)".
+std::string side_file_what(const MeshSideFile& side, const InputFile& mesh) {
+    const std::string name = mesh.resolved.filename().string();
+    std::string what;
+    switch (side.kind) {
+        case MeshSideFile::Kind::MaterialFile: what = "the material file of mesh " + name; break;
+        case MeshSideFile::Kind::Texture:
+            what = "the texture named by mesh " + name + "'s material file " + side.material_file.filename().string();
+            break;
+        case MeshSideFile::Kind::Buffer: what = "the buffer of glTF mesh " + name; break;
+        case MeshSideFile::Kind::Image: what = "the image named by glTF mesh " + name; break;
+    }
+    return what + " (" + mesh.ref.field + ")";
+}
+
+bool is_mesh_field(const std::string& field) {
+    const std::string suffix = ".shape.path";
+    return field.size() > suffix.size() && field.compare(field.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+std::vector<ReadFile> project_read_files(const Project& project, const std::string& project_file) {
+    std::vector<ReadFile> files;
+    std::error_code ec;
+    if (!project_file.empty() && fs::exists(project_file, ec))
+        files.push_back({project_file, "the project file itself"});
+    for (const InputFile& f : input_files(project)) {
+        if (f.missing) continue;
+        files.push_back({f.resolved, "the project's " + f.ref.what + " (" + f.ref.field + ")"});
+        if (!is_mesh_field(f.ref.field)) continue;
+        for (const MeshSideFile& side : mesh_side_files(f.resolved.string()))
+            files.push_back({side.path, side_file_what(side, f)});
+    }
+    return files;
+}
+
+}  // namespace dp
