@@ -14,6 +14,11 @@ std::string format_bytes(double bytes);
 /// The longest path a message quotes in full, in bytes.
 inline constexpr size_t kMaxPathInMessage = 200;
 
+/// `s` with ASCII letters in lower case (file extensions, keywords).
+std::string ascii_lower(std::string s);
+/// The extension of `path` with its dot, in lower case: ".exr", "" for none.
+std::string lower_extension(const std::string& path);
+
 /// `text` cut to at most `max_bytes` bytes by replacing its middle with "…", keeping its start
 /// and its end (a path's top folders and its file name); cuts fall between UTF-8 characters.
 std::string shorten_middle(std::string_view text, size_t max_bytes);

@@ -328,8 +328,7 @@ const std::vector<std::string>& mesh_file_extensions() {
 
 LoadedMesh load_mesh(const std::string& path, const std::string& field) {
     const uint64_t bytes = check_input_file(path, field, "a mesh file", kMaxMeshFileBytes);
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+    const std::string ext = lower_extension(path);
     // Assimp picks its reader by content when the extension's reader declines the file, so a
     // file that starts like PLY or GLB is checked as one whatever its name.
     const std::string magic = file_prefix(path, 4);

@@ -12,16 +12,14 @@
 #include <set>
 #include <sstream>
 
+#include "base/text.h"
+
 namespace dp {
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return s;
-}
 
 std::string trim(const std::string& s) {
     const size_t a = s.find_first_not_of(" \t\r");
@@ -111,7 +109,7 @@ void add_mtl_textures(const fs::path& mtl, const fs::path& obj_folder, SideFiles
     std::ifstream in(mtl, std::ios::binary);
     for (std::string line; std::getline(in, line);) {
         std::vector<std::string> w = words(line);
-        if (w.size() < 2 || !is_map_keyword(lower(w[0]))) continue;
+        if (w.size() < 2 || !is_map_keyword(ascii_lower(w[0]))) continue;
         w.erase(w.begin());
         for (const std::string& name : map_names(w)) {
             out.add(mtl.parent_path(), name, MeshSideFile::Kind::Texture, mtl);
@@ -210,7 +208,7 @@ std::vector<MeshSideFile> mesh_side_files(const std::string& mesh_path) {
     const fs::path path(mesh_path);
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) return {};
-    const std::string ext = lower(path.extension().string());
+    const std::string ext = ascii_lower(path.extension().string());
     char magic[4] = {};
     std::ifstream(path, std::ios::binary).read(magic, 4);
     // The mesh loader's readers go by content where the extension's reader declines a file.

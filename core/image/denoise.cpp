@@ -362,14 +362,14 @@ Image denoise_change(const Image& change, const Image& albedo_in, const Image& n
 constexpr int kResidualRadius = 6;
 
 /// Adds to `clean` the mean of `raw - clean` over the (2 radius + 1)^2 box around each pixel:
-/// the local mean is the raw one's again, and the noise put back is that box's average. With a
-/// `mask`, only its pixels are changed and the mean is over its pixels in the box.
-static void add_local_residual(const Image& raw, Image& clean, int radius, const std::vector<uint8_t>& mask = {}) {
+/// the local mean is the raw one's again, and the noise put back is that box's average. Only the
+/// pixels of `mask` are changed, and the mean is over its pixels in the box.
+static void add_local_residual(const Image& raw, Image& clean, int radius, const std::vector<uint8_t>& mask) {
     const int w = raw.width(), h = raw.height();
     std::vector<double> r[3], n(raw.size(), 1.0);
     for (int c = 0; c < 3; ++c) r[c].assign(raw.size(), 0.0);
     for (size_t i = 0; i < raw.size(); ++i) {
-        if (!mask.empty() && !mask[i]) {
+        if (!mask[i]) {
             n[i] = 0.0;
             continue;
         }
@@ -381,7 +381,7 @@ static void add_local_residual(const Image& raw, Image& clean, int radius, const
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const size_t i = size_t(y) * w + x;
-            if (!mask.empty() && !mask[i]) continue;
+            if (!mask[i]) continue;
             const double k = std::max(count.sum(x, y, radius), 1.0);
             for (int c = 0; c < 3; ++c) clean[i][c] += float(box[c].sum(x, y, radius) / k);
         }

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "base/input_file.h"
+#include "base/text.h"
 #include "image/image_io.h"
 #include "image/image_io_internal.h"
 
@@ -48,11 +49,6 @@ const ImageFormat kFormats[] = {
     {"BMP", "a BMP", "bmp", {".bmp"}, "\"BM\"", bmp_magic},
 };
 
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
 
 std::string hex_bytes(const unsigned char* bytes, size_t n) {
     std::string out;

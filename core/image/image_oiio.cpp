@@ -33,10 +33,6 @@ struct LayerChannels {
     bool colour() const { return r >= 0 || g >= 0 || b >= 0 || y >= 0; }
 };
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return s;
-}
 
 /// Every layer of every part, keyed by name: a channel "a.b.R" belongs to layer "a.b"; the
 /// plain channels of a named part (Nuke's multi-part files) to the part's name.
@@ -303,7 +299,7 @@ Image load_with_oiio(const std::string& path, const std::string& field, const Im
     const bool float_data = spec.format.basetype == TypeDesc::FLOAT || spec.format.basetype == TypeDesc::HALF ||
                             spec.format.basetype == TypeDesc::DOUBLE;
     std::string space = options.colorspace;
-    const std::string lowered = lower(space);
+    const std::string lowered = ascii_lower(space);
     if (lowered.empty() || lowered == "auto" || lowered == "srgb" || lowered == "linear") space = lowered;
     const ChannelSpan s = channel_span(chosen, spec);
     Image data(spec.width, spec.height);

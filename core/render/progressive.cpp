@@ -351,10 +351,8 @@ bool ProgressiveRenderer::render_pass(const std::atomic<bool>* cancel) {
     return true;
 }
 
-bool ProgressiveRenderer::changed_pixel(size_t i) const {
-    const double before = luminance(scene_->photo()[i]);
-    return sums_.mean_alpha(i) > 0 ||
-           std::abs(luminance(sums_.mean_pixel_change(i))) > 0.01 * std::max(before, double(plan_.value_floor));
+bool ProgressiveRenderer::changed_pixel(size_t i, const dvec3& change, double before) const {
+    return sums_.mean_alpha(i) > 0 || std::abs(luminance(change)) > 0.01 * std::max(before, double(plan_.value_floor));
 }
 
 void ProgressiveRenderer::balance_photons(const PassWork& work, const std::vector<SampleResult>& samples,
@@ -371,7 +369,8 @@ void ProgressiveRenderer::balance_photons(const PassWork& work, const std::vecto
     // Stopped tiles take no samples, which would read as noise: only live tiles count.
     photons_per_pass_ = balance_->decide([&](size_t i) {
         const int x = int(i % size_t(plan_.width)), y = int(i / size_t(plan_.width));
-        return sums_.live(uint32_t((y / kTile) * plan_.tiles_x + x / kTile)) && changed_pixel(i);
+        return sums_.live(uint32_t((y / kTile) * plan_.tiles_x + x / kTile)) &&
+               changed_pixel(i, sums_.mean_pixel_change(i), luminance(scene_->photo()[i]));
     });
 }
 
@@ -397,7 +396,7 @@ void ProgressiveRenderer::update_convergence() {
             tile_e2 += e2;
             tile_value += value;
             ++n;
-            if (changed_pixel(i)) {
+            if (changed_pixel(i, d, before)) {
                 e2_changed += e2;
                 value_changed += value;
                 ++changed;

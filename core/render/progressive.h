@@ -112,9 +112,9 @@ private:
     /// Shades the pass's tiles into `out` (kTile^2 samples per tile, in work.tiles order).
     bool shade_tiles(int pass, const PassMaps& maps, const PassWork& work, std::vector<SampleResult>& out,
                      const std::atomic<bool>* cancel, size_t& shaded, size_t& direct) const;
-    /// Whether the objects change pixel i so far: it sees one, or its mean change exceeds 1% of
-    /// its value.
-    bool changed_pixel(size_t i) const;
+    /// Whether the objects change pixel i so far: it sees one, or its mean `change` exceeds 1% of
+    /// its value `before` (the photo's luminance, floored).
+    bool changed_pixel(size_t i, const dvec3& change, double before) const;
     /// Stops converged tiles and refreshes the error estimate.
     void update_convergence();
     /// Adds the pass's samples to the photon balance and, when one is due, sets the next passes'
