@@ -1,5 +1,8 @@
 #include "document.h"
 
+#include <QCryptographicHash>
+#include <QFile>
+#include <QFileInfo>
 #include <QUndoCommand>
 
 #include "scene_check.h"
@@ -42,8 +45,20 @@ Document::Document(QObject* parent) : QObject(parent) {
             [this](bool clean) { Q_EMIT modifiedChanged(!clean); });
 }
 
+QByteArray Document::hashOnDisk(const QString& path) {
+    const QFileInfo info(path);
+    if (!info.exists() || !info.isFile()) return {};
+    // Larger than any project file the reader takes: certainly not what was read.
+    if (info.size() > (64 << 20)) return QByteArrayLiteral("too large");
+    QFile f(path);
+    QCryptographicHash hash(QCryptographicHash::Sha256);
+    if (!f.open(QIODevice::ReadOnly) || !hash.addData(&f)) return QByteArrayLiteral("unreadable");
+    return hash.result();
+}
+
 void Document::reset(const Project& project, const QString& path, bool modified) {
     stack_.clear();
+    diskHash_.clear();  // the caller sets it where it read the file
     project_ = project;
     open_ = true;
     selected_ = -1;

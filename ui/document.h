@@ -1,4 +1,5 @@
 #pragma once
+#include <QByteArray>
 #include <QObject>
 #include <QString>
 #include <QUndoStack>
@@ -24,6 +25,13 @@ public:
     QUndoStack* undoStack() { return &stack_; }
     bool isModified() const { return !stack_.isClean(); }
     bool isOpen() const { return open_; }
+    /// A hash of what the project file held when this document last read or wrote it (empty:
+    /// never read or written), so a save can tell that another studio or program changed it.
+    const QByteArray& diskHash() const { return diskHash_; }
+    void setDiskHash(const QByteArray& hash) { diskHash_ = hash; }
+    /// The hash diskHash compares with: of the file at `path` as it is now; empty when there is
+    /// no regular file there, a fixed non-empty value when it cannot be read.
+    static QByteArray hashOnDisk(const QString& path);
 
     /// Replaces the whole project (open, new, recover): clears the undo history.
     void reset(const Project& project, const QString& path, bool modified = false);
@@ -69,6 +77,7 @@ private:
     std::shared_ptr<AssetLibrary> assets_ = std::make_shared<AssetLibrary>();
     Project project_;
     QString path_;
+    QByteArray diskHash_;
     QUndoStack stack_;
     int selected_ = -1;
     int nextKey_ = 1;

@@ -2,6 +2,7 @@
 
 #include <QApplication>
 #include <QMessageBox>
+#include <QPushButton>
 
 #include <exception>
 
@@ -27,6 +28,24 @@ ErrorReporter::SaveChoice MessageBoxReporter::askSave(QWidget* parent, const QSt
     if (box.clickedButton() == box.button(QMessageBox::Save)) return SaveChoice::Save;
     if (box.clickedButton() == box.button(QMessageBox::Discard)) return SaveChoice::Discard;
     return SaveChoice::Cancel;
+}
+
+ErrorReporter::ConflictChoice MessageBoxReporter::askConflict(QWidget* parent, const QString& title,
+                                                              const QString& text) {
+    QMessageBox box(QMessageBox::Warning, title, text, QMessageBox::NoButton, parent);
+    box.setObjectName("changedOnDisk");
+    QPushButton* keep = box.addButton(QObject::tr("Keep Mine"), QMessageBox::DestructiveRole);
+    QPushButton* take = box.addButton(QObject::tr("Take Theirs"), QMessageBox::ResetRole);
+    QPushButton* saveAs = box.addButton(QObject::tr("Save As..."), QMessageBox::AcceptRole);
+    QPushButton* cancel = box.addButton(QMessageBox::Cancel);
+    // Neither copy is lost by the default: Save As keeps both.
+    box.setDefaultButton(saveAs);
+    box.setEscapeButton(cancel);
+    box.exec();
+    if (box.clickedButton() == keep) return ConflictChoice::KeepMine;
+    if (box.clickedButton() == take) return ConflictChoice::TakeTheirs;
+    if (box.clickedButton() == saveAs) return ConflictChoice::SaveAs;
+    return ConflictChoice::Cancel;
 }
 
 bool run_reporting_errors(ErrorReporter* reporter, QWidget* parent, const QString& title,

@@ -20,6 +20,10 @@ public:
     /// Save / Discard / Cancel for unsaved changes. Closing the question (Esc) is Cancel:
     /// nothing is ever discarded without the user saying so.
     virtual SaveChoice askSave(QWidget* parent, const QString& title, const QString& text) = 0;
+    /// The file about to be saved changed on disk since it was read: overwrite it with this
+    /// document, load the version on disk, save this one elsewhere, or do nothing (Esc).
+    enum class ConflictChoice { KeepMine, TakeTheirs, SaveAs, Cancel };
+    virtual ConflictChoice askConflict(QWidget* parent, const QString& title, const QString& text) = 0;
 };
 
 /// QMessageBox::critical / QMessageBox::question.
@@ -28,6 +32,7 @@ public:
     void error(QWidget* parent, const QString& title, const QString& text) override;
     bool ask(QWidget* parent, const QString& title, const QString& text) override;
     SaveChoice askSave(QWidget* parent, const QString& title, const QString& text) override;
+    ConflictChoice askConflict(QWidget* parent, const QString& title, const QString& text) override;
 };
 
 /// Records messages and answers questions with a fixed reply (tests, headless runs): "yes" is
@@ -46,7 +51,12 @@ public:
         questions << title + ": " + text;
         return answer_;
     }
+    ConflictChoice askConflict(QWidget*, const QString& title, const QString& text) override {
+        questions << title + ": " + text;
+        return conflictAnswer;
+    }
     QStringList errors, questions;
+    ConflictChoice conflictAnswer = ConflictChoice::Cancel;
 
 private:
     bool answer_;

@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <QElapsedTimer>
 #include <QMainWindow>
 #include <QPointer>
@@ -85,7 +86,9 @@ public:
     /// in its tooltip, where Open Image Denoise is not installed.
     void setDenoise(bool on);
 
-    /// Offers to recover autosaved work, if any (called once the window is shown).
+    /// Offers to recover the autosaved work of a studio that stopped without a clean quit (its
+    /// own copy: Autosave), newest first; the first accepted becomes this window's document,
+    /// declined ones are deleted, and the rest wait for the next start.
     void checkRecovery();
 
     // File operations; each reports its errors through the reporter and returns false. They
@@ -98,6 +101,10 @@ public:
     /// dialog is offered (relinkFiles).
     bool openProject(const QString& path);
     bool saveProject();
+    /// Writes the project to `path`, never onto one of its inputs. Over the document's own file,
+    /// when that changed on disk since this window read or wrote it (another studio saved it),
+    /// it first asks: keep mine (overwrite), take theirs (load the file as an undoable step, so
+    /// Undo brings this window's edits back), save as, or cancel.
     bool saveProjectAs(const QString& path);
     bool newProject(const QString& photo, const QString& probe, bool mirrorBall = false);
     /// Writes a full-size render of the document as it is now: .png/.jpg (display exposure) or
@@ -174,6 +181,13 @@ private:
     /// Applies what a number field holds but has not applied yet (before saving or exporting).
     void commitTypedValue();
     bool writeExport(const QString& path, const RenderFrame& f);
+    /// Why `path` may not be written: it is one of the files the project reads (the project file
+    /// too with `projectFileToo`); "" when it may.
+    QString inputOverwriteProblem(const QString& path, bool projectFileToo) const;
+    /// Before a save over the document's own file: nullopt to go on, else the save's result
+    /// after the user answered that the file changed on disk.
+    std::optional<bool> settleDiskConflict(const QString& path);
+    bool takeDiskVersion(const QString& path);
     void failPendingExport(const QString& why);
     void startModal(GizmoMode mode);
     /// The slider and label show the project's display exposure.

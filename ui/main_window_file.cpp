@@ -6,6 +6,7 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QInputDialog>
+#include <QLocale>
 #include <QMenu>
 #include <QMimeData>
 #include <QProgressBar>
@@ -16,6 +17,7 @@
 #include <cmath>
 
 #include "autosave.h"
+#include "assets/read_files.h"
 #include "base/error.h"
 #include "document.h"
 #include "error_reporter.h"
@@ -68,6 +70,7 @@ bool MainWindow::openProject(const QString& path) {
         }
     }
     doc_->reset(p, QFileInfo(path).absoluteFilePath());
+    doc_->setDiskHash(Document::hashOnDisk(QFileInfo(path).absoluteFilePath()));
     autosave_->clear();  // the previous document was saved, discarded or unmodified
     addRecent(QFileInfo(path).absoluteFilePath());
     if (moved) relinkFiles();
@@ -86,6 +89,12 @@ bool MainWindow::saveProjectAs(const QString& path) {
     if (!doc_->isOpen()) return false;
     commitTypedValue();
     const QString abs = QFileInfo(path).absoluteFilePath();
+    if (const QString why = inputOverwriteProblem(abs, false); !why.isEmpty()) {
+        error(tr("Cannot save project"), why);
+        return false;
+    }
+    if (abs == doc_->path())
+        if (const std::optional<bool> settled = settleDiskConflict(abs)) return *settled;
     Project p = doc_->project();
     const auto newBase = std::filesystem::path(abs.toStdString()).parent_path();
     // Paths stay as written when the folder does not change; elsewhere they become absolute.
@@ -100,8 +109,57 @@ bool MainWindow::saveProjectAs(const QString& path) {
     if (!(p == doc_->project()) || p.base_dir != doc_->project().base_dir) doc_->apply(p);
     doc_->setPath(abs);
     doc_->markSaved();
+    doc_->setDiskHash(Document::hashOnDisk(abs));
     autosave_->clear();
     addRecent(abs);
+    return true;
+}
+
+QString MainWindow::inputOverwriteProblem(const QString& path, bool projectFileToo) const {
+    ReadSet inputs;
+    inputs.add_project(doc_->project(), projectFileToo ? doc_->path().toStdString() : std::string());
+    const ReadFile* in = inputs.find(path.toStdString());
+    if (!in) return {};
+    return tr("%1 is %2: the studio never writes over a file the project reads; choose another name")
+        .arg(path, QString::fromStdString(in->what));
+}
+
+std::optional<bool> MainWindow::settleDiskConflict(const QString& path) {
+    const QByteArray now = Document::hashOnDisk(path);
+    // Unknown before (never read here), or gone since: nothing on disk would be lost.
+    if (doc_->diskHash().isEmpty() || now.isEmpty() || now == doc_->diskHash()) return std::nullopt;
+    const QString text =
+        tr("%1 was changed on disk since this window opened or saved it (by another studio or "
+           "program).\n\nKeep Mine: replace it with this window's project.\nTake Theirs: load the "
+           "file as it is now (Undo brings this window's edits back).\nSave As: keep both.")
+            .arg(QFileInfo(path).fileName());
+    switch (reporter_->askConflict(this, tr("Project changed on disk"), text)) {
+        case ErrorReporter::ConflictChoice::KeepMine: return std::nullopt;
+        case ErrorReporter::ConflictChoice::TakeTheirs: return takeDiskVersion(path);
+        case ErrorReporter::ConflictChoice::SaveAs:
+            saveAsDialog();
+            return doc_->path() != path && !doc_->isModified();
+        case ErrorReporter::ConflictChoice::Cancel: break;
+    }
+    return false;
+}
+
+bool MainWindow::takeDiskVersion(const QString& path) {
+    Project theirs;
+    try {
+        theirs = load_project(path.toStdString());
+    } catch (const std::exception& e) {
+        error(tr("Cannot load the project on disk"), QString::fromUtf8(e.what()));
+        return false;
+    }
+    const QByteArray hash = Document::hashOnDisk(path);
+    // One undoable step, so this window's edits are one Undo away and nothing is lost.
+    doc_->edit(tr("Take the version on disk"), theirs);
+    doc_->markSaved();
+    doc_->setDiskHash(hash);
+    autosave_->clear();
+    statusBar()->showMessage(tr("Loaded %1 as it is on disk; Undo brings your edits back")
+                                 .arg(QFileInfo(path).fileName()), 15000);
     return true;
 }
 
@@ -158,6 +216,11 @@ bool MainWindow::exportImage(const QString& path) {
     commitTypedValue();
     if (!doc_->isOpen()) {
         error(tr("Nothing to export"), tr("No project is open."));
+        Q_EMIT exportFinished(path, false);
+        return false;
+    }
+    if (const QString why = inputOverwriteProblem(QFileInfo(path).absoluteFilePath(), true); !why.isEmpty()) {
+        error(tr("Cannot export"), why);
         Q_EMIT exportFinished(path, false);
         return false;
     }
@@ -412,16 +475,29 @@ void MainWindow::restoreSettings() {
 
 void MainWindow::checkRecovery() {
     if (!options_.checkRecovery) return;
-    std::optional<Autosave::Recovered> r = autosave_->pending();
-    if (!r) return;
-    const QString where = r->originalPath.isEmpty() ? tr("an unsaved project") : r->originalPath;
-    if (reporter_->ask(
-            this, tr("Recover unsaved work?"),
-            tr("The studio did not close cleanly. Recover the autosaved copy of %1?").arg(where))) {
-        doc_->reset(r->project, r->originalPath, true);
+    std::vector<Autosave::Orphan> orphans = autosave_->claimOrphans();
+    for (size_t i = 0; i < orphans.size(); ++i) {
+        Autosave::Orphan& o = orphans[i];
+        const QString where =
+            o.recovered.originalPath.isEmpty() ? tr("an unsaved project") : o.recovered.originalPath;
+        const QString more = i + 1 < orphans.size()
+                                 ? tr(" (%1 more left by other studios)").arg(orphans.size() - i - 1)
+                                 : QString();
+        if (!reporter_->ask(this, tr("Recover unsaved work?"),
+                            tr("A studio did not close cleanly. Recover its copy of %1, autosaved "
+                               "%2?%3")
+                                .arg(where, QLocale().toString(o.written, QLocale::ShortFormat), more))) {
+            Autosave::discard(o);
+            continue;
+        }
+        doc_->reset(o.recovered.project, o.recovered.originalPath, true);
+        doc_->setDiskHash(o.recovered.diskHash);
+        autosave_->adopt(o);  // if the copy cannot be made this window's, it is offered again
         if (!missingFiles().isEmpty()) relinkFiles();
-    } else {
-        autosave_->clear();
+        if (i + 1 < orphans.size())
+            statusBar()->showMessage(tr("%1 more unsaved copies are offered when the next studio starts")
+                                         .arg(orphans.size() - i - 1), 15000);
+        break;  // one document per window: the others are released for the next start
     }
 }
 

@@ -121,22 +121,6 @@ void check_room(const std::vector<Output>& outputs) {
 
 }  // namespace
 
-void ReadSet::add(const std::string& path, const std::string& what) {
-    if (const auto st = file_status(path)) entries_.push_back({{path, what}, st->st_dev, st->st_ino});
-}
-
-void ReadSet::add_project(const Project& project, const std::string& project_file) {
-    for (const ReadFile& f : project_read_files(project, project_file)) add(f.path.string(), f.what);
-}
-
-const ReadFile* ReadSet::find(const std::string& path) const {
-    const auto st = file_status(path);
-    if (!st) return nullptr;
-    for (const Entry& e : entries_)
-        if (e.device == st->st_dev && e.inode == st->st_ino) return &e.file;
-    return nullptr;
-}
-
 void check_outputs(const std::vector<Output>& outputs, const ReadSet& inputs, bool force) {
     for (size_t i = 0; i < outputs.size(); ++i) {
         const Output& out = outputs[i];

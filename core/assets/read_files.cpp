@@ -1,5 +1,8 @@
 #include "assets/read_files.h"
 
+#include <sys/stat.h>
+
+#include <optional>
 #include <system_error>
 
 #include "geometry/mesh_side_files.h"
@@ -10,6 +13,13 @@ namespace dp {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// The file `path` names after symbolic links, or nothing when there is none.
+std::optional<struct stat> file_status(const std::string& path) {
+    struct stat st {};
+    if (path.empty() || ::stat(path.c_str(), &st) != 0) return std::nullopt;
+    return st;
+}
 
 /// "the texture named by mesh chair.obj's material file chair.mtl (objects[0].shape.path)".
 std::string side_file_what(const MeshSideFile& side, const InputFile& mesh) {
@@ -46,6 +56,22 @@ std::vector<ReadFile> project_read_files(const Project& project, const std::stri
             files.push_back({side.path, side_file_what(side, f)});
     }
     return files;
+}
+
+void ReadSet::add(const std::string& path, const std::string& what) {
+    if (const auto st = file_status(path)) entries_.push_back({{path, what}, st->st_dev, st->st_ino});
+}
+
+void ReadSet::add_project(const Project& project, const std::string& project_file) {
+    for (const ReadFile& f : project_read_files(project, project_file)) add(f.path.string(), f.what);
+}
+
+const ReadFile* ReadSet::find(const std::string& path) const {
+    const auto st = file_status(path);
+    if (!st) return nullptr;
+    for (const Entry& e : entries_)
+        if (e.device == st->st_dev && e.inode == st->st_ino) return &e.file;
+    return nullptr;
 }
 
 }  // namespace dp

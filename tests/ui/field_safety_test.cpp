@@ -245,7 +245,7 @@ void FieldSafetyTest::aRenderFailureLeavesTheDocumentAndUndoAsTheyWere() {
 
 void FieldSafetyTest::importingAMeshAutosavesTheUnsavedWorkFirst() {
     w_->action("addBox")->trigger();
-    QVERIFY(!w_->autosave()->pending().has_value());  // the timer has not written yet
+    QVERIFY(!w_->autosave()->ownCopy().has_value());  // the timer has not written yet
     const QString mesh = dir_->filePath("broken.obj");
     QFile f(mesh);
     QVERIFY(f.open(QIODevice::WriteOnly));
@@ -253,7 +253,7 @@ void FieldSafetyTest::importingAMeshAutosavesTheUnsavedWorkFirst() {
     f.close();
     drop(mesh);
     QCOMPARE(reporter_->errors.size(), 1);
-    const auto recovered = w_->autosave()->pending();
+    const auto recovered = w_->autosave()->ownCopy();
     QVERIFY(recovered.has_value());
     QVERIFY(recovered->project.objects == w_->document()->project().objects);
 }
@@ -264,7 +264,7 @@ void FieldSafetyTest::applyingACalibrationAutosavesFirstAndRefusesAnInvalidCamer
     CameraSpec bad = before.camera;
     bad.target = bad.eye;
     QVERIFY(!w_->cameraPanel()->applyCalibration("test", bad, 0.5));
-    QVERIFY(w_->autosave()->pending().has_value());
+    QVERIFY(w_->autosave()->ownCopy().has_value());
     QVERIFY(w_->document()->project() == before);
     CameraSpec good = before.camera;
     good.vfov_deg = 35;

@@ -1,6 +1,7 @@
 // Save / reopen round trips and autosave recovery after the process is killed mid-edit.
 #include <QAction>
 #include <QDir>
+#include <QFile>
 #include <QFileInfo>
 #include <QMenu>
 #include <QProcess>
@@ -29,6 +30,7 @@ private Q_SLOTS:
     void saveAsElsewhereKeepsAssetsReachable();
     void autosaveRecoversTheEditsOfAKilledProcess();
     void cleanCloseLeavesNothingToRecover();
+    void saveAndExportNeverWriteOverAFileTheProjectReads();
     void recentFilesAreRememberedBetweenRuns();
     void theImportFilterOffersExactlyTheFormatsTheLoaderReads();
 };
@@ -121,9 +123,43 @@ void FilesTest::cleanCloseLeavesNothingToRecover() {
     QVERIFY(w.openProject(test::write_small_sample(dir.path())));
     make_edits(w);
     QVERIFY(w.autosave()->writeNow());
-    QVERIFY(w.autosave()->pending().has_value());
+    QVERIFY(w.autosave()->ownCopy().has_value());
     QVERIFY(w.close());
-    QVERIFY(!w.autosave()->pending().has_value());
+    QVERIFY(!w.autosave()->ownCopy().has_value());
+}
+
+void FilesTest::saveAndExportNeverWriteOverAFileTheProjectReads() {
+    QTemporaryDir dir;
+    // The photo copied beside the project, so a failing check could only harm a copy.
+    Project p = load_project(test::write_small_sample(dir.path()).toStdString());
+    const QString photo = dir.filePath("photo.exr");
+    QVERIFY(QFile::copy(QString::fromStdString(p.photo.path), photo));
+    p.photo.path = photo.toStdString();
+    const QString project = dir.filePath("own.json");
+    save_project(p, project.toStdString());
+    const QString link = dir.filePath("link.exr");  // another name for the photo
+    QVERIFY(QFile::link(photo, link));
+    QFile f(photo);
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QByteArray before = f.readAll();
+    f.close();
+
+    RecordingReporter reporter;
+    MainWindow w(test::test_options(&reporter, dir.filePath("recovery")));
+    QVERIFY(w.openProject(project));
+    make_edits(w);
+    QVERIFY(!w.saveProjectAs(photo));
+    QVERIFY(!w.saveProjectAs(link));
+    QVERIFY(!w.exportImage(link));
+    QVERIFY(!w.exportImage(project.chopped(5) + ".json"));  // the project file itself
+    QCOMPARE(reporter.errors.size(), 4);
+    for (int i = 0; i < 3; ++i)
+        QVERIFY2(reporter.errors[i].contains("photo (photo.path)"), qPrintable(reporter.errors[i]));
+    QVERIFY2(reporter.errors[3].contains("own.json"), qPrintable(reporter.errors[3]));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    QCOMPARE(f.readAll(), before);
+    QVERIFY(w.document()->isModified());
+    QCOMPARE(w.document()->path(), project);
 }
 
 void FilesTest::recentFilesAreRememberedBetweenRuns() {

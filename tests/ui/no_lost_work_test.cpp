@@ -130,7 +130,7 @@ void NoLostWorkTest::newOnAModifiedProjectAsksAndEscKeepsEverything() {
     QVERIFY(QApplication::activeModalWidget() == nullptr);  // no New Project dialog after Esc
     QVERIFY(w_->document()->isModified());
     QVERIFY(w_->document()->project() == edited);
-    QVERIFY(w_->autosave()->pending().has_value());  // Esc deleted nothing
+    QVERIFY(w_->autosave()->ownCopy().has_value());  // Esc deleted nothing
 
     // Open (Ctrl+O) is asked the same way.
     dialogButtons_.clear();
@@ -156,13 +156,13 @@ void NoLostWorkTest::openRecentWithDiscardReplacesTheProjectAndOnlyThenDropsTheR
     item->trigger();
     QCOMPARE(dialogButtons_.size(), 3);
     QCOMPARE(w_->document()->path(), QFileInfo(project_).absoluteFilePath());
-    QVERIFY(w_->autosave()->pending().has_value());
+    QVERIFY(w_->autosave()->ownCopy().has_value());
 
     clickInNextDialog(QMessageBox::Discard);
     item->trigger();
     QCOMPARE(w_->document()->path(), QFileInfo(other).absoluteFilePath());
     QVERIFY(!w_->document()->isModified());
-    QVERIFY(!w_->autosave()->pending().has_value());
+    QVERIFY(!w_->autosave()->ownCopy().has_value());
 }
 
 void NoLostWorkTest::quitAsksSaveWritesTheProjectAndCancelKeepsTheWindowOpen() {
@@ -178,7 +178,7 @@ void NoLostWorkTest::quitAsksSaveWritesTheProjectAndCancelKeepsTheWindowOpen() {
     press(Qt::Key_Q, Qt::ControlModifier);
     QVERIFY(!w_->isVisible());
     QCOMPARE(load_project(project_.toStdString()).objects.size(), objects);
-    QVERIFY(!w_->autosave()->pending().has_value());
+    QVERIFY(!w_->autosave()->ownCopy().has_value());
 }
 
 void NoLostWorkTest::exportRightAfterAnEditWritesTheEditedState() {
