@@ -226,7 +226,7 @@ std::shared_ptr<const Image> AssetLibrary::probe(const Project& p) {
 
 int probe_max_width(const ProbeSpec& spec) {
     if (spec.max_width > 0) return spec.max_width;
-    static const int automatic = automatic_probe_max_width(physical_memory_bytes(), kProbeBytesPerPixel);
+    static const int automatic = automatic_probe_max_width(usable_memory_bytes(), kProbeBytesPerPixel);
     return automatic;
 }
 

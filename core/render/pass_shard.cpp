@@ -142,7 +142,7 @@ uint64_t max_shard_bytes(const ShardHeader& h, uint64_t header_bytes) {
 /// merge can hold beside the sums, one that does not start as a shard, or one larger than a
 /// shard of the frame its header declares can be.
 std::string read_shard_bytes(const std::string& path) {
-    const uint64_t ram = physical_memory_bytes();
+    const uint64_t ram = usable_memory_bytes();
     // A merge holds the file's bytes, this shard's sums and the running sums at once.
     const uint64_t size = check_input_file(path, "", "a render shard", ram / 4);
     std::ifstream in(path, std::ios::binary);
