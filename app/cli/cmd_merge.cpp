@@ -69,8 +69,9 @@ int run_merge(const MergeOptions& o) {
                       inputs, o.force);
     });
     if (fingerprint_project(loaded.project).inputs != first.inputs_hash)
-        throw InputError(project, "", "its files (photo, probe, meshes, textures) are not those the shards were "
-                                      "rendered with: they changed since, or this is another project");
+        throw InputError(project, "",
+                         "its files (photo, probe, meshes and the files they name, textures) are not those the "
+                         "shards were rendered with: they changed since, or this is another project");
     const Image& photo = loaded.scene->photo();
     if (photo.width() != first.width || photo.height() != first.height)
         throw InputError(project, "", "its photo is not the shards' frame size");

@@ -32,7 +32,7 @@ void print_error(const std::string& text) { std::cerr << "error: " << dp::shorte
 int out_of_memory(const std::string& what) {
     std::string text = "out of memory";
     if (!what.empty()) text += " allocating " + what;
-    if (const uint64_t ram = dp::physical_memory_bytes(); ram > 0)
+    if (const uint64_t ram = dp::usable_memory_bytes(); ram > 0)
         text += "; this machine has " + dp::format_bytes(double(ram)) + " of memory";
     print_error(text + " (smaller images or fewer photons per pass need less)");
     return kExitInternal;

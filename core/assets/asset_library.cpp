@@ -10,6 +10,7 @@
 #include "assets/scene_checks.h"
 #include "base/error.h"
 #include "base/error_reason.h"
+#include "base/input_file.h"
 #include "base/euler.h"
 #include "base/memory.h"
 #include "base/text.h"
@@ -86,6 +87,17 @@ void check_clipped_photo(size_t clipped, size_t pixels, std::vector<std::string>
     warnings.push_back("photo.path: " + percent(double(clipped) / double(pixels)) +
                        " of the photo's pixels are clipped (a channel at the top code value); shadows "
                        "and reflections over them come out too weak: shoot raw or bracketed for an HDR photo");
+}
+
+/// A texture file a mesh's material names that is a FIFO, a device or a folder: refused like
+/// any input of that kind. Only a texture that cannot be read as an image (missing, corrupt)
+/// leaves its material its colour; reading this one would block the render or never end.
+void refuse_special_texture(const FileMaterial& f, const fs::path& mesh_path, const std::string& field) {
+    const std::string kind = special_file_kind(f.texture);
+    if (kind.empty()) return;
+    throw InputError(f.texture, field,
+                     "is " + kind + ", not a texture: material '" + f.name + "' of mesh '" +
+                         shorten_path(mesh_path.filename().string()) + "' names it");
 }
 
 }  // namespace
@@ -214,7 +226,7 @@ std::shared_ptr<const Image> AssetLibrary::probe(const Project& p) {
 
 int probe_max_width(const ProbeSpec& spec) {
     if (spec.max_width > 0) return spec.max_width;
-    static const int automatic = automatic_probe_max_width(physical_memory_bytes(), kProbeBytesPerPixel);
+    static const int automatic = automatic_probe_max_width(usable_memory_bytes(), kProbeBytesPerPixel);
     return automatic;
 }
 
@@ -342,6 +354,7 @@ std::vector<FileMaterialAsset> AssetLibrary::file_materials(const LoadedMesh& me
         char tag[96];
         std::snprintf(tag, sizeof(tag), "|%.9g,%.9g,%.9g", double(factor.x), double(factor.y),
                       double(factor.z));
+        if (!embedded) refuse_special_texture(f, mesh_path, field);
         const std::string key =
             (embedded ? "embedded|" + mesh_path.string() + "|" + std::to_string(f.embedded_texture)
                       : "texture|" + f.texture) +

@@ -36,11 +36,6 @@ std::string side_file_what(const MeshSideFile& side, const InputFile& mesh) {
     return what + " (" + mesh.ref.field + ")";
 }
 
-bool is_mesh_field(const std::string& field) {
-    const std::string suffix = ".shape.path";
-    return field.size() > suffix.size() && field.compare(field.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 }  // namespace
 
 std::vector<ReadFile> project_read_files(const Project& project, const std::string& project_file) {

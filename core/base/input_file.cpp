@@ -9,6 +9,29 @@
 #include "base/error.h"
 
 namespace dp {
+
+namespace {
+
+/// A FIFO or a device would block a reader forever or feed it without end.
+const char* special_kind(const struct stat& st) {
+    return S_ISDIR(st.st_mode)    ? "a folder"
+           : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
+           : S_ISSOCK(st.st_mode) ? "a socket"
+           : S_ISCHR(st.st_mode)  ? "a character device"
+           : S_ISBLK(st.st_mode)  ? "a block device"
+           : S_ISREG(st.st_mode)  ? nullptr
+                                  : "not a regular file";
+}
+
+}  // namespace
+
+std::string special_file_kind(const std::string& path) {
+    struct stat st {};
+    if (path.empty() || ::stat(path.c_str(), &st) != 0) return "";
+    const char* kind = special_kind(st);
+    return kind ? kind : "";
+}
+
 uint64_t check_input_file(const std::string& path, const std::string& field, const std::string& what,
                           uint64_t max_bytes) {
     if (path.empty()) throw InputError(path, field, "no file given (expected " + what + ")");
@@ -17,15 +40,7 @@ uint64_t check_input_file(const std::string& path, const std::string& field, con
         if (errno == ENOENT || errno == ENOTDIR) throw InputError(path, field, "file not found");
         throw InputError(path, field, std::string("cannot read it: ") + std::strerror(errno));
     }
-    // A FIFO or a device would block a reader forever or feed it without end.
-    const char* kind = S_ISDIR(st.st_mode)    ? "a folder"
-                       : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
-                       : S_ISSOCK(st.st_mode) ? "a socket"
-                       : S_ISCHR(st.st_mode)  ? "a character device"
-                       : S_ISBLK(st.st_mode)  ? "a block device"
-                       : S_ISREG(st.st_mode)  ? nullptr
-                                              : "not a regular file";
-    if (kind) throw InputError(path, field, std::string("is ") + kind + ", not " + what);
+    if (const char* kind = special_kind(st)) throw InputError(path, field, std::string("is ") + kind + ", not " + what);
     const uint64_t size = uint64_t(st.st_size);
     if (max_bytes > 0 && size > max_bytes)
         throw InputError(path, field,

@@ -12,4 +12,9 @@ namespace dp {
 uint64_t check_input_file(const std::string& path, const std::string& field, const std::string& what,
                           uint64_t max_bytes = 0);
 
+/// What `path` is (after symlinks) when it exists but is no regular file, as check_input_file
+/// names it ("a folder", "a FIFO (named pipe)", "a character device"); empty for a regular
+/// file and for a path that cannot be looked at (missing, no permission).
+std::string special_file_kind(const std::string& path);
+
 }  // namespace dp

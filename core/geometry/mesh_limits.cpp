@@ -16,7 +16,7 @@
 namespace dp {
 
 uint64_t max_mesh_triangles() {
-    const uint64_t ram = physical_memory_bytes();
+    const uint64_t ram = usable_memory_bytes();
     uint64_t limit = kMaxMeshTriangles;
     if (ram > 0) limit = std::min<uint64_t>(limit, uint64_t(0.5 * double(ram) / kMeshBytesPerTriangle));
     // A lower limit from the environment (a shared render node, the tests); never higher.
@@ -34,7 +34,7 @@ void check_mesh_triangles(const std::string& path, const std::string& field, uin
     if (triangles <= limit) return;
     char buf[200];
     std::snprintf(buf, sizeof buf, " (2^26, fewer where they would take more than half of this machine's %s at %g bytes each)",
-                  format_bytes(double(physical_memory_bytes())).c_str(), kMeshBytesPerTriangle);
+                  format_bytes(double(usable_memory_bytes())).c_str(), kMeshBytesPerTriangle);
     throw InputError(path, field,
                      "the mesh has " + std::to_string(triangles) + " " + what + ", more than the limit of " +
                          std::to_string(limit) + " triangles" + buf + ": simplify it or split it into parts");

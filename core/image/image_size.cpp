@@ -324,7 +324,7 @@ bool read_image_size(const std::string& path, int& width, int& height) {
 }
 
 uint64_t max_decoded_image_pixels() {
-    const uint64_t ram = physical_memory_bytes();
+    const uint64_t ram = usable_memory_bytes();
     const uint64_t by_memory = ram > 0 ? uint64_t(0.5 * double(ram) / kDecodeBytesPerPixel) : kMaxImagePixels;
     uint64_t limit = std::min<uint64_t>(kMaxImagePixels, by_memory);
     // A lower limit from the environment (a shared render node, the image fuzzer); never higher.
@@ -348,7 +348,7 @@ void check_image_size(const std::string& path, const std::string& field, int64_t
                   format_bytes(pixels * kDecodeBytesPerPixel).c_str(),
                   static_cast<unsigned long long>(max_decoded_image_pixels()),
                   format_bytes(double(max_decoded_image_pixels()) * kDecodeBytesPerPixel).c_str(),
-                  format_bytes(double(physical_memory_bytes())).c_str());
+                  format_bytes(double(usable_memory_bytes())).c_str());
     throw InputError(path, field, buf);
 }
 

@@ -15,6 +15,7 @@
 #include "base/input_file.h"
 #include "base/memory.h"
 #include "base/rng.h"
+#include "geometry/mesh_side_files.h"
 #include "render/frame_plan.h"
 #include "scene/project_io.h"
 
@@ -141,7 +142,7 @@ uint64_t max_shard_bytes(const ShardHeader& h, uint64_t header_bytes) {
 /// merge can hold beside the sums, one that does not start as a shard, or one larger than a
 /// shard of the frame its header declares can be.
 std::string read_shard_bytes(const std::string& path) {
-    const uint64_t ram = physical_memory_bytes();
+    const uint64_t ram = usable_memory_bytes();
     // A merge holds the file's bytes, this shard's sums and the running sums at once.
     const uint64_t size = check_input_file(path, "", "a render shard", ram / 4);
     std::ifstream in(path, std::ios::binary);
@@ -169,6 +170,33 @@ std::string read_shard_bytes(const std::string& path) {
     return bytes;
 }
 
+/// Adds a file to `f`: `label`, its length, then its bytes (streamed, a file may be gigabytes).
+/// Throws InputError naming the file and `field` where it is not a readable regular file.
+void add_file(Fingerprint& f, const std::filesystem::path& path, const std::string& field, const std::string& label) {
+    const uint64_t size = check_input_file(path.string(), field, "an input file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string(), field, "cannot be read");
+    f.add(label);
+    f.add(&size, sizeof size);  // as add(string): "ab"+"c" and "a"+"bc" differ
+    std::vector<char> chunk(size_t(1) << 20);
+    uint64_t hashed = 0;
+    while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0) {
+        f.add(chunk.data(), size_t(in.gcount()));
+        hashed += uint64_t(in.gcount());
+    }
+    if (hashed != size) throw InputError(path.string(), field, "changed while it was read");
+}
+
+const char* side_file_kind_name(MeshSideFile::Kind kind) {
+    switch (kind) {
+        case MeshSideFile::Kind::MaterialFile: return "material file";
+        case MeshSideFile::Kind::Texture: return "texture";
+        case MeshSideFile::Kind::Buffer: return "buffer";
+        case MeshSideFile::Kind::Image: return "image";
+    }
+    return "";
+}
+
 std::string range(const ShardHeader& h) { return std::to_string(h.pass_begin) + ":" + std::to_string(h.pass_end); }
 
 }  // namespace
@@ -183,20 +211,13 @@ ProjectFingerprint fingerprint_project(const Project& project) {
             doc["render"].erase(key);
     doc.erase("display");
     Fingerprint files;
-    std::vector<char> chunk(size_t(1) << 20);
     for (const auto& [field, path] : project_inputs(project)) {
-        const uint64_t size = check_input_file(path.string(), field, "an input file");
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw InputError(path.string(), field, "cannot be read");
-        files.add(field);
-        // Streamed, a file may be gigabytes: its length first, then its bytes, as add(string).
-        files.add(&size, sizeof size);
-        uint64_t hashed = 0;
-        while (in.read(chunk.data(), std::streamsize(chunk.size())) || in.gcount() > 0) {
-            files.add(chunk.data(), size_t(in.gcount()));
-            hashed += uint64_t(in.gcount());
-        }
-        if (hashed != size) throw InputError(path.string(), field, "changed while it was read");
+        add_file(files, path, field, field);
+        // A mesh's material files, buffers and textures decide its pass as much as it does. Their
+        // contents count, under the mesh's field and their kind, not the way their paths are spelt.
+        if (!is_mesh_field(field)) continue;
+        for (const MeshSideFile& side : mesh_side_files(path.string()))
+            add_file(files, side.path, field, field + " " + side_file_kind_name(side.kind));
     }
     Fingerprint all = files;
     all.add(doc.dump());
@@ -310,10 +331,18 @@ void check_mergeable(const std::vector<ShardHeader>& shards, const std::vector<s
         if (h.engine_version != first.engine_version)
             throw InputError(p, "", "written by another version of the renderer ('" + h.engine_version +
                                         "', not '" + first.engine_version + "' of " + paths[0] + ")");
-        if (h.project_hash != first.project_hash)
-            throw InputError(p, "",
-                             "belongs to another project (or another version of its files) than " + paths[0] +
-                                 " (project " + h.project_path + " against " + first.project_path + ")");
+        if (h.project_hash != first.project_hash) {
+            const std::string projects = " (project " + h.project_path + " against " + first.project_path + ")";
+            // The files' own fingerprint tells a changed file from changed settings.
+            if (h.inputs_hash != first.inputs_hash)
+                throw InputError(p, "",
+                                 "was rendered from other files than " + paths[0] + projects +
+                                     ": the photo, the probe, a mesh, a file a mesh names (material file, buffer, "
+                                     "texture) or a texture changed between the renders, or they are of other "
+                                     "projects");
+            throw InputError(p, "", "belongs to another project (or another version of its settings) than " +
+                                        paths[0] + projects);
+        }
         if (h.seed != first.seed)
             throw InputError(p, "", "was rendered with seed " + std::to_string(h.seed) + ", " + paths[0] +
                                         " with seed " + std::to_string(first.seed));

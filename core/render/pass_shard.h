@@ -37,9 +37,11 @@ struct ProjectFingerprint {
     /// saved (less the pass count, time budget, thread count and adaptive sampling, which a
     /// shard records or which do not change a pass) and the bytes of every file it reads.
     std::string project;
-    /// The bytes of the files only (photo, probe, meshes, textures): `merge` checks with it
-    /// that the photo it composites onto is the one the shards rendered against, whatever
-    /// settings the shards' command lines overrode.
+    /// The bytes of the files only (photo, probe, meshes, textures, and the material files,
+    /// buffers and textures the meshes name): `merge` checks with it that the photo it
+    /// composites onto is the one the shards rendered against, whatever settings the shards'
+    /// command lines overrode. A file counts by its contents and the field that names it (a
+    /// mesh's side file under its mesh's field and its kind), not by how its path is spelt.
     std::string inputs;
 };
 /// Throws InputError if an input cannot be read.

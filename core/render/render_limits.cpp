@@ -20,7 +20,7 @@ uint64_t pass_memory_bytes(const RenderScene& scene, const RenderSettings& setti
 }
 
 void check_render_limits(const RenderScene& scene, const RenderSettings& settings) {
-    const uint64_t need = pass_memory_bytes(scene, settings), have = physical_memory_bytes();
+    const uint64_t need = pass_memory_bytes(scene, settings), have = usable_memory_bytes();
     if (have > 0 && double(need) > 0.8 * double(have))
         throw InputError("", "render.photons_per_pass",
                          std::to_string(settings.photons_per_pass) + " photons per pass need about " + format_bytes(double(need)) +

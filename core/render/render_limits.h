@@ -13,9 +13,10 @@ namespace dp {
 uint64_t pass_memory_bytes(const RenderScene& scene, const RenderSettings& settings);
 
 /// Refuses, before anything is allocated, settings the machine cannot render: a pass needing
-/// more than 80% of physical memory (the message gives the figure and the limit), or a gather
-/// radius so large or so small against the scene that every photon falls into every gather or
-/// the photon grid's cell index overflows. Throws InputError naming the render field.
+/// more than 80% of the memory there is (usable_memory_bytes: physical memory, or the cgroup's
+/// limit where lower; the message gives the figure and the limit), or a gather radius so large
+/// or so small against the scene that every photon falls into every gather or the photon
+/// grid's cell index overflows. Throws InputError naming the render field.
 void check_render_limits(const RenderScene& scene, const RenderSettings& settings);
 
 }  // namespace dp

@@ -112,4 +112,9 @@ std::vector<std::pair<std::string, std::filesystem::path>> project_inputs(const 
     return in;
 }
 
+bool is_mesh_field(const std::string& field) {
+    const std::string suffix = ".shape.path";
+    return field.size() > suffix.size() && field.compare(field.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 }  // namespace dp

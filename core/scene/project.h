@@ -234,4 +234,8 @@ void for_each_input(const Project& project,
 /// that names it ("photo.path", "objects[2].shape.path", ...).
 std::vector<std::pair<std::string, std::filesystem::path>> project_inputs(const Project& project);
 
+/// Whether `field`, an InputRef::field, names a mesh file ("objects[2].shape.path"): a file that
+/// names files in turn (geometry/mesh_side_files.h).
+bool is_mesh_field(const std::string& field);
+
 }  // namespace dp

@@ -101,12 +101,46 @@ mkdir folder.bin
 sed 's/pipe.bin/folder.bin/' fifo_bin.gltf >folder_bin.gltf
 write_project folder_bin.json "${M/fifo_mtl.obj/folder_bin.gltf}" "$FLOOR"
 within 5 2 "a folder as a glTF's buffer" "folder.bin: field 'objects[0].shape.path': is a folder" info folder_bin.json
-# A texture the MTL names: the texture is left out with a warning, as any unreadable one.
+# A texture a mesh's material names is refused like any input of its kind, by every command
+# that reads the mesh's materials; only a missing or corrupt one leaves its material its colour
+# (mesh_materials.sh).
 printf 'newmtl t\nmap_Kd pipe.png\n' >tex.mtl
 printf 'mtllib tex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl t\nf 1/1 2/2 3/3\n' >fifo_tex.obj
 TEX='{"name": "m", "shape": {"type": "mesh", "path": "fifo_tex.obj"}, "material_source": "file", "material": {"type": "diffuse"}}'
 write_project fifo_tex.json "$TEX" "$FLOOR"
-within 5 0 "a FIFO as a texture an MTL names" "is a FIFO" info fifo_tex.json
+FIFO_TEX="pipe.png: field 'objects[0].shape.path': is a FIFO (named pipe), not a texture: material 't' of mesh 'fifo_tex.obj' names it"
+within 5 2 "a FIFO as a texture an MTL names" "$FIFO_TEX" info fifo_tex.json
+within 5 2 "a FIFO as a texture an MTL names (render)" "$FIFO_TEX" render fifo_tex.json -o out/a.exr --passes 1
+within 5 2 "a FIFO as a texture an MTL names (shard)" "$FIFO_TEX" render fifo_tex.json --pass-range 0:1 -o out/a.dpp
+within 5 2 "a FIFO as a texture an MTL names (reference)" "$FIFO_TEX" reference fifo_tex.json -o out/a.exr --spp 1
+within 5 2 "a FIFO as a texture an MTL names (export)" "$FIFO_TEX" export blender fifo_tex.json -o out/a.py
+cat >fifo_tex.gltf <<'GLTF'
+{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+ "materials": [{"name": "g", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}],
+ "textures": [{"source": 0}], "images": [{"uri": "pipe.png"}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "buffers": [{"uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA",
+              "byteLength": 36}]}
+GLTF
+write_project fifo_tex_gltf.json "${TEX/fifo_tex.obj/fifo_tex.gltf}" "$FLOOR"
+FIFO_IMAGE="pipe.png: field 'objects[0].shape.path': is a FIFO (named pipe), not a texture: material 'g' of mesh 'fifo_tex.gltf' names it"
+within 5 2 "a FIFO as a glTF's texture" "$FIFO_IMAGE" info fifo_tex_gltf.json
+within 5 2 "a FIFO as a glTF's texture (render)" "$FIFO_IMAGE" render fifo_tex_gltf.json -o out/a.exr --passes 1
+mkdir folder.png
+sed 's/pipe.png/folder.png/' fifo_tex.gltf >folder_tex.gltf
+write_project folder_tex.json "${TEX/fifo_tex.obj/folder_tex.gltf}" "$FLOOR"
+within 5 2 "a folder as a glTF's texture" "folder.png: field 'objects[0].shape.path': is a folder, not a texture" \
+    info folder_tex.json
+ln -s /dev/zero zero.png
+sed 's/pipe.png/zero.png/' tex.mtl >zero_tex.mtl
+sed 's/tex.mtl/zero_tex.mtl/' fifo_tex.obj >zero_tex.obj
+write_project zero_tex.json "${TEX/fifo_tex.obj/zero_tex.obj}" "$FLOOR"
+within 5 2 "/dev/zero as a texture an MTL names" "zero.png: field 'objects[0].shape.path': is a character device, not a texture" \
+    render zero_tex.json -o out/a.exr --passes 1
+[ -z "$(ls out)" ] || fail "a refused texture let a command write"
 
 # ---- Meshes: bytes and triangles bounded, out of memory said as such. ----
 truncate -s 10G huge.obj

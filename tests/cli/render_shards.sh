@@ -81,6 +81,53 @@ printf 'X' | dd of=damaged.dpp bs=1 seek=900 conv=notrunc 2>/dev/null
 refused "a damaged shard" "damaged" shard-0-5.dpp damaged.dpp
 refused "a file that is no shard" "not a render shard" shard-0-5.dpp photo.exr
 
+# A mesh's material file, buffer or texture changed between two shards makes them unmergeable,
+# as the mesh itself would; unchanged, they merge.
+run make-test-image wood.png --size 4 4 --value 0.6 0.4 0.2
+expect_rc 0 "make-test-image texture"
+printf 'newmtl wood\nKd 0.8 0.8 0.8\nmap_Kd wood.png\n' >cup.mtl
+printf 'mtllib cup.mtl\nv -0.3 0 0\nv 0.3 0 0\nv 0 0.5 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl wood\nf 1/1 2/2 3/3\n' >cup.obj
+printf '\0\0\0\0\0\0\0\0\0\0\0\0\0\0\x80\x3f\0\0\0\0\0\0\0\0\0\0\0\0\0\0\x80\x3f\0\0\0\0' >tri.bin
+cat >tri.gltf <<'GLTF'
+{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "buffers": [{"uri": "tri.bin", "byteLength": 36}]}
+GLTF
+CUP='{"name": "cup", "shape": {"type": "mesh", "path": "cup.obj"}, "material_source": "file",
+      "material": {"type": "diffuse"}, "transform": {"translation": [0, 0.01, 0.5]}}'
+TRI='{"name": "tri", "shape": {"type": "mesh", "path": "tri.gltf"}, "material": {"type": "diffuse"},
+      "transform": {"translation": [-0.5, 0.01, 0]}}'
+write_project meshes.json "$CUP, $TRI" "$FLOOR"
+# changed WHAT COMMAND...: renders passes 0:1, runs COMMAND (which changes a side file), renders
+# passes 1:2; the shards are refused, and so is the first alone against the changed project.
+changed() {
+    local what=$1
+    shift
+    run render meshes.json --pass-range 0:1 -o side-a.dpp
+    expect_rc 0 "$what: first shard"
+    "$@"
+    run render meshes.json --pass-range 1:2 -o side-b.dpp
+    expect_rc 0 "$what: second shard"
+    refused "$what between shards" "side-b.dpp: was rendered from other files than side-a.dpp" side-a.dpp side-b.dpp
+    expect_stderr "a file a mesh names (material file, buffer, texture)" "$what: the files named"
+    refused "$what since the shard" "meshes.json: its files (photo, probe, meshes and the files they name, textures) are not those" side-a.dpp
+}
+run render meshes.json --pass-range 0:1 -o side-0.dpp
+expect_rc 0 "shard of a textured mesh"
+run render meshes.json --pass-range 1:2 -o side-1.dpp
+expect_rc 0 "second shard of a textured mesh"
+run merge side-0.dpp side-1.dpp -o side.exr
+expect_rc 0 "shards of unchanged side files merge"
+changed "a texture changed" run make-test-image wood.png --size 4 4 --value 0.2 0.4 0.6
+changed "a material file changed" sed -i 's/Kd 0.8/Kd 0.7/' cup.mtl
+lower_corner() {  # the triangle's third corner from y = 1 to y = 0.5
+    printf '\0\0\0\x3f' | dd of=tri.bin bs=1 seek=28 conv=notrunc status=none
+}
+changed "a glTF buffer changed" lower_corner
+
 # What would make a shard's passes depend on passes it does not render is refused.
 expect_refused "adaptive shard" "without adaptive sampling" render scene.json --pass-range 0:4 -o a.dpp --adaptive on
 expect_refused "empty range" "is empty" render scene.json --pass-range 4:4 -o a.dpp
