@@ -14,7 +14,9 @@ uint64_t pass_memory_bytes(const RenderScene& scene, const RenderSettings& setti
     // A stored photon, its 16-byte grid entry and sort scratch; two stored per emitted at most.
     const double per_photon = 2.0 * (double(sizeof(Photon)) + 32.0);
     const double pixels = double(scene.camera().width()) * double(scene.camera().height());
-    const double per_pixel = 128.0;  // sums, odd-pass sums, plan and the pass's samples
+    // Sums, odd-pass sums, plan and the pass's samples (128), and the photon balance's
+    // per-pixel variance sums (32).
+    const double per_pixel = 160.0;
     const double bytes = photons * per_photon + pixels * per_pixel;
     return bytes >= 1.8e19 ? UINT64_MAX : uint64_t(bytes);
 }
@@ -24,7 +26,7 @@ void check_render_limits(const RenderScene& scene, const RenderSettings& setting
     if (have > 0 && double(need) > 0.8 * double(have))
         throw InputError("", "render.photons_per_pass",
                          std::to_string(settings.photons_per_pass) + " photons per pass need about " + format_bytes(double(need)) +
-                             " of memory; this machine has " + format_bytes(double(have)) +
+                             " of memory; " + format_bytes(double(have)) + " is usable here (the machine's memory, or its control group's limit where lower)" +
                              " (at most 80% is used): fewer photons per pass and more passes give the same image");
     if (settings.initial_radius) {
         const float r = *settings.initial_radius, scale = scene.scale();
