@@ -280,6 +280,19 @@ class RefusalsTest(unittest.TestCase):
             server.shutdown()
             server.server_close()
 
+    def test_a_client_that_fails_half_made_leaves_no_traceback_at_exit(self):
+        # tls:// without a TLS configuration: Dask's Client fails after the port answered, and a
+        # half-made Client would print its own traceback when the interpreter collects it.
+        server, port = serve(_Silent)
+        try:
+            address = f"tls://127.0.0.1:{port}"
+            self.assert_refused(self.render("--scheduler", address, "--connect-timeout", str(TIMEOUT)),
+                                [f"cannot reach a Dask scheduler at {address}", "TLS"], within=TIMEOUT + SLACK)
+        finally:
+            server.stop.set()
+            server.shutdown()
+            server.server_close()
+
     def test_a_real_scheduler_passes_the_probe_and_renders(self):
         from dask.distributed import LocalCluster
 
