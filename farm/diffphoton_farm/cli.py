@@ -16,7 +16,7 @@ from pathlib import Path
 from . import connect
 from .bundle import input_fields
 from .errors import FarmError
-from .runner import find_binary, render
+from .runner import render
 
 PROG = "diffphoton-farm"
 DEBUG_ENV = "DIFFPHOTON_FARM_DEBUG"
@@ -174,12 +174,12 @@ def _check_places(a):
 
 
 def _check(a):
-    """Every argument, before a connection or a process is started; UsageError or FarmError."""
+    """Every argument, before a connection or a process is started (render() checks the
+    binary itself, first)."""
     _check_numbers(a)
     _check_places(a)
     inputs = _project_files(a.project)
     _check_output(a.output, inputs)
-    find_binary(a.binary)
 
 
 def _render(a):

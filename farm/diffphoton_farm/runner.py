@@ -46,10 +46,9 @@ def _client(scheduler, workers, connect_timeout):
     a LocalCluster of `workers` single-threaded processes. Returns (client, cluster or None)."""
     if scheduler:
         return connect.client(scheduler, connect_timeout), None
-    from dask.distributed import Client, LocalCluster
+    from .local import local_client
 
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
-    return Client(cluster, set_as_default=False), cluster
+    return local_client(workers)
 
 
 def render(project, output, passes, shard, scheduler=None, workers=None, binary=None, bundle=False,
@@ -134,6 +133,10 @@ def render(project, output, passes, shard, scheduler=None, workers=None, binary=
             raise FarmError(f"merge failed ({merge.returncode}): {merge.stderr.strip()}")
         return {"shards": len(ranges), "passes": passes, "render_s": rendered - started,
                 "total_s": time.monotonic() - started}
+    except BaseException:
+        # What the teardown below logs (cancelled tasks, workers killed) is not news then.
+        connect.quiet_distributed()
+        raise
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
         client.close()

@@ -10,6 +10,7 @@ import hashlib
 import http.server
 import io
 import os
+import signal
 import socket
 import socketserver
 import struct
@@ -305,6 +306,32 @@ class RefusalsTest(unittest.TestCase):
         self.assertNotIn("Traceback", err)
         self.assertIn("shards 2", out)
         self.assertTrue((self.dir / "remote.exr").is_file())
+
+    def test_ctrl_c_on_a_local_cluster_exits_130_with_no_word_from_its_workers(self):
+        # As a terminal does it: SIGINT to the whole process group, workers included, once the
+        # progress bar shows the shards submitted.
+        before = self.snapshot()
+        args = self.render("--passes", "400", "--shard", "2", "--workers", "2", output="interrupted.exr")
+        farm = subprocess.Popen([sys.executable, "-m", "diffphoton_farm", *args], cwd=self.dir, env=self.env,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+        try:
+            seen = []
+            for line in farm.stderr:
+                seen.append(line)
+                if line.startswith("shards 0/"):
+                    break
+            os.killpg(farm.pid, signal.SIGINT)
+            out, err = farm.communicate(timeout=60)
+        finally:
+            if farm.poll() is None:
+                os.killpg(farm.pid, signal.SIGKILL)
+        err = "".join(seen) + err
+        self.assertEqual(farm.returncode, 130, err)
+        self.assertNotIn("Traceback", err)
+        self.assertEqual([line for line in err.splitlines() if not line.startswith("shards ")], [])
+        self.assertEqual(out, "")
+        self.assertFalse((self.dir / "interrupted.exr").exists())
+        self.assertEqual(self.snapshot(), before)
 
     # The guard
 
