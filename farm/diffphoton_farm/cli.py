@@ -15,11 +15,10 @@ from pathlib import Path
 
 from . import connect
 from .bundle import input_fields
-from .errors import FarmError
+from .errors import DEBUG_ENV, FarmError, debugging
 from .runner import render
 
 PROG = "diffphoton-farm"
-DEBUG_ENV = "DIFFPHOTON_FARM_DEBUG"
 INT_MAX = 2**31 - 1  # diffphoton's own limit on passes and threads
 MAX_WORKERS = 1024
 MAX_CONNECT_TIMEOUT = 3600.0
@@ -203,7 +202,6 @@ def _say(text):
 
 def main(argv=None):
     """Runs the command; returns its exit code (tests call it in process)."""
-    debug = os.environ.get(DEBUG_ENV) == "1"
     try:
         a = _parser().parse_args(argv)
         _check(a)
@@ -220,7 +218,7 @@ def main(argv=None):
         return e.code if isinstance(e.code, int) else 0
     except Exception as e:
         connect.quiet_distributed()
-        if debug:
+        if debugging():
             raise
         _say(f"internal error: {type(e).__name__}: {e} (set {DEBUG_ENV}=1 for the traceback)")
         return 1

@@ -14,7 +14,7 @@ import threading
 import time
 from urllib.parse import urlsplit
 
-from .errors import FarmError
+from .errors import FarmError, debugging
 
 SCHEMES = ("tcp", "tls")
 _RETRY_S = 0.2  # between tries on a refused port: a scheduler may be starting
@@ -186,7 +186,8 @@ def unreachable(address, timeout, reason):
 def quiet_distributed():
     """Distributed logs its own warnings and tracebacks on a failed connection; the one line
     this command prints says it all."""
-    logging.getLogger("distributed").setLevel(logging.CRITICAL + 1)
+    if not debugging():
+        logging.getLogger("distributed").setLevel(logging.CRITICAL + 1)
 
 
 def client(address, timeout):

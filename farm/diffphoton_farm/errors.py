@@ -1,4 +1,14 @@
-"""The error the runner reports to its caller; kept apart so every module can raise it."""
+"""The error the runner reports to its caller, and the switch that shows what is behind one;
+kept apart so every module can use them."""
+
+import os
+
+DEBUG_ENV = "DIFFPHOTON_FARM_DEBUG"
+
+
+def debugging():
+    """DIFFPHOTON_FARM_DEBUG=1: tracebacks and Dask's own logs are shown, not one line."""
+    return os.environ.get(DEBUG_ENV) == "1"
 
 
 class FarmError(RuntimeError):

@@ -10,6 +10,8 @@ from contextlib import contextmanager
 
 from distributed import Client, LocalCluster, WorkerPlugin
 
+from .errors import debugging
+
 
 class IgnoreInterrupts(WorkerPlugin):
     """Set on every worker, those that replace a lost one included."""
@@ -37,9 +39,10 @@ def _interrupts_ignored():
 def local_client(workers):
     """(client, cluster): a LocalCluster of `workers` single-threaded processes."""
     with _interrupts_ignored():
-        # Their warnings (cancelled tasks, memory) say nothing about shards, which this reports.
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
-                               silence_logs=logging.ERROR)
+        # Their logs (a failed shard's traceback, cancelled tasks) would repeat what this
+        # reports in one line. A dashboard on a free port: 8787 may be taken, and Dask says so.
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
+                               silence_logs=logging.WARNING if debugging() else logging.CRITICAL)
     client = Client(cluster, set_as_default=False)
     client.register_plugin(IgnoreInterrupts(), name="diffphoton-farm-ignore-interrupts")
     return client, cluster

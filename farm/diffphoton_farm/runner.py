@@ -135,7 +135,6 @@ def render(project, output, passes, shard, scheduler=None, workers=None, binary=
                 "total_s": time.monotonic() - started}
     except BaseException:
         # What the teardown below logs (cancelled tasks, workers killed) is not news then.
-        connect.quiet_distributed()
         raise
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
