@@ -133,9 +133,6 @@ def render(project, output, passes, shard, scheduler=None, workers=None, binary=
             raise FarmError(f"merge failed ({merge.returncode}): {merge.stderr.strip()}")
         return {"shards": len(ranges), "passes": passes, "render_s": rendered - started,
                 "total_s": time.monotonic() - started}
-    except BaseException:
-        # What the teardown below logs (cancelled tasks, workers killed) is not news then.
-        raise
     finally:
         shutil.rmtree(scratch, ignore_errors=True)
         client.close()
