@@ -14,22 +14,27 @@ from pathlib import Path
 PROJECT_NAME = "project.json"
 
 
-def _input_fields(doc):
-    """Yields (holder, key) for every file path the project reads, as diffphoton's own
+def input_fields(doc):
+    """Yields (field, holder, key) for every file path the project reads, as diffphoton's own
     for_each_input lists them: photo, probe, and the meshes and textures of real proxies and
-    virtual objects."""
+    virtual objects. `field` names it as a person would look it up: "objects[1].shape.path"."""
     for section in ("photo", "probe"):
         if isinstance(doc.get(section), dict) and doc[section].get("path"):
-            yield doc[section], "path"
+            yield f"{section}.path", doc[section], "path"
     for group in ("real", "objects"):
-        for item in doc.get(group) or []:
-            shape = item.get("shape") or {}
-            if shape.get("type") == "mesh" and shape.get("path"):
-                yield shape, "path"
-            albedos = [item.get("albedo"), (item.get("material") or {}).get("albedo")]
-            for albedo in albedos:
+        items = doc.get(group)
+        for index, item in enumerate(items if isinstance(items, list) else []):
+            if not isinstance(item, dict):
+                continue
+            shape = item.get("shape")
+            if isinstance(shape, dict) and shape.get("type") == "mesh" and shape.get("path"):
+                yield f"{group}[{index}].shape.path", shape, "path"
+            material = item.get("material")
+            albedos = [("albedo", item.get("albedo")),
+                       ("material.albedo", material.get("albedo") if isinstance(material, dict) else None)]
+            for name, albedo in albedos:
                 if isinstance(albedo, dict) and albedo.get("texture"):
-                    yield albedo, "texture"
+                    yield f"{group}[{index}].{name}.texture", albedo, "texture"
 
 
 def _companions(path):
@@ -47,7 +52,7 @@ def make_bundle(project_path):
     doc = json.loads(project_path.read_text())
     base = project_path.parent
     files = {}  # name in the bundle -> file on this machine
-    for holder, key in _input_fields(doc):
+    for _, holder, key in input_fields(doc):
         source = Path(holder[key])
         if not source.is_absolute():
             source = base / source

@@ -9,13 +9,9 @@ import time
 import uuid
 from pathlib import Path
 
-from . import worker
+from . import connect, worker
 from .bundle import make_bundle
-
-
-class FarmError(RuntimeError):
-    """A render that cannot be farmed as asked (unreachable scheduler, bad arguments, a shard
-    that failed on every try); the message says why."""
+from .errors import FarmError
 
 
 def plan_shards(passes, shard):
@@ -28,8 +24,8 @@ def plan_shards(passes, shard):
 def find_binary(binary=None):
     """The diffphoton binary: `binary`, $DIFFPHOTON, or `diffphoton` on PATH."""
     name = binary or os.environ.get("DIFFPHOTON") or "diffphoton"
-    found = shutil.which(name) if os.sep not in name else (name if os.access(name, os.X_OK) else None)
-    if not found:
+    found = shutil.which(name) if os.sep not in name else name
+    if not found or not os.path.isfile(found) or not os.access(found, os.X_OK):
         raise FarmError(f"cannot find the diffphoton binary '{name}' (pass --binary or set DIFFPHOTON)")
     return str(Path(found).resolve())
 
@@ -46,18 +42,13 @@ def _bar(done, total, started, stream):
 
 
 def _client(scheduler, workers, connect_timeout):
-    """A Dask client: on the scheduler at `scheduler`, or on a LocalCluster of `workers`
-    single-threaded processes. Returns (client, cluster or None)."""
-    from dask.distributed import Client, LocalCluster
-
+    """A Dask client: on the scheduler at `scheduler` (within `connect_timeout` seconds), or on
+    a LocalCluster of `workers` single-threaded processes. Returns (client, cluster or None)."""
     if scheduler:
-        try:
-            return Client(scheduler, timeout=connect_timeout, set_as_default=False), None
-        except (OSError, TimeoutError) as e:
-            raise FarmError(f"cannot reach the Dask scheduler at {scheduler} within {connect_timeout:g} s "
-                            f"(is `dask scheduler` running there, and port open?): {e}") from None
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
-    return Client(cluster, set_as_default=False), cluster
+        return connect.client(scheduler, connect_timeout), None
+    from .local import local_client
+
+    return local_client(workers)
 
 
 def render(project, output, passes, shard, scheduler=None, workers=None, binary=None, bundle=False,
@@ -75,8 +66,6 @@ def render(project, output, passes, shard, scheduler=None, workers=None, binary=
     worker dies is rerun by Dask on another; one whose diffphoton fails is retried `retries`
     times. on_shard_done(client, done, total) is called after each shard (tests use it).
     Returns a dict of figures."""
-    from dask.distributed import as_completed
-
     binary = find_binary(binary)
     project = str(Path(project).resolve())
     if not Path(project).is_file():
@@ -91,11 +80,17 @@ def render(project, output, passes, shard, scheduler=None, workers=None, binary=
         args += ["--threads", str(threads)]
     started = time.monotonic()
     client, cluster = _client(scheduler, workers, connect_timeout)
+    # Imported after the connection: a wrong address is reported without waiting for dask.
+    from dask.distributed import as_completed
+
     scratch = Path(tempfile.mkdtemp(prefix="diffphoton-farm-"))
     try:
         common = {"args": args, "parts_dir": parts_dir}
         if bundle:
-            data, digest = make_bundle(project)
+            try:
+                data, digest = make_bundle(project)
+            except (OSError, ValueError) as e:
+                raise FarmError(str(e)) from None
             # Scattered once: each worker fetches the bundle once, not once per shard.
             common.update(bundle=client.scatter(data, broadcast=False, hash=False), bundle_digest=digest)
         else:

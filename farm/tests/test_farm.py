@@ -126,7 +126,7 @@ class FarmTest(unittest.TestCase):
             render(self.project, self.dir / "never.exr", PASSES, 4, scheduler="tcp://127.0.0.1:9", binary=BINARY,
                    connect_timeout=2, progress=None)
         self.assertLess(time.monotonic() - start, 10)
-        self.assertIn("cannot reach the Dask scheduler at tcp://127.0.0.1:9", str(caught.exception))
+        self.assertIn("cannot reach a Dask scheduler at tcp://127.0.0.1:9", str(caught.exception))
         # The command line says so and exits 2.
         code = farm_main(["render", str(self.project), "--passes", "4", "--scheduler", "tcp://127.0.0.1:9",
                           "--connect-timeout", "2", "--binary", BINARY, "-o", str(self.dir / "never.exr")])

@@ -1,0 +1,7 @@
+"""`python3 -m diffphoton_farm render ...`: the diffphoton-farm command."""
+
+import sys
+
+from .cli import entry
+
+sys.exit(entry())
