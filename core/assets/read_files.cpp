@@ -32,6 +32,7 @@ std::string side_file_what(const MeshSideFile& side, const InputFile& mesh) {
             break;
         case MeshSideFile::Kind::Buffer: what = "the buffer of glTF mesh " + name; break;
         case MeshSideFile::Kind::Image: what = "the image named by glTF mesh " + name; break;
+        case MeshSideFile::Kind::MeshTexture: what = "the texture named by FBX mesh " + name; break;
     }
     return what + " (" + mesh.ref.field + ")";
 }

@@ -7,10 +7,16 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fstream>
 #include <iterator>
 #include <set>
 #include <sstream>
+#include <string_view>
 
 #include "base/text.h"
 
@@ -201,6 +207,70 @@ void add_gltf_files(const fs::path& path, SideFiles& out) {
     }
 }
 
+/// The file's bytes, mapped read-only (an FBX may be gigabytes: nothing is copied).
+class MappedFile {
+public:
+    explicit MappedFile(const fs::path& path) {
+        const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+        if (fd < 0) return;
+        struct stat st {};
+        if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+            void* p = ::mmap(nullptr, size_t(st.st_size), PROT_READ, MAP_PRIVATE, fd, 0);
+            if (p != MAP_FAILED) {
+                data_ = static_cast<const char*>(p);
+                size_ = size_t(st.st_size);
+            }
+        }
+        ::close(fd);
+    }
+    ~MappedFile() {
+        if (data_) ::munmap(const_cast<char*>(data_), size_);
+    }
+    MappedFile(const MappedFile&) = delete;
+    MappedFile& operator=(const MappedFile&) = delete;
+    std::string_view bytes() const { return {data_ ? data_ : "", size_}; }
+
+private:
+    const char* data_ = nullptr;
+    size_t size_ = 0;
+};
+
+/// The texture paths an FBX file holds: the strings of its `FileName`, `Filename` and
+/// `RelativeFilename` properties (of Texture and Video objects). Binary FBX stores a property
+/// as its name's length byte, the name, then an 'S' record: a 32-bit length and the bytes; ASCII
+/// FBX writes `RelativeFilename: "path"`.
+std::vector<std::string> fbx_file_names(std::string_view b) {
+    std::vector<std::string> out;
+    const bool binary = b.substr(0, 18) == "Kaydara FBX Binary";
+    for (const std::string name : {"FileName", "Filename", "RelativeFilename"}) {
+        const std::string marker = binary ? char(name.size()) + name + "S" : name + ": \"";
+        for (size_t at = b.find(marker); at != std::string_view::npos; at = b.find(marker, at + 1)) {
+            const size_t start = at + marker.size();
+            size_t length = 0;
+            if (binary) {
+                if (start + 4 > b.size()) break;
+                length = le32(reinterpret_cast<const unsigned char*>(b.data() + start));
+                if (length > 4096 || start + 4 + length > b.size()) continue;
+                out.emplace_back(b.substr(start + 4, length));
+            } else {
+                const size_t end = b.find('"', start);
+                if (end == std::string_view::npos || end - start > 4096) continue;
+                out.emplace_back(b.substr(start, end - start));
+            }
+        }
+    }
+    return out;
+}
+
+void add_fbx_files(const fs::path& path, SideFiles& out) {
+    const MappedFile file(path);
+    for (const std::string& name : fbx_file_names(file.bytes())) {
+        out.add(path.parent_path(), name, MeshSideFile::Kind::MeshTexture);
+        // A texture found beside the mesh by its file name alone, as readers fall back to.
+        out.add(path.parent_path(), written_path(name).filename().string(), MeshSideFile::Kind::MeshTexture);
+    }
+}
+
 }  // namespace
 
 std::vector<MeshSideFile> mesh_side_files(const std::string& mesh_path) {
@@ -216,6 +286,8 @@ std::vector<MeshSideFile> mesh_side_files(const std::string& mesh_path) {
         add_gltf_files(path, out);
     else if (ext == ".obj")
         add_obj_files(path, out);
+    else if (ext == ".fbx")
+        add_fbx_files(path, out);
     return out.take();
 }
 

@@ -15,6 +15,7 @@ struct MeshSideFile {
         Texture,       ///< a texture map a material library names
         Buffer,        ///< a glTF buffer (.bin)
         Image,         ///< a glTF image
+        MeshTexture,   ///< a texture an FBX file names itself
     };
     std::filesystem::path path;  ///< where it resolves, as the mesh reader looks for it
     Kind kind = Kind::MaterialFile;
@@ -26,7 +27,9 @@ struct MeshSideFile {
 /// Assimp falls back to when a named one is missing) and every texture map they name, and a
 /// glTF's (.gltf or .glb) external buffers and images. A path that could be read two ways (a
 /// name with spaces, a texture relative to the OBJ's or to the MTL's folder, a URI with "%20"
-/// decoded or as written) is listed both ways. Other formats (PLY, STL) name no files; FBX's external textures are not looked for.
+/// decoded or as written) is listed both ways. An FBX's external textures are found from its
+/// texture file name properties (binary or ASCII), each also as a bare name beside the mesh.
+/// Other formats (PLY, STL) name no files.
 /// An unreadable mesh lists none (its reader reports it).
 std::vector<MeshSideFile> mesh_side_files(const std::string& mesh_path);
 

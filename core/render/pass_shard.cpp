@@ -193,6 +193,7 @@ const char* side_file_kind_name(MeshSideFile::Kind kind) {
         case MeshSideFile::Kind::Texture: return "texture";
         case MeshSideFile::Kind::Buffer: return "buffer";
         case MeshSideFile::Kind::Image: return "image";
+        case MeshSideFile::Kind::MeshTexture: return "texture";
     }
     return "";
 }

@@ -1,4 +1,7 @@
 // The files a mesh file names besides itself, found from its text: what no output may replace.
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/mesh.h"
 #include "geometry/mesh_side_files.h"
 
 using namespace dp;
@@ -95,6 +99,28 @@ TEST_F(MeshSideFiles, AGlbNamesTheFilesOfItsJsonChunk) {
     const std::string glb = "glTF" + u32(2) + u32(uint32_t(20 + json.size())) + u32(uint32_t(json.size())) + "JSON" + json;
     // By content, whatever the extension: Assimp picks the glTF reader for it.
     EXPECT_EQ(names(write("m.bin3d", glb)), Names{"ext.png"});
+}
+
+/// A textured OBJ exported by Assimp as binary and ASCII FBX: the texture is listed, and it is
+/// the file the mesh loader resolves from the (ASCII) FBX.
+TEST_F(MeshSideFiles, AnFbxNamesItsTexturesBinaryOrAscii) {
+    write("maps/wood.png", "not decoded here");
+    write("t.mtl", "newmtl wood\nKd 1 1 1\nmap_Kd maps/wood.png\n");
+    const std::string obj = write("t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                                           "usemtl wood\nf 1/1 2/2 3/3\n");
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(obj, 0);
+    ASSERT_TRUE(scene);
+    Assimp::Exporter exporter;
+    for (const std::string format : {"fbx", "fbxa"}) {
+        const fs::path fbx = dir_ / (format + ".fbx");
+        if (exporter.Export(scene, format, fbx.string()) != aiReturn_SUCCESS) GTEST_SKIP() << "no FBX exporter";
+        EXPECT_EQ(names(fbx.string()), Names{"maps/wood.png"}) << format;
+        if (format == "fbx") continue;  // Assimp does not read back the binary FBX it writes
+        const LoadedMesh m = load_mesh(fbx.string());
+        ASSERT_FALSE(m.materials.empty()) << format;
+        EXPECT_EQ(fs::path(m.materials[0].texture).lexically_normal(), (dir_ / "maps/wood.png").lexically_normal()) << format;
+    }
 }
 
 TEST_F(MeshSideFiles, OtherFormatsAndUnreadableFilesNameNone) {
