@@ -23,22 +23,8 @@ import unittest
 from pathlib import Path
 from unittest import mock
 
-FARM = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(FARM))
-
-try:
-    import distributed  # noqa: F401
-except ImportError:  # CI installs it (scripts/install-deps.sh); only a local run may skip
-    if os.environ.get("DP_FARM_TESTS_OPTIONAL") == "1":
-        raise unittest.SkipTest("dask.distributed is not installed (DP_FARM_TESTS_OPTIONAL=1)")
-    raise SystemExit("dask.distributed is not installed: run scripts/install-deps.sh "
-                     "(or pip install ./farm)")
-
+from support import BINARY, FARM  # noqa: E402  (first: puts the package on the path)
 from diffphoton_farm import cli  # noqa: E402
-
-BINARY = os.environ.get("DIFFPHOTON", "diffphoton")
-if os.sep in BINARY:
-    BINARY = os.path.abspath(BINARY)  # the commands run in a scratch folder
 TIMEOUT = 2  # --connect-timeout of the scheduler cases
 SLACK = 1.5  # seconds past it and past the interpreter's own start a refusal may take
 PROJECT = """{

@@ -14,22 +14,9 @@ import time
 import unittest
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-try:
-    import distributed  # noqa: F401
-except ImportError:  # CI installs it (scripts/install-deps.sh); only a local run may skip
-    if os.environ.get("DP_FARM_TESTS_OPTIONAL") == "1":
-        raise unittest.SkipTest("dask.distributed is not installed (DP_FARM_TESTS_OPTIONAL=1)")
-    raise SystemExit("dask.distributed is not installed: run scripts/install-deps.sh "
-                     "(or pip install ./farm)")
-
+from support import BINARY  # noqa: E402  (first: puts the package on the path)
 from diffphoton_farm import FarmError, plan_shards, render  # noqa: E402
 from diffphoton_farm.cli import main as farm_main  # noqa: E402
-
-BINARY = os.environ.get("DIFFPHOTON", "diffphoton")
-if os.sep in BINARY:
-    BINARY = os.path.abspath(BINARY)  # the renders run in a scratch folder
 PASSES = 12
 PROJECT = """{
   "schema_version": 1,

@@ -101,9 +101,7 @@ void FilesTest::autosaveRecoversTheEditsOfAKilledProcess() {
     QVERIFY(child.waitForFinished());
 
     RecordingReporter yes(true);
-    StudioOptions o = test::test_options(&yes, recovery);
-    o.checkRecovery = true;
-    MainWindow w(o);
+    MainWindow w(test::recovering_options(&yes, recovery));
     w.checkRecovery();
     QCOMPARE(yes.questions.size(), 1);
     QVERIFY(w.document()->isOpen());

@@ -235,9 +235,7 @@ void SharedProjectTest::aKilledStudiosCopyIsOfferedAndACleanQuitRemovesOnlyItsOw
 
     // A new studio while the other still runs: offered the killed one's copy, and only that.
     RecordingReporter yes(true);
-    StudioOptions o = test::test_options(&yes, recovery);
-    o.checkRecovery = true;
-    MainWindow w(o);
+    MainWindow w(test::recovering_options(&yes, recovery));
     w.checkRecovery();
     QCOMPARE(yes.questions.size(), 1);
     QVERIFY(w.document()->isModified());
@@ -257,9 +255,7 @@ void SharedProjectTest::aKilledStudiosCopyIsOfferedAndACleanQuitRemovesOnlyItsOw
 
     // A third studio finds nothing to offer: the one copy left belongs to a running studio.
     RecordingReporter third(true);
-    StudioOptions o3 = test::test_options(&third, recovery);
-    o3.checkRecovery = true;
-    MainWindow w3(o3);
+    MainWindow w3(test::recovering_options(&third, recovery));
     w3.checkRecovery();
     QVERIFY2(third.questions.isEmpty(), qPrintable(third.questions.join("|")));
     QVERIFY(!w3.document()->isOpen());

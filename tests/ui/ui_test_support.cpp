@@ -36,6 +36,12 @@ StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, 
     return o;
 }
 
+StudioOptions recovering_options(ErrorReporter* reporter, const QString& recoveryDir) {
+    StudioOptions o = test_options(reporter, recoveryDir);
+    o.checkRecovery = true;
+    return o;
+}
+
 void drag(QWidget* widget, QPointF from, QPointF to, int moves, int msPerMove) {
     QTest::mousePress(widget, Qt::LeftButton, {}, from.toPoint());
     for (int i = 1; i <= moves; ++i) {

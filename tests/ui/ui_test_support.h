@@ -20,6 +20,9 @@ QString write_small_sample(const QString& dir, int photons = 30000, int passes =
 StudioOptions test_options(ErrorReporter* reporter, const QString& recoveryDir, int width = 256,
                            int height = 128);
 
+/// test_options with the recovery question on (StudioOptions::checkRecovery).
+StudioOptions recovering_options(ErrorReporter* reporter, const QString& recoveryDir);
+
 /// A left-button drag as a hand makes it: press at `from`, `moves` mouse moves along the line to
 /// `to`, one every `msPerMove` milliseconds, release at `to`.
 void drag(QWidget* widget, QPointF from, QPointF to, int moves, int msPerMove = 16);
