@@ -50,6 +50,10 @@ PrincipledBsdf::PrincipledBsdf(const PrincipledParams& params)
     // keeping the average Fresnel (Schlick's average: f0 + (1 - f0) / 21).
     const vec3 f_avg = p_.base_colour + (vec3(1.0f) - p_.base_colour) / 21.0f;
     multiscatter_ = f_avg * f_avg * albedo_avg_ / (vec3(1.0f) - f_avg * (1 - albedo_avg_));
+    // What the interface's reflection carries relative to F (more with a brighter specular
+    // colour), and what its transmission carries relative to 1 - F.
+    reflect_strength_ = p_.specular * std::max(1.0f, f0_layer_max_ / f0_);
+    transmit_strength_ = p_.transmission * mean(p_.base_colour);
 }
 
 bool PrincipledBsdf::is_near_specular() const { return p_.roughness < kSpecularRoughness; }
@@ -88,12 +92,9 @@ vec3 PrincipledBsdf::cosine_lobe(float cos_o, float cos_i) const {
     return f;
 }
 
-// The interface lobe reflects with probability proportional to what reflection carries
-// (the specular factor, scaled up by a brighter specular colour) times F.
+// The interface lobe reflects or refracts in proportion to what each carries.
 void PrincipledBsdf::interface_split(float fresnel, float& p_reflect, float& p_transmit) const {
-    const float k_r = p_.specular * std::max(1.0f, f0_layer_max_ / f0_);
-    const float k_t = p_.transmission * mean(p_.base_colour);
-    const float r = k_r * fresnel, t = k_t * (1 - fresnel);
+    const float r = reflect_strength_ * fresnel, t = transmit_strength_ * (1 - fresnel);
     if (!(r + t > 0)) {
         p_reflect = p_transmit = 0;
         return;
@@ -109,8 +110,7 @@ PrincipledBsdf::Lobes PrincipledBsdf::lobe_probabilities(float cos_o, float eta)
     const float cosine = (1 - m) * (1 - p_.transmission) * mean(p_.base_colour) * (1 - layer_albedo(cos_o)) +
                          m * mean(multiscatter_) * (1 - e_o);
     const float fresnel = fresnel_dielectric(cos_o, 1 / eta);
-    const float k_r = p_.specular * std::max(1.0f, f0_layer_max_ / f0_);
-    const float iface = (1 - m) * (k_r * fresnel + p_.transmission * mean(p_.base_colour) * (1 - fresnel));
+    const float iface = (1 - m) * (reflect_strength_ * fresnel + transmit_strength_ * (1 - fresnel));
     const float conductor = m * std::max(mean(fresnel_schlick(p_.base_colour, cos_o)), 0.05f) * e_o;
     const float sum = cosine + iface + conductor;
     if (!(sum > 0)) return {0, 0, 0};
