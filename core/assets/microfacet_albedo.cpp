@@ -34,19 +34,35 @@ float mu_node(int i) {
     return x * x;
 }
 
+// The Fresnel weight w(c) = (F(c) - F0) / (1 - F0) of each ior node on a regular grid of
+// c = wo.m, read linearly: F has a finite slope everywhere seen from outside, so 1024 steps
+// hold it to 1e-6, and the quadrature below spends a lerp per point instead of a Fresnel.
+struct FresnelWeights {
+    static constexpr int kSteps = 1024;
+    std::array<float, K * (kSteps + 1)> w;
+    FresnelWeights() {
+        for (int k = 0; k < K; ++k) {
+            const float ior = ior_node(k), f0 = dielectric_f0(ior);
+            for (int c = 0; c <= kSteps; ++c)
+                w[k * (kSteps + 1) + c] = (fresnel_dielectric(float(c) / kSteps, 1 / ior) - f0) / (1 - f0);
+        }
+    }
+    float at(int k, float c) const {
+        const float s = std::clamp(c, 0.0f, 1.0f) * kSteps;
+        const int i = std::min(int(s), kSteps - 1);
+        const float* row = &w[k * (kSteps + 1)];
+        return row[i] + (s - i) * (row[i + 1] - row[i]);
+    }
+};
+
 // One node of both tables: midpoint quadrature over the visible-normal sample space, where the
 // F = 1 lobe's weight is G2 / G1. u.y -> 1 maps to GGX's long tail of steep normals, whose
 // reflections leave below the horizon: u.y = 1 - (1 - t)^2 puts strata there (0.2% of the
 // albedo at roughness 0.2).
-void node(float mu, float roughness, float& e, float* ew /* K values, stride N * N */) {
+void node(float mu, float roughness, const FresnelWeights& fw, float& e, float* ew /* K values, stride N * N */) {
     const Ggx ggx(ggx_alpha(roughness));
     const vec3 wo(std::sqrt(std::max(0.0f, 1 - mu * mu)), 0.0f, mu);
     const float lambda_o = ggx.lambda(wo);
-    float ior[K], f0[K];
-    for (int k = 0; k < K; ++k) {
-        ior[k] = ior_node(k);
-        f0[k] = dielectric_f0(ior[k]);
-    }
     double sum = 0, sum_w[K] = {};
     for (int b = 0; b < kStrata; ++b) {
         const float s = 1 - (b + 0.5f) / kStrata;  // 1 - t
@@ -56,8 +72,8 @@ void node(float mu, float roughness, float& e, float* ew /* K values, stride N *
             if (wi.z <= 0) continue;
             const double g = 2 * s * (1 + lambda_o) / (1 + lambda_o + ggx.lambda(wi));  // times du.y/dt
             sum += g;
-            for (int k = 1; k < K; ++k)  // ior 1 reflects nothing: w = 0
-                sum_w[k] += g * (fresnel_dielectric(glm::dot(wo, m), 1 / ior[k]) - f0[k]) / (1 - f0[k]);
+            const float c = glm::dot(wo, m);
+            for (int k = 1; k < K; ++k) sum_w[k] += g * fw.at(k, c);  // ior 1 reflects nothing: w = 0
         }
     }
     constexpr double n = double(kStrata) * kStrata;
@@ -79,10 +95,11 @@ float row_average(const float* e) {
 // Rows are independent, so the threads change nothing in the values.
 AlbedoTable build_table() {
     AlbedoTable t;
+    const FresnelWeights fw;
     tbb::parallel_for(0, N, [&](int j) {
         const float roughness = float(j) / (N - 1);
         for (int i = 0; i < N; ++i)
-            node(std::max(1e-3f, mu_node(i)), roughness, t.e[j * N + i], &t.ew[j * N + i]);
+            node(std::max(1e-3f, mu_node(i)), roughness, fw, t.e[j * N + i], &t.ew[j * N + i]);
         t.e_avg[j] = row_average(&t.e[j * N]);
         for (int k = 0; k < K; ++k) t.ew_avg[k * N + j] = row_average(&t.ew[(k * N + j) * N]);
     });

@@ -27,7 +27,7 @@ float ggx_dielectric_average_albedo(float roughness, float ior);
 /// The tables' grid: x = k / (kGgxAlbedoSize - 1) gives the nodes mu = x^2 (denser towards
 /// grazing, where E changes fastest), roughness = x; kGgxAlbedoIors nodes uniform in
 /// (ior - 1) / (ior + 1) over [1, 5]. Values are trilinear between nodes. Built at first use,
-/// deterministically (stratified quadrature, 2304 points a node; about 0.1 s, thread-safe).
+/// deterministically (stratified quadrature, 2304 points a node; under 0.1 s, thread-safe).
 inline constexpr int kGgxAlbedoSize = 32, kGgxAlbedoIors = 9;
 
 }  // namespace dp
