@@ -148,7 +148,9 @@ float linear(const float* v, Cell c) { return (1 - c.f) * v[c.k] + c.f * v[c.k +
 
 }  // namespace
 
-float ggx_albedo(float mu, float roughness) { return bilinear(table().e.data(), roughness_cell(roughness), mu_cell(mu)); }
+float ggx_albedo(float mu, float roughness) {
+    return bilinear(table().e.data(), roughness_cell(roughness), mu_cell(mu));
+}
 
 float ggx_average_albedo(float roughness) { return linear(table().e_avg.data(), roughness_cell(roughness)); }
 

@@ -180,11 +180,11 @@ float PrincipledBsdf::pdf(const vec3& wo, const vec3& wi) const {
     return pdf_local(flip ? -wo : wo, flip ? -wi : wi, eta_for(wo.z));
 }
 
-BsdfSample PrincipledBsdf::sample(const vec3& wo_world_side, const vec3& u, Transport mode) const {
-    if (wo_world_side.z == 0) return {};
-    const bool flip = wo_world_side.z < 0;
-    const vec3 wo = flip ? -wo_world_side : wo_world_side;
-    const float eta = eta_for(wo_world_side.z);
+BsdfSample PrincipledBsdf::sample(const vec3& wo_given, const vec3& u, Transport mode) const {
+    if (wo_given.z == 0) return {};
+    const bool flip = wo_given.z < 0;  // work on wo's side, as eval and pdf do
+    const vec3 wo = flip ? -wo_given : wo_given;
+    const float eta = eta_for(wo_given.z);
     const Lobes lobes = lobe_probabilities(wo.z, eta);
     if (!(lobes.cosine + lobes.interface + lobes.conductor > 0)) return {};
 

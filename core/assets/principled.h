@@ -43,7 +43,7 @@ namespace dp {
 /// What the path that queries the BSDF carries: it decides the eta^2 factor of transmission.
 enum class Transport {
     /// Camera paths: wo points towards the camera, wi towards the light. Radiance crossing
-    /// into a denser medium is compressed by (n_t / n_i)^2.
+    /// into a denser medium grows by (n_t / n_i)^2, its cone compressed by refraction.
     Radiance,
     /// Light paths (photons carry flux, an importance-like quantity): wo points back towards
     /// the light, wi where the flux goes. The adjoint BSDF, f*(wo, wi) = f(wi, wo): flux is

@@ -33,8 +33,7 @@ vec3 direction(double theta, double phi) {
 }
 vec3 incident(float degrees) { return direction(degrees * kPiD / 180, 0.3); }
 
-// Adaptive Simpson on [a, b] after a forced split into `pieces`, so that a lobe narrower than
-// the interval is not stepped over.
+// Adaptive Simpson's rule: halves [a, b] until the two halves agree with the whole.
 double simpson(const std::function<double(double)>& f, double a, double b, double fa, double fm, double fb,
                double whole, double eps, int depth) {
     const double m = (a + b) / 2, lm = (a + m) / 2, rm = (m + b) / 2;
@@ -46,6 +45,8 @@ double simpson(const std::function<double(double)>& f, double a, double b, doubl
            simpson(f, m, b, fm, frm, fb, right, eps / 2, depth - 1);
 }
 
+// Adaptive Simpson on [a, b] after a forced split into `pieces`, so that a lobe narrower than
+// the interval is not stepped over.
 double integrate(const std::function<double(double)>& f, double a, double b, double eps, int pieces = 2) {
     double sum = 0;
     for (int k = 0; k < pieces; ++k) {
@@ -88,7 +89,8 @@ SphereChiSquare sphere_chi_square(const std::function<std::optional<vec3>(Rng&)>
         const double theta = std::acos(std::clamp(double(w->z), -1.0, 1.0));
         double phi = std::atan2(double(w->y), double(w->x));
         if (phi < 0) phi += 2 * kPiD;
-        const int i = std::min(int(theta / kPiD * kTheta), kTheta - 1), j = std::min(int(phi / (2 * kPiD) * kPhi), kPhi - 1);
+        const int i = std::min(int(theta / kPiD * kTheta), kTheta - 1);
+        const int j = std::min(int(phi / (2 * kPiD) * kPhi), kPhi - 1);
         observed[i * kPhi + j] += 1;
     }
     for (int i = 0; i < kTheta; ++i)
@@ -104,15 +106,9 @@ SphereChiSquare sphere_chi_square(const std::function<std::optional<vec3>(Rng&)>
     return r;
 }
 
-// Per configuration: a 1% level over the ~150 configurations of this file (Sidak).
+// Per configuration: a 1% level over the 96 configurations of this file (Sidak).
 constexpr double kMinP = 1e-4;
 constexpr int kChiSamples = 100000;
-
-struct Config {
-    const char* name;
-    PrincipledParams params;
-    bool inside;  // wo below the surface (inside a transmissive material)
-};
 
 PrincipledParams conductor(float roughness, vec3 base = vec3(0.9f, 0.6f, 0.3f)) {
     PrincipledParams p;
@@ -157,8 +153,8 @@ double check_sampling(const char* name, const std::function<PrincipledParams(flo
                     return s.wi;
                 },
                 [&](const vec3& wi) { return double(bsdf.pdf(wo, wi)); }, kChiSamples, seed++);
-            EXPECT_GT(c.chi.p_value, kMinP) << name << " roughness " << r << " angle " << a << " chi2 " << c.chi.statistic
-                                            << " dof " << c.chi.dof << " failures " << c.failures;
+            EXPECT_GT(c.chi.p_value, kMinP) << name << " roughness " << r << " angle " << a << " chi2 "
+                                            << c.chi.statistic << " dof " << c.chi.dof << " failures " << c.failures;
             EXPECT_LE(c.pdf_integral, 1 + 1e-3) << name << " roughness " << r << " angle " << a;
             min_p = std::min(min_p, c.chi.p_value);
         }
@@ -166,17 +162,18 @@ double check_sampling(const char* name, const std::function<PrincipledParams(flo
     return min_p;
 }
 
-// Mean sample weight: the directional albedo of wo.
+enum class Side { Both, Reflected, Transmitted };
+
+// Mean sample weight: the directional albedo of wo (of one side's directions only, on request).
 vec3 albedo(const PrincipledBsdf& bsdf, const vec3& wo, int n, uint64_t seed, Transport mode = Transport::Radiance,
-            int want_side = 0) {
+            Side side = Side::Both) {
     Rng rng(seed, 11);
     dvec3 sum(0.0);
     for (int k = 0; k < n; ++k) {
         // Stratified in u.z: the lobe choice, whose variance would dominate.
         const BsdfSample s = bsdf.sample(wo, vec3(rng.uniform(), rng.uniform(), (k + rng.uniform()) / n), mode);
         if (!s) continue;
-        if (want_side > 0 && s.transmitted) continue;
-        if (want_side < 0 && !s.transmitted) continue;
+        if ((side == Side::Reflected && s.transmitted) || (side == Side::Transmitted && !s.transmitted)) continue;
         sum += dvec3(s.weight);
     }
     return vec3(sum / double(n));
@@ -212,7 +209,8 @@ TEST(GgxMicrofacet, SmithMaskingMatchesTheMicrofacetsProjectedArea) {
             const Ggx ggx(ggx_alpha(r));
             const vec3 w = incident(a);
             const double visible = patch_integral(
-                [&](const vec3& m) { return double(std::max(0.0f, glm::dot(w, m)) * ggx.D(m)); }, 0, kPiD / 2, 0, 2 * kPiD);
+                [&](const vec3& m) { return double(std::max(0.0f, glm::dot(w, m)) * ggx.D(m)); }, 0, kPiD / 2, 0,
+                2 * kPiD);
             EXPECT_NEAR(ggx.G1(w) * visible / w.z, 1.0, 2e-3) << "roughness " << r << " angle " << a;
             const double mass =
                 patch_integral([&](const vec3& m) { return double(ggx.visible_pdf(w, m)); }, 0, kPiD / 2, 0, 2 * kPiD);
@@ -228,7 +226,9 @@ TEST(GgxMicrofacet, VisibleNormalSamplesFollowTheirPdf) {
             const Ggx ggx(ggx_alpha(r));
             const vec3 w = incident(a);
             const SphereChiSquare c = sphere_chi_square(
-                [&](Rng& rng) -> std::optional<vec3> { return ggx.sample_visible(w, vec2(rng.uniform(), rng.uniform())); },
+                [&](Rng& rng) -> std::optional<vec3> {
+                    return ggx.sample_visible(w, vec2(rng.uniform(), rng.uniform()));
+                },
                 [&](const vec3& m) { return double(ggx.visible_pdf(w, m)); }, kChiSamples, seed++);
             EXPECT_GT(c.chi.p_value, kMinP) << "roughness " << r << " angle " << a << " chi2 " << c.chi.statistic;
             min_p = std::min(min_p, c.chi.p_value);
@@ -307,7 +307,8 @@ TEST(PrincipledBsdf, PdfIntegratesToAtMostOneOverTheSphere) {
                         }
                     const double n = double(n_side) * n_side, mean = sum / n;
                     const double sigma = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
-                    EXPECT_LE(mean, 1 + 4 * sigma + 1e-3) << "roughness " << r << " angle " << a << " inside " << inside;
+                    EXPECT_LE(mean, 1 + 4 * sigma + 1e-3)
+                        << "roughness " << r << " angle " << a << " inside " << inside;
                     EXPECT_GT(mean, 0.3) << "roughness " << r << " angle " << a << " inside " << inside;
                 }
 }
@@ -445,15 +446,15 @@ TEST(PrincipledBsdf, NearSmoothLimitMatchesFresnel) {
         const vec3 metal = albedo(PrincipledBsdf(conductor(r, f0)), wo, 50000, 20);
         EXPECT_LT(relative_error(metal, fresnel_schlick(f0, wo.z)), 0.01f) << "angle " << a;
         const PrincipledBsdf g(glass(r, vec3(1)));
-        const float t_flux = albedo(g, wo, 50000, 21, Transport::Importance, -1).x;
-        const float t_radiance = albedo(g, wo, 50000, 21, Transport::Radiance, -1).x;
+        const float t_flux = albedo(g, wo, 50000, 21, Transport::Importance, Side::Transmitted).x;
+        const float t_radiance = albedo(g, wo, 50000, 21, Transport::Radiance, Side::Transmitted).x;
         EXPECT_NEAR(t_flux, 1 - F, 0.01f) << "angle " << a;
         EXPECT_NEAR(t_radiance, (1 - F) / (1.5f * 1.5f), 0.01f) << "angle " << a;
         // From inside, radiance leaving into air is expanded by eta^2; beyond the critical angle
         // (41.8 degrees) all of it reflects.
         const float F_in = fresnel_dielectric(wo.z, 1.5f);
-        EXPECT_NEAR(albedo(g, -wo, 50000, 22, Transport::Importance, 1).x, F_in, 0.01f) << "angle " << a;
-        EXPECT_NEAR(albedo(g, -wo, 50000, 22, Transport::Radiance, -1).x, (1 - F_in) * 1.5f * 1.5f, 0.02f)
+        EXPECT_NEAR(albedo(g, -wo, 50000, 22, Transport::Importance, Side::Reflected).x, F_in, 0.01f) << "angle " << a;
+        EXPECT_NEAR(albedo(g, -wo, 50000, 22, Transport::Radiance, Side::Transmitted).x, (1 - F_in) * 1.5f * 1.5f, 0.02f)
             << "angle " << a;
     }
 }
