@@ -135,6 +135,14 @@ std::vector<Autosave::Orphan> Autosave::claimOrphans() const {
         found.push_back({std::move(*r), base + ".json",
                          QFileInfo(base + ".json").lastModified(), std::move(lock)});
     }
+    // Locks of studios that were killed with nothing unsaved: taken and so removed.
+    for (const QString& name : dir.entryList({QString(kPrefix) + "-*.lock"}, QDir::Files)) {
+        const QString base = dir.filePath(name.chopped(5));
+        if (base == filePath("") || QFile::exists(base + ".json")) continue;
+        QLockFile stale(base + ".lock");
+        stale.setStaleLockTime(0);
+        if (stale.tryLock(0)) stale.unlock();
+    }
     return found;
 }
 

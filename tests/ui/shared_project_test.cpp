@@ -4,6 +4,7 @@
 // while a clean quit of the other deletes only its own.
 #include <QAction>
 #include <QApplication>
+#include <QDir>
 #include <QFile>
 #include <QFileDialog>
 #include <QLineEdit>
@@ -224,13 +225,17 @@ void SharedProjectTest::aKilledStudiosCopyIsOfferedAndACleanQuitRemovesOnlyItsOw
     const QString recovery = dir.filePath("recovery");  // shared by every studio here
     OtherStudio killed(recovery, project, "from the killed studio");
     OtherStudio quits(recovery, project, "from the studio that quits");
-    QVERIFY(!killed.waitFor("ready").isEmpty() && !quits.waitFor("ready").isEmpty());
+    OtherStudio idle(recovery, project, "never autosaved");  // killed before its first autosave
+    QVERIFY(!killed.waitFor("ready").isEmpty() && !quits.waitFor("ready").isEmpty() &&
+            !idle.waitFor("ready").isEmpty());
     const QString killedCopy = killed.command("autosave", "autosaved").section(' ', 1);
     const QString quitsCopy = quits.command("autosave", "autosaved").section(' ', 1);
     QVERIFY(QFile::exists(killedCopy) && QFile::exists(quitsCopy) && killedCopy != quitsCopy);
 
     killed.process().kill();  // SIGKILL: no clean close, only its copy is left
     QVERIFY(killed.process().waitForFinished());
+    idle.process().kill();  // leaves a stale lock and no copy
+    QVERIFY(idle.process().waitForFinished());
     QVERIFY(QFile::exists(killedCopy));
 
     // A new studio while the other still runs: offered the killed one's copy, and only that.
@@ -259,6 +264,8 @@ void SharedProjectTest::aKilledStudiosCopyIsOfferedAndACleanQuitRemovesOnlyItsOw
     w3.checkRecovery();
     QVERIFY2(third.questions.isEmpty(), qPrintable(third.questions.join("|")));
     QVERIFY(!w3.document()->isOpen());
+    // Nothing left behind but the two running studios' locks: the killed ones' are gone.
+    QCOMPARE(QDir(recovery).entryList({"*.lock"}, QDir::Files).size(), 2);
 }
 
 namespace {
