@@ -113,7 +113,19 @@ fi
 # for whatever python3 is on PATH (its tests run with it). Debian's python3 refuses installs into
 # the system's site-packages (PEP 668) unless told to.
 root="$(cd "$(dirname "$0")/.." && pwd)"
-if python3 -c "import distributed, diffphoton_farm" 2>/dev/null; then
+# Present, and the same sources as farm/ (an older installed copy is replaced).
+farm_installed_is_current() {
+  python3 - "$root/farm/diffphoton_farm" <<'PY' 2>/dev/null
+import filecmp, pathlib, sys
+import distributed  # noqa: F401
+import diffphoton_farm
+installed, source = pathlib.Path(diffphoton_farm.__file__).parent, pathlib.Path(sys.argv[1])
+names = sorted(p.name for p in source.glob("*.py"))
+_, mismatch, errors = filecmp.cmpfiles(source, installed, names, shallow=False)
+sys.exit(1 if mismatch or errors else 0)
+PY
+}
+if farm_installed_is_current; then
   echo "install-deps: dask.distributed and diffphoton-farm present for $(command -v python3)"
 else
   if ! python3 -m pip --version >/dev/null 2>&1; then
