@@ -28,7 +28,7 @@ test: build
 # statistical render suite runs in `make test` only). The sanitizer build is clang's, with
 # coverage instrumentation, so the same build also holds the libFuzzer targets.
 UNIT_TESTS = $(patsubst tests/unit/%/,test_%,$(sort $(dir $(wildcard tests/unit/*/*.cpp))))
-FUZZ_TARGETS = project fspy image mesh scene
+FUZZ_TARGETS = project fspy image mesh scene merge cli mesh_files
 FUZZ_EXES = $(addprefix fuzz_,$(FUZZ_TARGETS))
 asan-configure: deps
 	@cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
@@ -40,15 +40,16 @@ test-asan: asan-configure
 	  ctest --output-on-failure -j $(JOBS) -L 'unit|cli'
 
 # Each fuzz target for FUZZ_SECONDS (tests/fuzz/README.md). New inputs collect in out/fuzz/corpus;
-# a finding is written to out/fuzz/findings/<target>/ and fails the run.
+# a finding is written to out/fuzz/findings/<target>/ and fails the run. A small input costing
+# more than 5 s, 1 GB resident or one allocation over 512 MB is a finding too.
 FUZZ_SECONDS ?= 60
-FUZZ_FLAGS ?= -rss_limit_mb=2560 -malloc_limit_mb=2048 -timeout=60
+FUZZ_FLAGS ?= -rss_limit_mb=1024 -malloc_limit_mb=512 -timeout=5
 fuzz: asan-configure
 	@cmake --build $(ASAN_BUILD) -j $(JOBS) --target $(FUZZ_EXES)
 	@for t in $(FUZZ_TARGETS); do \
 	  mkdir -p out/fuzz/corpus/$$t out/fuzz/findings/$$t; \
 	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
-	  ASAN_OPTIONS=detect_leaks=1:malloc_context_size=3 LSAN_OPTIONS=suppressions=tests/fuzz/lsan.supp \
+	  ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=tests/fuzz/lsan.supp \
 	    $(ASAN_BUILD)/tests/fuzz/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) $(FUZZ_FLAGS) \
 	    -artifact_prefix=out/fuzz/findings/$$t/ -print_final_stats=1 out/fuzz/corpus/$$t tests/fuzz/corpus/$$t \
 	    > out/fuzz/$$t.log 2>&1 || { tail -40 out/fuzz/$$t.log; exit 1; }; \

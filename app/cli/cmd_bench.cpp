@@ -215,7 +215,8 @@ nlohmann::json run_method(const BenchOptions& o, BenchScene& b, const std::strin
             {"median_pass_seconds", sorted.empty() ? 0.0 : sorted[sorted.size() / 2]}};
 }
 
-int run_bench(BenchOptions o) {
+/// The command line's own checks, before any scene is read (Command::check).
+void check_bench_options(const BenchOptions& o) {
     for (const std::string& m : o.methods)
         if (!is_differential(m) && m != "standard" && m != "standard-correlated" && !is_cycles_method(m))
             throw InputError("", "--methods",
@@ -227,6 +228,10 @@ int run_bench(BenchOptions o) {
         std::string why;
         if (!denoiser_available(&why)) throw InputError("", "--denoise", why);
     }
+}
+
+int run_bench(BenchOptions o) {
+    check_bench_options(o);
     ReadSet inputs;
     for (const std::string& dir : o.scenes) {
         std::error_code ec;
@@ -291,7 +296,7 @@ Command add_bench_command(CLI::App& app) {
                   "Also measure our methods' images denoised (Open Image Denoise, final quality) at "
                   "each measurement; the filter's time is reported apart from the render's");
     add_force_flag(sub, o->force);
-    return {sub, [o] { return run_bench(*o); }};
+    return {sub, [o] { return run_bench(*o); }, [o] { check_bench_options(*o); }};
 }
 
 }  // namespace dp::cli

@@ -243,15 +243,16 @@ Command add_calibrate_command(CLI::App& app) {
     auto commands = std::make_shared<std::vector<Command>>();
     for (Group add_group : {&add_calibrate_camera_commands})
         for (Command& c : add_group(*sub)) commands->push_back(std::move(c));
-    // proxy, albedo and probe run from their own CLI11 callbacks while parsing.
-    add_calibrate_proxy_command(*sub);
-    add_calibrate_albedo_command(*sub);
-    add_calibrate_probe_command(*sub);
     auto json = std::make_shared<bool>(false);
     for (Command& c : *commands)
         c.app->add_flag("--json", *json,
                         "Print the result as one JSON object on stdout (the other lines go to stderr)");
-    return {sub, [commands, json] {
+    // proxy, albedo and probe edit the scene and print no JSON result.
+    auto scene_commands = std::make_shared<std::vector<Command>>(std::vector<Command>{
+        add_calibrate_proxy_command(*sub), add_calibrate_albedo_command(*sub), add_calibrate_probe_command(*sub)});
+    return {sub, [commands, scene_commands, json] {
+                for (const Command& c : *scene_commands)
+                    if (c.app->parsed()) return c.run();
                 for (const Command& c : *commands) {
                     if (!c.app->parsed()) continue;
                     if (!*json) return c.run();
@@ -274,7 +275,7 @@ Command add_calibrate_command(CLI::App& app) {
                     std::printf("%s\n", last_result_json().dump(1).c_str());
                     return rc;
                 }
-                return 0;  // a scene subcommand, already run by its callback
+                return 2;  // unreachable: require_subcommand(1)
             }};
 }
 

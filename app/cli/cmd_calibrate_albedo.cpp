@@ -109,7 +109,7 @@ void run_albedo(const AlbedoOptions& o) {
 
 }  // namespace
 
-void add_calibrate_albedo_command(CLI::App& calibrate) {
+Command add_calibrate_albedo_command(CLI::App& calibrate) {
     auto o = std::make_shared<AlbedoOptions>();
     CLI::App* sub = calibrate.add_subcommand(
         "albedo", "Estimate albedo textures of real proxies from the photo and the probe");
@@ -136,7 +136,10 @@ void add_calibrate_albedo_command(CLI::App& calibrate) {
     sub->add_option("-o,--output", o->output,
                     "Write the project here instead of updating it (the textures go beside it)");
     add_force_flag(sub, o->force);
-    sub->callback([o] { run_albedo(*o); });
+    return {sub, [o] {
+                run_albedo(*o);
+                return 0;
+            }};
 }
 
 }  // namespace dp::cli

@@ -131,7 +131,7 @@ void run_probe(const ProbeOptions& o) {
 
 }  // namespace
 
-void add_calibrate_probe_command(CLI::App& calibrate) {
+Command add_calibrate_probe_command(CLI::App& calibrate) {
     auto o = std::make_shared<ProbeOptions>();
     CLI::App* sub = calibrate.add_subcommand(
         "probe",
@@ -172,7 +172,10 @@ void add_calibrate_probe_command(CLI::App& calibrate) {
         ->check(kPositive);
     sub->add_option("-o,--output", o->output, "Write the project here instead of updating it");
     add_force_flag(sub, o->force);
-    sub->callback([o] { run_probe(*o); });
+    return {sub, [o] {
+                run_probe(*o);
+                return 0;
+            }};
 }
 
 }  // namespace dp::cli

@@ -86,7 +86,7 @@ void run_proxy(const ProxyOptions& o) {
 
 }  // namespace
 
-void add_calibrate_proxy_command(CLI::App& calibrate) {
+Command add_calibrate_proxy_command(CLI::App& calibrate) {
     auto o = std::make_shared<ProxyOptions>();
     CLI::App* sub = calibrate.add_subcommand(
         "proxy", "Add a real proxy from image points: the ground plane, a wall or a box");
@@ -109,7 +109,10 @@ void add_calibrate_proxy_command(CLI::App& calibrate) {
                     "Proxy name (default: the kind); an existing one is replaced");
     sub->add_option("-o,--output", o->output, "Write the project here instead of updating it");
     add_force_flag(sub, o->force);
-    sub->callback([o] { run_proxy(*o); });
+    return {sub, [o] {
+                run_proxy(*o);
+                return 0;
+            }};
 }
 
 }  // namespace dp::cli

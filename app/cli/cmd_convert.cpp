@@ -126,7 +126,7 @@ Command add_convert_command(CLI::App& app) {
                     "How the input's values are read: auto (default), srgb, linear, or an OpenColorIO colour space");
     add_output_format_options(sub, o->format);
     add_force_flag(sub, o->force);
-    return {sub, [o] { return run_convert(*o); }};
+    return {sub, [o] { return run_convert(*o); }, [o] { check_output_path(o->output, "output"); }};
 }
 
 Command add_compare_command(CLI::App& app) {

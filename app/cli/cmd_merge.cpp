@@ -28,9 +28,14 @@ std::string ranges_text(const std::vector<std::pair<int, int>>& ranges) {
     return s;
 }
 
-int run_merge(const MergeOptions& o) {
+/// The command line's own checks, before any shard is read (Command::check).
+void check_merge_options(const MergeOptions& o) {
     if (check_output_path(o.output, "--output") != ImageKind::Exr)
         throw InputError(o.output, "--output", "merge writes an EXR file (convert it afterwards for PNG/JPEG)");
+}
+
+int run_merge(const MergeOptions& o) {
+    check_merge_options(o);
 
     // Everything is read and checked before anything is written: a refused merge writes nothing.
     // Each shard is summed as soon as it is read and checked against those before, so a merge
@@ -104,7 +109,7 @@ Command add_merge_command(CLI::App& app) {
     sub->add_flag("--allow-gaps", o->allow_gaps,
                   "Merge even if some passes are in no shard (the mean of those there are)");
     add_force_flag(sub, o->force);
-    return {sub, [o] { return run_merge(*o); }};
+    return {sub, [o] { return run_merge(*o); }, [o] { check_merge_options(*o); }};
 }
 
 }  // namespace dp::cli

@@ -71,7 +71,7 @@ Command add_reference_command(CLI::App& app) {
     sub->add_option("--exposure", o->exposure, "PNG/JPEG only: exposure in stops")
         ->check(kFinite);
     add_force_flag(sub, o->force);
-    return {sub, [o] { return run_reference(*o); }};
+    return {sub, [o] { return run_reference(*o); }, [o] { check_output_path(o->output, "--output"); }};
 }
 
 }  // namespace dp::cli

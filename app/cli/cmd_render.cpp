@@ -85,9 +85,9 @@ int reported_under_flags(const RenderOptions& o, F&& work) {
     }
 }
 
-/// `--pass-range`: a shard of the passes, written as exact sums for `merge` (render_shard.h).
-/// Refuses what would make its passes depend on passes it does not render.
-int run_shard(const RenderOptions& o) {
+/// `--pass-range`'s options: refuses what would make a shard's passes depend on passes it does
+/// not render, or what a shard does not hold.
+void check_shard_options(const RenderOptions& o) {
     if (o.adaptive == "on")
         throw InputError("", "--adaptive", "a shard's passes must not depend on passes it does not render: "
                                            "--pass-range renders without adaptive sampling");
@@ -97,6 +97,13 @@ int run_shard(const RenderOptions& o) {
     if (o.denoise) throw InputError("", "--denoise", "shards hold sums, not images; denoise the merged image");
     if (o.layers) throw InputError("", "--layers", "shards hold every layer's sums; pass --layers to merge");
     if (o.pixel_opt->count()) throw InputError("", "--pixel", "cannot be used with --pass-range");
+    int begin = 0, end = 0;
+    parse_pass_range(o.pass_range, begin, end);
+    check_shard_output(o.output);
+}
+
+/// `--pass-range`: a shard of the passes, written as exact sums for `merge` (render_shard.h).
+int run_shard(const RenderOptions& o) {
     ShardRequest r;
     r.project = o.project;
     r.output = o.output;
@@ -173,18 +180,14 @@ void check_method_options(const RenderOptions& o, bool standard, bool debug) {
         std::string why;
         if (!denoiser_available(&why)) throw InputError("", "--denoise", why);
     }
-    if (standard && o.photons_opt->count())
-        warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
 }
 
-int render_loaded(const RenderOptions& o, ImageKind kind, bool debug, int px, int py);
-
-int run_render(const RenderOptions& o) {
-    if (o.range_opt->count()) return run_shard(o);
+/// The command line's own checks, before any file is read (Command::check).
+void check_render_options(const RenderOptions& o) {
+    if (o.range_opt->count()) return check_shard_options(o);
     const bool debug = o.pixel_opt->count() > 0;
     if (!debug && o.output.empty()) throw CLI::RequiredError("--output");
-    ImageKind kind = ImageKind::Exr;
-    if (!o.output.empty()) kind = check_output_path(o.output, "--output");
+    const ImageKind kind = o.output.empty() ? ImageKind::Exr : check_output_path(o.output, "--output");
     if (o.layers && kind != ImageKind::Exr)
         throw InputError(o.output, "--layers", "layers can only be written to an EXR file");
     if (o.format.bits != 0 && kind == ImageKind::Exr)
@@ -192,9 +195,22 @@ int run_render(const RenderOptions& o) {
     if (o.format.half && kind != ImageKind::Exr) throw InputError(o.output, "--half", "only EXR outputs are half floats");
     int px = 0, py = 0;
     if (debug) parse_pixel(o.pixel, px, py);
+    check_method_options(o, o.method != "differential", debug);
+}
+
+int render_loaded(const RenderOptions& o, ImageKind kind, bool debug, int px, int py);
+
+int run_render(const RenderOptions& o) {
+    check_render_options(o);
+    if (o.range_opt->count()) return run_shard(o);
+    const bool debug = o.pixel_opt->count() > 0;
+    const ImageKind kind = o.output.empty() ? ImageKind::Exr : check_output_path(o.output, "--output");
+    int px = 0, py = 0;
+    if (debug) parse_pixel(o.pixel, px, py);
     if (debug && !o.output.empty()) warn("--output is ignored with --pixel; nothing is written");
     const bool standard = o.method != "differential";
-    check_method_options(o, standard, debug);
+    if (standard && o.photons_opt->count())
+        warn("--photons is ignored by --method standard (a pass is one path-traced sample per pixel)");
 
     return reported_under_flags(o, [&] { return render_loaded(o, kind, debug, px, py); });
 }
@@ -318,7 +334,7 @@ Command add_render_command(CLI::App& app) {
     sub->add_option("--pass", o->pass, "Debug: the pass for --pixel (1-based)")
         ->check(kPositive)
         ->needs(o->pixel_opt);
-    return {sub, [o] { return run_render(*o); }};
+    return {sub, [o] { return run_render(*o); }, [o] { check_render_options(*o); }};
 }
 
 }  // namespace dp::cli

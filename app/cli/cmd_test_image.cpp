@@ -116,7 +116,7 @@ Command add_make_test_image_command(CLI::App& app) {
     sub->add_option("--value2", o->value2, "The checkerboard's second colour")->expected(3)->check(kFinite);
     sub->add_option("--nan", o->nan_pixels, "Number of pixels whose red channel is NaN");
     add_force_flag(sub, o->force);
-    return {sub, [o] { return run_make_test_image(*o); }};
+    return {sub, [o] { return run_make_test_image(*o); }, [o] { check_output_path(o->output, "output"); }};
 }
 
 }  // namespace dp::cli

@@ -1,16 +1,24 @@
 #pragma once
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace dp::cli {
 
 /// A subcommand registered on the top-level app, and what runs it once parsing succeeded.
 /// `run` returns the exit code; it throws InputError for bad input and anything else for
-/// internal errors (main maps them to exit codes 2 and 1).
+/// internal errors (main maps them to exit codes 2 and 1). Nothing runs while parsing.
 struct Command {
+    Command(CLI::App* app, std::function<int()> run, std::function<void()> check = {})
+        : app(app), run(std::move(run)), check(std::move(check)) {}
+
     CLI::App* app = nullptr;
     std::function<int()> run;
+    /// The checks of the parsed options that `run` makes first and that read no file (an
+    /// output's extension, options that exclude each other, "A:B" texts); empty where parsing
+    /// checks them all. Throws InputError or CLI::Error. The cli fuzz target calls it alone.
+    std::function<void()> check;
 };
 
 Command add_render_command(CLI::App& app);
@@ -32,11 +40,10 @@ Command add_calibrate_command(CLI::App& app);
 std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate);
 /// `calibrate proxy`, `albedo` and `probe` (cmd_calibrate_proxy.cpp, cmd_calibrate_albedo.cpp,
 /// cmd_calibrate_probe.cpp): real proxies, albedo textures and probe alignment, added to the
-/// `calibrate` command. Each subcommand runs from its CLI11 callback and throws InputError for
-/// bad input.
-void add_calibrate_proxy_command(CLI::App& calibrate);
-void add_calibrate_albedo_command(CLI::App& calibrate);
-void add_calibrate_probe_command(CLI::App& calibrate);
+/// `calibrate` command.
+Command add_calibrate_proxy_command(CLI::App& calibrate);
+Command add_calibrate_albedo_command(CLI::App& calibrate);
+Command add_calibrate_probe_command(CLI::App& calibrate);
 /// Hidden: writes constant images and synthetic probes for the shell tests.
 Command add_make_test_image_command(CLI::App& app);
 

@@ -36,10 +36,14 @@ void parse_pass_range(const std::string& text, int& begin, int& end) {
         throw InputError("", "--pass-range", "the range " + text + " is empty (B must be greater than A)");
 }
 
+void check_shard_output(const std::string& output) {
+    if (output.empty()) throw CLI::RequiredError("--output");
+    if (fs::path(output).extension() != ".dpp")
+        throw InputError(output, "--output", "a shard is written to a .dpp file (--pass-range)");
+}
+
 int render_shard(const ShardRequest& r) {
-    if (r.output.empty()) throw CLI::RequiredError("--output");
-    if (fs::path(r.output).extension() != ".dpp")
-        throw InputError(r.output, "--output", "a shard is written to a .dpp file (--pass-range)");
+    check_shard_output(r.output);
     return with_threads(r.threads, [&]() -> int {
         auto edit = [&](Project& p) {
             if (r.edit) r.edit(p);

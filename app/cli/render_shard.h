@@ -18,6 +18,9 @@ struct ShardRequest {
 /// Parses "A:B" (0 <= A < B) into [begin, end). Throws InputError naming --pass-range.
 void parse_pass_range(const std::string& text, int& begin, int& end);
 
+/// Refuses a shard output that is not a .dpp file (InputError) or is missing (CLI::RequiredError).
+void check_shard_output(const std::string& output);
+
 /// Renders the passes of `r` without adaptive sampling and writes their exact sums with a
 /// header (core/render/pass_shard.h) to r.output, which must end in .dpp. Returns the exit
 /// code; throws InputError for bad input. Interrupted, it writes nothing: a shard holds all

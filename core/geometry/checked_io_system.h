@@ -14,12 +14,16 @@ namespace dp {
 /// Every file Assimp opens for one mesh (the mesh file, a glTF's buffers, an OBJ's MTL) passes
 /// check_input_file first: a FIFO, a device or a folder a mesh file names is refused instead of
 /// blocking the reader or feeding it without end, and the files together are bounded by
-/// kMaxMeshFileBytes. Assimp turns exceptions thrown through it into text, so a refusal is kept
-/// and thrown by rethrow_refusal once Assimp has returned.
+/// kMaxMeshFileBytes. Where Assimp's OBJ reader may read the mesh, each file passes
+/// check_material_library too: that reader reads every other file it opens as a material
+/// library, and the mesh itself where it names itself as one. Assimp turns exceptions thrown
+/// through it into text, so a refusal is kept and thrown by rethrow_refusal once Assimp has
+/// returned.
 class CheckedIOSystem : public Assimp::DefaultIOSystem {
 public:
-    /// For the mesh `mesh_path`, named in messages with `field`.
-    CheckedIOSystem(std::string mesh_path, std::string field);
+    /// For the mesh `mesh_path`, named in messages with `field`; `material_libraries`: the OBJ
+    /// reader may read it.
+    CheckedIOSystem(std::string mesh_path, std::string field, bool material_libraries);
 
     /// Whether `file` exists, without opening it (opening a FIFO blocks).
     bool Exists(const char* file) const override;
@@ -32,6 +36,7 @@ public:
 
 private:
     std::string mesh_, field_;
+    bool material_libraries_ = false;
     std::set<std::string> counted_;  ///< files whose bytes are in total_, by canonical path
     uint64_t total_ = 0;
     std::optional<InputError> refusal_;

@@ -7,11 +7,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <set>
 #include <sstream>
 #include <vector>
 
 #include "base/error.h"
+#include "base/text.h"
+#include "geometry/gltf_json.h"
 #include "geometry/mesh_limits.h"
 
 namespace dp {
@@ -32,7 +35,69 @@ bool is_count(const std::string& s) {
 
 uint32_t le32(const unsigned char* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 
+/// What the first characters of an MTL line make Assimp's reader do: start a material ("ne...",
+/// either case of the n), write into the current one without checking there is one (a texture,
+/// an anisotropy), or something harmless.
+enum class MtlLine { Material, Unchecked, Other };
+
+MtlLine mtl_line(const std::string& head) {
+    if (head.size() >= 2 && (head[0] == 'n' || head[0] == 'N') && head[1] == 'e') return MtlLine::Material;
+    if (head[0] == 'a' || head[0] == 'A') return MtlLine::Unchecked;
+    const std::string key = ascii_lower(head.substr(0, 4));
+    for (const char* texture : {"map_", "bump", "disp", "norm", "refl"})
+        if (key == texture) return MtlLine::Unchecked;
+    return MtlLine::Other;
+}
+
+bool starts_with(const std::vector<char>& bytes, std::initializer_list<unsigned char> mark) {
+    return bytes.size() >= mark.size() && std::equal(mark.begin(), mark.end(), bytes.begin(), [](unsigned char m, char c) {
+               return m == static_cast<unsigned char>(c);
+           });
+}
+
 }  // namespace
+
+void check_material_library(const std::string& path, const std::string& field) {
+    std::error_code ec;
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    std::ifstream in(path, std::ios::binary);
+    // A multiple of 4 bytes, so that the groups swapped below stay whole.
+    std::vector<char> chunk(size_t(1) << 16);
+    auto next_chunk = [&] {
+        chunk.resize(size_t(1) << 16);
+        in.read(chunk.data(), std::streamsize(chunk.size()));
+        chunk.resize(size_t(in.gcount()));
+    };
+    next_chunk();
+    if (ec || size < 8) return;  // Assimp refuses a file this small before reading it
+    // The text as Assimp's reader sees it: a UTF-8 mark dropped, big-endian UTF-16 and UTF-32
+    // byte-swapped (and left at that: their NUL bytes end lines).
+    const size_t skip = starts_with(chunk, {0xEF, 0xBB, 0xBF}) ? 3 : 0;
+    const size_t group = starts_with(chunk, {0x00, 0x00, 0xFE, 0xFF})            ? 4
+                         : starts_with(chunk, {0xFE, 0xFF}) && size % 2 == 0 ? 2
+                                                                                  : 1;
+    std::string head;  // the current line's first characters
+    uint64_t line = 1;
+    for (size_t from = skip; !chunk.empty(); from = 0, next_chunk()) {
+        for (size_t g = 0; g + group <= chunk.size(); g += group) std::reverse(&chunk[g], &chunk[g] + group);
+        for (size_t i = from; i < chunk.size(); ++i) {
+            const char c = chunk[i];
+            if (c == '\n' || c == '\r' || c == '\f' || c == '\0') {
+                line += c == '\n';
+                head.clear();
+                continue;
+            }
+            if (head.size() >= 4) continue;
+            head += c;
+            const MtlLine kind = mtl_line(head);
+            if (kind == MtlLine::Material) return;
+            if (kind == MtlLine::Unchecked)
+                throw InputError(path, field,
+                                 "material library: line " + std::to_string(line) + " ('" + head +
+                                     "...') sets a material before the file's first one (newmtl)");
+        }
+    }
+}
 
 void check_ply_header(const std::string& path, const std::string& field) {
     constexpr size_t kMaxHeader = 64 * 1024;
@@ -86,6 +151,8 @@ void check_ply_header(const std::string& path, const std::string& field) {
     fail(n, bytes.size() == kMaxHeader ? "no end_header in the first 64 KiB" : "no end_header line");
 }
 
+bool is_gltf_json(const std::string& path) { return parse_gltf_json(gltf_json_text(path)).doc.is_object(); }
+
 void check_gltf_buffers(const std::string& path, const std::string& field) {
     using json = nlohmann::json;
     std::error_code ec;
@@ -112,7 +179,8 @@ void check_gltf_buffers(const std::string& path, const std::string& field) {
     } else {
         text.assign(bytes.begin(), bytes.end());
     }
-    const json doc = json::parse(text, nullptr, false);
+    const GltfJson gltf = parse_gltf_json(text);
+    const json& doc = gltf.doc;
     if (doc.is_discarded() || !doc.is_object()) return;  // Assimp names the syntax error
     const auto buffers = doc.find("buffers");
     if (buffers == doc.end() || !buffers->is_array()) return;
@@ -125,7 +193,7 @@ void check_gltf_buffers(const std::string& path, const std::string& field) {
         uint64_t available = bin_chunk;
         const auto uri = b.find("uri");
         if (uri != b.end() && uri->is_string()) {
-            const std::string u = uri->get<std::string>();
+            const std::string u = gltf.file_string(*uri);
             if (u.rfind("data:", 0) == 0) {
                 available = u.size() / 4 * 3 + 3;  // base64 holds 3 bytes per 4 characters
             } else {

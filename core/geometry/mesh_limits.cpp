@@ -12,6 +12,7 @@
 #include "base/memory.h"
 #include "base/text.h"
 #include "geometry/checked_io_system.h"
+#include "geometry/mesh_file_checks.h"
 
 namespace dp {
 
@@ -40,8 +41,8 @@ void check_mesh_triangles(const std::string& path, const std::string& field, uin
                          std::to_string(limit) + " triangles" + buf + ": simplify it or split it into parts");
 }
 
-CheckedIOSystem::CheckedIOSystem(std::string mesh_path, std::string field)
-    : mesh_(std::move(mesh_path)), field_(std::move(field)) {}
+CheckedIOSystem::CheckedIOSystem(std::string mesh_path, std::string field, bool material_libraries)
+    : mesh_(std::move(mesh_path)), field_(std::move(field)), material_libraries_(material_libraries) {}
 
 bool CheckedIOSystem::Exists(const char* file) const {
     struct stat st {};
@@ -51,8 +52,10 @@ bool CheckedIOSystem::Exists(const char* file) const {
 Assimp::IOStream* CheckedIOSystem::Open(const char* file, const char* mode) {
     // Assimp only reads here; a mode that writes is no reader's.
     if (!file || !mode || std::strpbrk(mode, "wa+")) return nullptr;
-    // A missing file is Assimp's to report (or an optional one it looks for).
-    if (!Exists(file)) return nullptr;
+    // A missing file is Assimp's to report (or an optional one it looks for). After a refusal
+    // the mesh fails whatever Assimp does, so nothing more is opened (a refused file asked for
+    // again would not be checked twice).
+    if (refusal_ || !Exists(file)) return nullptr;
     try {
         const bool main = std::string(file) == mesh_;
         const std::string what =
@@ -60,7 +63,10 @@ Assimp::IOStream* CheckedIOSystem::Open(const char* file, const char* mode) {
         const uint64_t bytes = check_input_file(file, field_, what, kMaxMeshFileBytes);
         std::error_code ec;
         const std::string key = std::filesystem::weakly_canonical(file, ec).string();
-        if (counted_.insert(ec ? std::string(file) : key).second) total_ += bytes;
+        if (counted_.insert(ec ? std::string(file) : key).second) {
+            total_ += bytes;
+            if (material_libraries_) check_material_library(file, field_);
+        }
         if (total_ > kMaxMeshFileBytes)
             throw InputError(mesh_, field_,
                              "the mesh and the files it reads come to " + format_bytes(double(total_)) +

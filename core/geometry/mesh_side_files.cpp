@@ -19,6 +19,7 @@
 #include <string_view>
 
 #include "base/text.h"
+#include "geometry/gltf_json.h"
 
 namespace dp {
 
@@ -172,22 +173,9 @@ std::string uri_decoded(const std::string& uri) {
     return out;
 }
 
-uint32_t le32(const unsigned char* p) {
-    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-
-/// The JSON text of a .gltf file, or of a .glb file's first chunk.
-std::string gltf_json(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) return bytes;
-    const auto* b = reinterpret_cast<const unsigned char*>(bytes.data());
-    const uint64_t length = le32(b + 12);
-    return 20 + length <= bytes.size() ? bytes.substr(20, size_t(length)) : "";
-}
-
 void add_gltf_files(const fs::path& path, SideFiles& out) {
-    const nlohmann::json doc = nlohmann::json::parse(gltf_json(path), nullptr, false);
+    const GltfJson gltf = parse_gltf_json(gltf_json_text(path.string()));
+    const nlohmann::json& doc = gltf.doc;
     if (doc.is_discarded() || !doc.is_object()) return;
     using Kind = MeshSideFile::Kind;
     const std::pair<const char*, Kind> kLists[] = {{"buffers", Kind::Buffer}, {"images", Kind::Image}};
@@ -198,7 +186,7 @@ void add_gltf_files(const fs::path& path, SideFiles& out) {
             if (!item.is_object()) continue;
             const auto uri = item.find("uri");
             if (uri == item.end() || !uri->is_string()) continue;
-            const std::string u = uri->get<std::string>();
+            const std::string u = gltf.file_string(*uri);
             if (u.rfind("data:", 0) == 0) continue;  // held in the file itself
             // Decoded as the glTF specification says; as written too, which is how Assimp opens it.
             out.add(path.parent_path(), uri_decoded(u), kind);

@@ -65,6 +65,7 @@ bool png_size(std::ifstream& f, DeclaredSize& s) {
 struct TiffTags {
     int64_t width = 0, height = 0;
     int orientation = 1;  ///< 1 to 8
+    int64_t compression = 1, samples = 1;  ///< 1: none; samples per pixel
 };
 
 /// Reads the first IFD of the TIFF structure at `base` in `f` (classic TIFF or BigTIFF, either
@@ -105,12 +106,15 @@ bool read_tiff_ifd(std::istream& f, std::streamoff base, std::streamoff limit, T
         if (tag == 256) tags.width = int64_t(v);
         if (tag == 257) tags.height = int64_t(v);
         if (tag == 0x0112 && v >= 1 && v <= 8) tags.orientation = int(v);
+        if (tag == 259) tags.compression = int64_t(v);
+        if (tag == 277) tags.samples = int64_t(v);
     }
     return true;
 }
 
 /// A TIFF file: the size of its first image as it loads (orientation 5 to 8 turns it). Its
-/// codings (CCITT fax above all) pack flat pictures too well for a bound on the file's size.
+/// codings (CCITT fax above all) pack flat pictures too well for a bound on the file's size;
+/// an uncompressed one holds at least a bit per sample.
 bool tiff_size(std::ifstream& f, DeclaredSize& s) {
     f.seekg(0, std::ios::end);
     const std::streamoff size = f.tellg();
@@ -118,6 +122,11 @@ bool tiff_size(std::ifstream& f, DeclaredSize& s) {
     if (!read_tiff_ifd(f, 0, size, tags)) return false;
     s.width = tags.width;
     s.height = tags.height;
+    if (tags.compression == 1) {
+        const double samples = double(s.width) * double(s.height) * double(std::max<int64_t>(tags.samples, 1));
+        s.min_file_bytes = to_bytes(samples / 8.0);
+        s.min_bytes_why = "uncompressed, it holds at least a bit per sample";
+    }
     if (tags.orientation >= 5) std::swap(s.width, s.height);
     return s.width > 0 && s.height > 0;
 }

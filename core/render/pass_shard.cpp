@@ -16,6 +16,7 @@
 #include "base/memory.h"
 #include "base/rng.h"
 #include "geometry/mesh_side_files.h"
+#include "image/image_io.h"
 #include "render/frame_plan.h"
 #include "scene/project_io.h"
 
@@ -125,8 +126,15 @@ ShardHeader parse_header(const Reader& r, const std::string& text) {
         r.fail(std::string("damaged shard header: ") + e.what());
     }
     if (h.pass_begin < 0 || h.pass_end <= h.pass_begin) r.fail("damaged shard header: empty pass range");
-    if (h.width <= 0 || h.height <= 0 || h.tile <= 0 || h.tile > 64 || h.width > (1 << 16) || h.height > (1 << 16))
+    // The tiles are the renderer's; the frame is the photo's, which a merge must decode. Both
+    // are checked before the sums are allocated by them: a few hundred bytes declaring a
+    // 65536-pixel square frame of 1-pixel tiles would ask for 50 GB.
+    if (h.width <= 0 || h.height <= 0 || h.tile != FramePlan::kTile || h.width > (1 << 16) || h.height > (1 << 16))
         r.fail("damaged shard header: impossible frame size");
+    if (uint64_t(h.width) * uint64_t(h.height) > max_decoded_image_pixels())
+        r.fail("damaged shard header: a frame of " + std::to_string(h.width) + " x " + std::to_string(h.height) +
+               " pixels, more than the " + std::to_string(max_decoded_image_pixels()) +
+               " of the largest photo a merge can read");
     return h;
 }
 
@@ -233,7 +241,7 @@ double shard_bytes_at_most(int width, int height) {
     return tiles * (4.0 + double(kTile) * kTile * 8 * 16) + 64.0 * 1024;
 }
 
-void write_shard(const std::string& path, const ShardHeader& header, const TileAccumulator& sums) {
+std::string shard_file_bytes(const ShardHeader& header, const TileAccumulator& sums) {
     std::string out(kMagic, sizeof kMagic);
     const std::string text = header_json(header).dump(2);
     put_u64(out, text.size());
@@ -254,11 +262,19 @@ void write_shard(const std::string& path, const ShardHeader& header, const TileA
             }
         }
     }
-    Fingerprint f;
-    f.add(out.data(), out.size());
-    put_u64(out, f.digest64());
+    put_u64(out, shard_checksum(out.data(), out.size()));
     out.append(kEnd, sizeof kEnd);
-    write_file_atomically(path, out);
+    return out;
+}
+
+void write_shard(const std::string& path, const ShardHeader& header, const TileAccumulator& sums) {
+    write_file_atomically(path, shard_file_bytes(header, sums));
+}
+
+uint64_t shard_checksum(const void* data, size_t size) {
+    Fingerprint f;
+    f.add(data, size);
+    return f.digest64();
 }
 
 Shard read_shard(const std::string& path) {
@@ -269,11 +285,10 @@ Shard read_shard(const std::string& path) {
     if (bytes.size() < sizeof kMagic + 24 || std::memcmp(bytes.data() + bytes.size() - 8, kEnd, 8) != 0)
         r.fail("truncated: the shard file ends early (" + std::to_string(bytes.size()) + " bytes)");
     {
-        Fingerprint f;
-        f.add(bytes.data(), bytes.size() - 16);
         Reader tail(path, bytes);
         tail.take(bytes.size() - 16);
-        if (tail.u64() != f.digest64()) r.fail("damaged: the shard's checksum does not match its contents");
+        if (tail.u64() != shard_checksum(bytes.data(), bytes.size() - 16))
+            r.fail("damaged: the shard's checksum does not match its contents");
     }
     r.take(sizeof kMagic);
     const uint64_t header_size = r.u64();

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,13 +52,21 @@ ProjectFingerprint fingerprint_project(const Project& project);
 /// little-endian integers, and a checksum, so that a truncated or damaged file is refused.
 /// Throws std::runtime_error if the file cannot be written.
 void write_shard(const std::string& path, const ShardHeader& header, const TileAccumulator& sums);
+/// The bytes write_shard writes.
+std::string shard_file_bytes(const ShardHeader& header, const TileAccumulator& sums);
 
 /// The most a shard of a width x height frame may take: every tile touched.
 double shard_bytes_at_most(int width, int height);
 
 /// Reads a shard. Throws InputError naming the file for anything that is not a complete shard
-/// of this format (wrong magic, truncated, damaged, inconsistent sizes).
+/// of this format (wrong magic, truncated, damaged, inconsistent sizes, a frame larger than a
+/// photo may be or tiles that are not the renderer's), before allocating by what it declares.
 Shard read_shard(const std::string& path);
+
+/// The checksum a shard file stores after its tiles: of the `size` bytes before it. It tells
+/// damage apart, not forgery: the merge fuzzer reseals the shards it alters with it, so that
+/// its mutations reach the header and the tiles.
+uint64_t shard_checksum(const void* data, size_t size);
 
 /// The pass ranges [begin, end) that none of `shards` covers inside [0, max end), in order.
 std::vector<std::pair<int, int>> shard_gaps(const std::vector<ShardHeader>& shards);

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "base/error.h"
 
@@ -17,16 +19,19 @@ namespace dp::fuzz {
 
 /// A folder of this process's own (removed at exit), so parallel fuzzing jobs never share files.
 inline const std::filesystem::path& scratch_dir() {
-    static const std::filesystem::path dir = [] {
-        auto d = std::filesystem::temp_directory_path() / ("dp-fuzz-" + std::to_string(::getpid()));
-        std::filesystem::create_directories(d);
+    // Never destroyed: the handler that removes the folder is registered before the path would
+    // be, so it would run after the path's destructor.
+    static const std::filesystem::path* const dir = [] {
+        auto* d = new std::filesystem::path(std::filesystem::temp_directory_path() /
+                                            ("dp-fuzz-" + std::to_string(::getpid())));
+        std::filesystem::create_directories(*d);
         std::atexit([] {
             std::error_code ec;
             std::filesystem::remove_all(scratch_dir(), ec);
         });
         return d;
     }();
-    return dir;
+    return *dir;
 }
 
 /// Writes the input to `name` in the scratch folder and returns its path.
@@ -57,6 +62,28 @@ inline void require(bool ok, const char* what) {
         std::fprintf(stderr, "fuzz finding: %s\n", what);
         std::abort();
     }
+}
+
+/// The input cut at every `separator` (an input of several files): at most `max_parts`, the
+/// last one keeping what follows.
+inline std::vector<std::string> split_input(const uint8_t* data, size_t size, std::string_view separator,
+                                            size_t max_parts) {
+    const std::string_view all(reinterpret_cast<const char*>(data), size);
+    std::vector<std::string> parts;
+    size_t start = 0;
+    while (parts.size() + 1 < max_parts) {
+        const size_t at = all.find(separator, start);
+        if (at == std::string_view::npos) break;
+        parts.emplace_back(all.substr(start, at - start));
+        start = at + separator.size();
+    }
+    parts.emplace_back(all.substr(start));
+    return parts;
+}
+
+/// Writes `bytes` to `name` in the scratch folder and returns its path.
+inline std::string write_file(const std::string& bytes, const std::string& name) {
+    return write_input(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), name);
 }
 
 }  // namespace dp::fuzz

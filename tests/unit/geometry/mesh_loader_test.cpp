@@ -285,6 +285,37 @@ TEST_F(MeshLoader, RefusesAFaceWithoutVertices) {
     EXPECT_NE(message.find("has no vertices"), std::string::npos) << message;
 }
 
+// Assimp's MTL reader writes a texture or an anisotropy statement that comes before the file's
+// first material through a null pointer; the file is refused, however its lines end or are
+// encoded, and a material library that starts with its material still loads.
+TEST_F(MeshLoader, RefusesAMaterialLibraryThatSetsAMaterialBeforeNamingOne) {
+    const std::string obj = "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+    write("tri.mtl", "# colours\n\nnewmtl red\nKd 1 0 0\nmap_Kd missing.png\n");
+    EXPECT_EQ(load_mesh(write("tri.obj", obj)).materials.size(), 1u);
+    const std::string padding = "\n# a comment, the reader wants 8 bytes\n";
+    const std::string refused[] = {
+        "map_Kd red.png", "bump red.png", "disp red.png", "norm red.png", "a 0.5", "# x\rmap_Kd red.png",
+        std::string("# x\0norm red.png", 16),                         // NUL ends a line
+        "\xEF\xBB\xBFmap_Kd red.png",                                   // a UTF-8 mark is dropped
+        std::string("\xFF\xFEn\0e\0w\0m\0t\0l\0 \0a\0\n\0", 20),  // UTF-16: the 'a' is a line
+    };
+    for (const std::string& mtl : refused) {
+        write("tri.mtl", mtl + padding);
+        const std::string message = input_error_text([&] { load_mesh(write("tri.obj", obj)); });
+        EXPECT_NE(message.find("sets a material before the file's first one"), std::string::npos) << message;
+    }
+    // An OBJ that names itself as its material library is read as one too.
+    const std::string self = "mtllib self.obj\nmap_Kd red.png\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    EXPECT_NE(input_error_text([&] { load_mesh(write("self.obj", self)); }).find("line 2 ('map_"), std::string::npos);
+}
+
+// A failed allocation is reported as out of memory; a file whose text merely says so is not.
+TEST_F(MeshLoader, AFileQuotingBadAllocIsAnInputErrorNotOutOfMemory) {
+    const std::string quote = write("quote.obj", std::string("\0\nvn bad_alloc", 14));
+    const std::string message = input_error_text([&] { load_mesh(quote); });
+    EXPECT_NE(message.find("cannot read mesh"), std::string::npos) << message;
+}
+
 // A glTF buffer is allocated at its declared size: 4 GB declared by a few hundred bytes is refused.
 TEST_F(MeshLoader, RefusesGltfBuffersThatDeclareMoreBytesThanTheyHold) {
     const std::string gltf = R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 4294967295,

@@ -91,6 +91,17 @@ TEST_F(MeshSideFiles, AGltfNamesItsBuffersAndImagesButNotItsDataUris) {
     EXPECT_EQ(names(gltf), (Names{"maps/albedo.png", "mesh data.bin"}));
 }
 
+// Assimp's JSON reader takes bytes that are not UTF-8 as they are, in a key or in a file name
+// written in Latin-1 (Windows); the files such a document names are found all the same.
+TEST_F(MeshSideFiles, AGltfThatIsNotUtf8NamesItsFilesByTheirBytes) {
+    write("d\xE9" "cor.png", "x");
+    write("mesh.bin", "0123");
+    const std::string gltf = write("m.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"na\xCBme\": 1,"
+                                             " \"buffers\": [{\"uri\": \"mesh.bin\", \"byteLength\": 4}],"
+                                             " \"images\": [{\"uri\": \"d\xE9" "cor.png\"}]}");
+    EXPECT_EQ(names(gltf), (Names{"d\xE9" "cor.png", "mesh.bin"}));
+}
+
 TEST_F(MeshSideFiles, AGlbNamesTheFilesOfItsJsonChunk) {
     write("ext.png", "x");
     std::string json = R"({"asset": {"version": "2.0"}, "images": [{"uri": "ext.png"}]})";

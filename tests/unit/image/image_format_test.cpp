@@ -189,6 +189,16 @@ TEST(ImageHeaderSize, ATiffIsMeasuredFromItsHeaderToo) {
     EXPECT_NE(what.find("of memory, more than the limit"), std::string::npos) << what;
 }
 
+TEST(ImageHeaderSize, AnUncompressedTiffTooShortForItsSamplesIsRefused) {
+    // Within the pixel limit, but 50 bytes cannot hold 2048 x 2048 samples stored as they are:
+    // the decoder would allocate the picture and fill it with zeros.
+    TempDir dir;
+    write_bytes(dir.file("short.tif"), tiff_declaring(2048, 2048));
+    const std::string what = refusal(dir.file("short.tif"));
+    EXPECT_NE(what.find("declares 2048 x 2048 pixels"), std::string::npos) << what;
+    EXPECT_NE(what.find("uncompressed, it holds at least a bit per sample"), std::string::npos) << what;
+}
+
 TEST(ImageHeaderSize, CompleteFilesOfEveryFormatStillLoad) {
     TempDir dir;
     const Image image = random_image(64, 48, 17, 0.0f, 1.0f);

@@ -126,6 +126,38 @@ TEST(RenderShards, AShardFileReadsBackToTheSameSumsAndATruncatedOneIsRefused) {
     std::filesystem::remove_all(dir);
 }
 
+// The sums are allocated by the frame the header declares: a few hundred bytes declaring a frame
+// no photo can be, or tiles that are not the renderer's, are refused before that.
+TEST(RenderShards, AHeaderDeclaringAFrameNoPhotoCanBeIsRefusedBeforeTheSumsAreAllocated) {
+    const auto dir = std::filesystem::temp_directory_path() / ("dp_shard_frame_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "part.dpp").string();
+    struct Frame {
+        int width, height, tile;
+        const char* why;
+    };
+    for (const Frame& f : {Frame{65536, 65536, 8, "more than the"}, Frame{640, 480, 1, "impossible frame size"},
+                           Frame{640, 480, 16, "impossible frame size"}}) {
+        ShardHeader h;
+        h.pass_begin = 0;
+        h.pass_end = 1;
+        h.width = f.width;
+        h.height = f.height;
+        h.tile = f.tile;
+        TileAccumulator none(8, 8, 8);  // no tile touched: the file is its header and little else
+        none.set_passes(1);
+        write_shard(path, h, none);
+        EXPECT_LT(std::filesystem::file_size(path), 1000u);
+        try {
+            read_shard(path);
+            ADD_FAILURE() << f.width << " x " << f.height << " in tiles of " << f.tile << " was read";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(f.why), std::string::npos) << e.what();
+        }
+    }
+    std::filesystem::remove_all(dir);
+}
+
 TEST(RenderShards, GapsAndOverlapsAreFoundWhateverTheOrder) {
     auto header = [](int b, int e) {
         ShardHeader h;
