@@ -14,6 +14,7 @@
 
 #include "base/error.h"
 #include "calibration/cv_util.h"
+#include "base/byte_order.h"
 
 namespace dp {
 namespace {
@@ -21,10 +22,6 @@ namespace {
 using json = nlohmann::json;
 
 constexpr uint32_t kMagic = 0x79707366;  // "fspy" read as a little-endian uint32
-
-uint32_t le32(const uint8_t* p) {
-    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
 
 /// Metres per fSpy reference distance unit; 0 when the unit is not known. "No unit" is what
 /// fSpy 1.0 writes for none ("None" in earlier versions): lengths in whatever the reference

@@ -1,4 +1,5 @@
 #include "geometry/gltf_json.h"
+#include "base/byte_order.h"
 
 #include <cstdint>
 #include <fstream>
@@ -7,10 +8,6 @@
 namespace dp {
 
 namespace {
-
-uint32_t le32(const unsigned char* p) {
-    return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
 
 std::string latin1_to_utf8(const std::string& bytes) {
     std::string out;

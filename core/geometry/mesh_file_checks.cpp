@@ -16,6 +16,7 @@
 #include "base/text.h"
 #include "geometry/gltf_json.h"
 #include "geometry/mesh_limits.h"
+#include "base/byte_order.h"
 
 namespace dp {
 
@@ -33,7 +34,6 @@ bool is_count(const std::string& s) {
     return !s.empty() && s.size() <= 19 && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
-uint32_t le32(const unsigned char* p) { return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24; }
 
 /// What the first characters of an MTL line make Assimp's reader do: start a material ("ne...",
 /// either case of the n), write into the current one without checking there is one (a texture,

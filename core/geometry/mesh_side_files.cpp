@@ -20,6 +20,7 @@
 
 #include "base/text.h"
 #include "geometry/gltf_json.h"
+#include "base/byte_order.h"
 
 namespace dp {
 

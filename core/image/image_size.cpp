@@ -26,6 +26,7 @@
 #include "base/text.h"
 #include "image/image_io.h"
 #include "image/image_io_internal.h"
+#include "base/byte_order.h"
 
 namespace dp {
 
@@ -33,12 +34,6 @@ namespace {
 
 using image_io_detail::DeclaredSize;
 
-uint32_t be32(const unsigned char* b) { return uint32_t(b[0]) << 24 | uint32_t(b[1]) << 16 | uint32_t(b[2]) << 8 | b[3]; }
-uint16_t be16(const unsigned char* b) { return uint16_t(b[0] << 8 | b[1]); }
-uint32_t le32(const unsigned char* b) {
-    return uint32_t(b[3]) << 24 | uint32_t(b[2]) << 16 | uint32_t(b[1]) << 8 | b[0];
-}
-uint16_t le16(const unsigned char* b) { return uint16_t(b[1] << 8 | b[0]); }
 
 /// A byte count from a double, saturated: declared sizes may be absurd.
 uint64_t to_bytes(double bytes) { return bytes >= 1.8e19 ? UINT64_MAX : uint64_t(std::ceil(bytes)); }
