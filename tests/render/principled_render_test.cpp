@@ -160,3 +160,56 @@ TEST(PrincipledRender, ARoughMetalBallMatchesThePathTracer) {
     EXPECT_LT(rmse, 0.08);  // the diffuse ball's figure in AgainstReference
 }
 
+
+TEST(PrincipledRender, ARoughGlassBallMatchesThePathTracer) {
+    // Light through the object: its shadow and caustic go to photons (Surface::transmits). A
+    // large sun so that the path tracer finds the rough caustic by chance.
+    const Image probe = sun_sky(100.0f, 8.0f);
+    Material m = principled(vec3(0.95f), 0.0f, 0.2f);
+    m.principled.transmission = 1.0f;
+    const Project p = ball_on_floor(m);
+    const Image photo = photograph(p, probe, 256);
+    SceneAssets assets;
+    assets.photo = Image(kW, kH);
+    assets.probe_latlong = probe;
+    const RenderScene scene(p, assets);
+    EXPECT_TRUE(scene.has_transmissive());
+    ReferenceOptions o;
+    o.samples_per_pixel = 2048;
+    o.seed = 12;
+    const Image truth = render_reference(scene, o);
+    Image alpha;
+    const Image out = differential(p, photo, probe, 32, &alpha);
+    size_t n = 0;
+    const double rmse = relative_rmse(out, truth, photo, alpha, &n);
+    const double ratio = object_mean(out, alpha) / object_mean(truth, alpha);
+    std::printf("rough glass against the path tracer: %zu pixels, relative RMSE %.4f, object mean ratio %.4f\n", n,
+                rmse, ratio);
+    EXPECT_GT(n, 200u);
+    EXPECT_NEAR(ratio, 1.0, 0.05);
+    EXPECT_LT(rmse, 0.15);  // the glass ball's figure in AgainstReference
+}
+
+TEST(PrincipledRender, TheCameraSeesTheEmission) {
+    // No reflection at all (black base, no specular): the object shows its emission exactly,
+    // in the differential render and in the path tracer.
+    Material m = principled(vec3(0.0f), 0.0f, 0.5f, 0.0f);
+    m.principled.emission = vec3(1.0f, 2.0f, 3.0f);
+    const Image probe = sun_sky();
+    const Project p = ball_on_floor(m);
+    const Image photo = photograph(p, probe, 16);
+    Image alpha;
+    const Image out = differential(p, photo, probe, 2, &alpha);
+    SceneAssets assets;
+    assets.photo = Image(kW, kH);
+    assets.probe_latlong = probe;
+    ReferenceOptions o;
+    o.samples_per_pixel = 4;
+    const Image truth = render_reference(RenderScene(p, assets), o);
+    const double want = luminance(m.principled.emission);
+    std::printf("emission: differential %.5f, path tracer %.5f, emitted %.5f\n", object_mean(out, alpha),
+                object_mean(truth, alpha), want);
+    EXPECT_NEAR(object_mean(out, alpha), want, 1e-3 * want);
+    EXPECT_NEAR(object_mean(truth, alpha), want, 2e-2 * want);  // edge pixels see some floor
+}
+
