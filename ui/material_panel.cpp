@@ -54,7 +54,7 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     kind_->setToolTip(tr("Kind of material of the selected object"));
     form->addRow(tr("Material"), kind_);
     colour_ = new QPushButton;
-    colour_->setToolTip(tr("Diffuse colour (albedo): click to pick"));
+    colour_->setToolTip(tr("Diffuse colour (albedo), or the principled base colour: click to pick"));
     form->addRow(tr("Colour"), colour_);
     reflectance_ = addSlider(form, tr("Reflectance"), tr("Mirror reflectance (grey), 0 to 1"), 0,
                              100, &reflectanceValue_);
@@ -172,7 +172,9 @@ void MaterialPanel::pickColour(bool tint) {
     if (sel < 0) return;
     const Material& m = doc_->project().objects[size_t(sel)].material;
     const QColor c = QColorDialog::getColor(to_qcolor(tint ? m.tint : m.albedo.rgb), this,
-                                            tint ? tr("Glass tint") : tr("Diffuse colour"));
+                                            tint ? tr("Glass tint")
+                                            : m.kind == Material::Kind::Principled ? tr("Base colour")
+                                                                                   : tr("Diffuse colour"));
     if (!c.isValid()) return;
     if (!tint) {
         setDiffuseColour(c);
