@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "document.h"
+#include "number_field.h"
 #include "image/image_io.h"
 #include "stroke_slider.h"
 
@@ -49,11 +50,11 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     sourceNote_->setWordWrap(true);
     form->addRow(sourceNote_);
     kind_ = new QComboBox;
-    kind_->addItems({tr("Diffuse"), tr("Mirror"), tr("Glass")});
+    kind_->addItems({tr("Diffuse"), tr("Mirror"), tr("Glass"), tr("Principled")});
     kind_->setToolTip(tr("Kind of material of the selected object"));
     form->addRow(tr("Material"), kind_);
     colour_ = new QPushButton;
-    colour_->setToolTip(tr("Diffuse colour (albedo): click to pick"));
+    colour_->setToolTip(tr("Diffuse colour (albedo), or the principled base colour: click to pick"));
     form->addRow(tr("Colour"), colour_);
     reflectance_ = addSlider(form, tr("Reflectance"), tr("Mirror reflectance (grey), 0 to 1"), 0,
                              100, &reflectanceValue_);
@@ -62,6 +63,7 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     tint_ = new QPushButton;
     tint_->setToolTip(tr("Glass tint: transmittance per crossing; click to pick"));
     form->addRow(tr("Tint"), tint_);
+    addPrincipledFields(form);
 
     connect(kind_, &QComboBox::currentIndexChanged, this, [this](int k) {
         const int sel = doc_->selected();
@@ -82,6 +84,51 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     connect(doc_, &Document::changed, this, [this] { refresh(); });
     connect(doc_, &Document::selectionChanged, this, [this] { refresh(); });
     refresh();
+}
+
+void MaterialPanel::addPrincipledFields(QFormLayout* form) {
+    struct Row {
+        const char *label, *tip;
+        double lo, hi;
+    };
+    static const Row rows[kPrincipledFields] = {
+        {"Metallic", "0: a dielectric (plastic, glass), 1: a metal whose colour is the base colour", 0, 1},
+        {"Roughness", "Perceptual roughness, 0 (polished) to 1 (matte); alpha = roughness squared", 0, 1},
+        {"IOR", "Index of refraction of the dielectric, 1.01 to 5", kMinPrincipledIor, kMaxPrincipledIor},
+        {"Specular", "Strength of the dielectric's reflection, 0 to 1", 0, 1},
+        {"Transmission", "Share of the base that lets light through (rough glass), 0 to 1", 0, 1},
+        {"Emission", "Emitted radiance (grey), linear; seen by the camera, it lights no real surface", 0, 1e6},
+    };
+    for (int i = 0; i < kPrincipledFields; ++i) {
+        auto* f = new NumberField;
+        f->setRange(rows[i].lo, rows[i].hi);
+        f->setDecimals(3);
+        f->setSingleStep(0.05);
+        f->setKeyboardTracking(false);
+        f->setToolTip(tr(rows[i].tip));
+        form->addRow(tr(rows[i].label), f);
+        principled_[i] = f;
+        connect(f, &NumberField::valueChanged, this,
+                [this, i](double v) { principledEdited(PrincipledField(i), v); });
+    }
+}
+
+void MaterialPanel::principledEdited(PrincipledField field, double value) {
+    const int sel = doc_->selected();
+    if (refreshing_ || sel < 0) return;
+    Project p = doc_->project();
+    PrincipledMaterial& m = p.objects[size_t(sel)].material.principled;
+    const float v = float(value);
+    switch (field) {
+        case Metallic: m.metallic = v; break;
+        case Roughness: m.roughness = v; break;
+        case Ior: m.ior = v; break;
+        case Specular: m.specular = v; break;
+        case Transmission: m.transmission = v; break;
+        case Emission: m.emission = vec3(v); break;
+        case kPrincipledFields: return;
+    }
+    if (!doc_->tryEdit(tr("Adjust material"), p)) refresh();
 }
 
 QSlider* MaterialPanel::addSlider(QFormLayout* form, const QString& label, const QString& tip,
@@ -125,7 +172,9 @@ void MaterialPanel::pickColour(bool tint) {
     if (sel < 0) return;
     const Material& m = doc_->project().objects[size_t(sel)].material;
     const QColor c = QColorDialog::getColor(to_qcolor(tint ? m.tint : m.albedo.rgb), this,
-                                            tint ? tr("Glass tint") : tr("Diffuse colour"));
+                                            tint ? tr("Glass tint")
+                                            : m.kind == Material::Kind::Principled ? tr("Base colour")
+                                                                                   : tr("Diffuse colour"));
     if (!c.isValid()) return;
     if (!tint) {
         setDiffuseColour(c);
@@ -142,6 +191,7 @@ void MaterialPanel::refresh() {
     setEnabled(sel >= 0);
     form_->setRowVisible(source_, false);
     form_->setRowVisible(sourceNote_, false);
+    for (NumberField* f : principled_) form_->setRowVisible(f, false);
     if (sel >= 0) {
         const VirtualObject& o = doc_->project().objects[size_t(sel)];
         const Material& m = o.material;
@@ -157,8 +207,16 @@ void MaterialPanel::refresh() {
         ior_->setValue(int(std::lround(m.ior * 100)));
         reflectanceValue_->setText(QString::number(reflectance_->value() / 100.0, 'f', 2));
         iorValue_->setText(QString::number(ior_->value() / 100.0, 'f', 2));
+        const bool principled = m.kind == Material::Kind::Principled;
+        const PrincipledMaterial& pm = m.principled;
+        const float values[kPrincipledFields] = {pm.metallic,     pm.roughness,   pm.ior,
+                                                 pm.specular,     pm.transmission, luminance(pm.emission)};
+        for (int i = 0; i < kPrincipledFields; ++i) {
+            principled_[i]->setValue(double(values[i]));
+            form_->setRowVisible(principled_[i], principled);
+        }
         const bool diffuse = m.kind == Material::Kind::Diffuse;
-        colour_->setEnabled(diffuse);
+        colour_->setEnabled(diffuse || principled);
         reflectance_->setEnabled(m.kind == Material::Kind::Mirror);
         ior_->setEnabled(m.kind == Material::Kind::Glass);
         tint_->setEnabled(m.kind == Material::Kind::Glass);

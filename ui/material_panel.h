@@ -7,12 +7,18 @@ class QLabel;
 class QPushButton;
 class QSlider;
 
+namespace dp {
+struct PrincipledMaterial;
+}
+
 namespace dp::ui {
 
 class Document;
+class NumberField;
 
-/// The selected object's material: kind, diffuse colour (colour picker), mirror reflectance,
-/// glass index of refraction and tint; for a mesh, whether its file's own materials are used
+/// The selected object's material: kind, diffuse colour (colour picker; the principled base
+/// colour too), mirror reflectance, glass index of refraction and tint, the principled
+/// material's numbers (shown for it only); for a mesh, whether its file's own materials are used
 /// (with a note saying what this material then covers). Sliders are live: a stroke is one undo
 /// step and renders quick passes until released.
 class MaterialPanel : public QWidget {
@@ -22,6 +28,10 @@ public:
 
     QSlider* iorSlider() const { return ior_; }
     QComboBox* sourceBox() const { return source_; }
+    QComboBox* kindBox() const { return kind_; }
+    /// The principled material's fields, in PrincipledField order.
+    enum PrincipledField { Metallic, Roughness, Ior, Specular, Transmission, Emission, kPrincipledFields };
+    NumberField* principledField(PrincipledField f) const { return principled_[f]; }
     QLabel* sourceNote() const { return sourceNote_; }
     /// Sets the diffuse colour as the colour dialog would (sRGB).
     void setDiffuseColour(const QColor& colour);
@@ -36,6 +46,9 @@ private:
                        QLabel** value);
     void sliderMoved(QSlider* moved);
     void pickColour(bool tint);
+    void addPrincipledFields(QFormLayout* form);
+    /// A typed principled value: through Document::tryEdit, as every typed value is.
+    void principledEdited(PrincipledField f, double value);
 
     Document* doc_;
     QFormLayout* form_;
@@ -44,6 +57,7 @@ private:
     QPushButton *colour_, *tint_;
     QSlider *reflectance_, *ior_;
     QLabel *reflectanceValue_, *iorValue_;
+    NumberField* principled_[kPrincipledFields] = {};
     int strokeKey_ = -1;
     bool refreshing_ = false;
 };

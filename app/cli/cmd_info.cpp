@@ -59,7 +59,7 @@ std::string albedo_text(const Albedo& a, const Image& texture, const vec3& estim
 }
 
 std::string material_text(const Material& m, const Image& texture) {
-    char buf[64];
+    char buf[160];
     switch (m.kind) {
         case Material::Kind::Diffuse:
             return "diffuse, albedo " + albedo_text(m.albedo, texture, m.albedo.rgb);
@@ -67,6 +67,12 @@ std::string material_text(const Material& m, const Image& texture) {
         case Material::Kind::Glass:
             std::snprintf(buf, sizeof(buf), "glass, ior %g, tint ", m.ior);
             return buf + vec(m.tint);
+        case Material::Kind::Principled: {
+            const PrincipledMaterial& p = m.principled;
+            std::snprintf(buf, sizeof(buf), ", metallic %g, roughness %g, ior %g, specular %g, transmission %g",
+                          p.metallic, p.roughness, p.ior, p.specular, p.transmission);
+            return "principled, base colour " + albedo_text(m.albedo, texture, m.albedo.rgb) + buf;
+        }
     }
     return "?";
 }

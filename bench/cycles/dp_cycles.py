@@ -14,6 +14,8 @@ conventions it maps, and how each was checked, are in docs/cycles.md:
 - real proxies: diffuse surfaces marked as shadow catchers; virtual objects: diffuse, sharp
   glossy (mirror) or sharp glass (Blender 3.4's SHARP distribution, GGX at roughness 0 in
   Blender 4 and later, which dropped SHARP and treats roughness 0 as a perfect reflection);
+  principled: Principled BSDF (glTF's material; its inputs by the names of Blender 3.4 or 4+;
+  its emission lights the real proxies too, which ours does not);
 - one composite per render: Combined + (1 - Combined.alpha) * photo * ShadowCatcher.
 """
 import array
@@ -602,11 +604,54 @@ def diffuse_material(name, albedo, base_dir, sphere_frame, file, field, file_uvs
     return mat
 
 
+def first_input(bsdf, *names):
+    """The first of `names` the node has: Blender 4 renamed the Principled BSDF's inputs."""
+    for n in names:
+        if n in bsdf.inputs:
+            return bsdf.inputs[n]
+    raise KeyError(names[0])
+
+
+def principled_material(name, m, base_dir, sphere_frame, file, field, file_uvs=False):
+    """Ours is glTF's metallic-roughness material, which Blender's Principled BSDF takes as its
+    glTF importer does. Blender 4 and 5: Specular IOR Level 0.5 is the IOR's own F0, so our
+    specular factor s is 0.5 s; Blender 3.4: Specular is F0 / 0.08. Emission is radiance."""
+    mat, nodes, links, out = node_material(name)
+    bsdf = nodes.new("ShaderNodeBsdfPrincipled")
+    base = m.get("base_colour", [0.5, 0.5, 0.5])
+    if isinstance(base, dict) and "texture" in base:
+        path = resolve(base_dir, base["texture"])
+        links.new(texture_albedo(nodes, links, path, sphere_frame, file, field + ".base_colour.texture", file_uvs),
+                  bsdf.inputs["Base Color"])
+    elif isinstance(base, list):
+        bsdf.inputs["Base Color"].default_value = (*[min(max(float(c), 0.0), MAX_ALBEDO) for c in base], 1.0)
+    else:
+        raise ConversionError(file, field + ".base_colour", "expected [r, g, b] or {\"texture\": path}")
+    ior = float(m.get("ior", 1.5))
+    specular = float(m.get("specular", 1.0))
+    bsdf.inputs["Metallic"].default_value = float(m.get("metallic", 0.0))
+    bsdf.inputs["Roughness"].default_value = float(m.get("roughness", 0.5))
+    bsdf.inputs["IOR"].default_value = ior
+    if "Specular IOR Level" in bsdf.inputs:
+        bsdf.inputs["Specular IOR Level"].default_value = 0.5 * specular
+    else:
+        bsdf.inputs["Specular"].default_value = specular * ((ior - 1) / (ior + 1)) ** 2 / 0.08
+    first_input(bsdf, "Transmission Weight", "Transmission").default_value = float(m.get("transmission", 0.0))
+    emission = [float(e) for e in m.get("emission", [0, 0, 0])]
+    first_input(bsdf, "Emission Color", "Emission").default_value = (*emission, 1.0)
+    if "Emission Strength" in bsdf.inputs:
+        bsdf.inputs["Emission Strength"].default_value = 1.0
+    links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
+    return mat
+
+
 def object_material(name, m, base_dir, sphere_frame, file, field, file_uvs=False):
     kind = m.get("type", "diffuse")
     if kind == "diffuse":
         return diffuse_material(name, m.get("albedo", [0.5, 0.5, 0.5]), base_dir, sphere_frame, file,
                                 field + ".albedo", file_uvs)
+    if kind == "principled":
+        return principled_material(name, m, base_dir, sphere_frame, file, field, file_uvs)
     mat, nodes, links, out = node_material(name)
     if kind == "mirror":
         # Ours: reflectance times a perfect reflection, no Fresnel, two-sided: a sharp Glossy.
@@ -616,7 +661,7 @@ def object_material(name, m, base_dir, sphere_frame, file, field, file_uvs=False
         links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
         return mat
     if kind != "glass":
-        raise ConversionError(file, field + ".type", f"unknown material '{kind}' (diffuse, mirror, glass)")
+        raise ConversionError(file, field + ".type", f"unknown material '{kind}' (diffuse, mirror, glass, principled)")
     ior = float(m.get("ior", 1.5))
     tint = [float(t) for t in m.get("tint", [1, 1, 1])]
     if all(t == 1.0 for t in tint):

@@ -343,8 +343,9 @@ std::vector<FileMaterialAsset> AssetLibrary::file_materials(const LoadedMesh& me
                                            : f.texture;
         FileMaterialAsset asset{
             f.name, material_from_file(f, embedded || !f.texture.empty() ? label : ""), {}};
-        if (asset.material.kind != Material::Kind::Diffuse ||
-            asset.material.albedo.kind != Albedo::Kind::Texture) {
+        const bool textured_kind = asset.material.kind == Material::Kind::Diffuse ||
+                                   asset.material.kind == Material::Kind::Principled;
+        if (!textured_kind || asset.material.albedo.kind != Albedo::Kind::Texture) {
             out.push_back(std::move(asset));
             continue;
         }

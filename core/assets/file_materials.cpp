@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -13,9 +14,31 @@ namespace dp {
 
 namespace fs = std::filesystem;
 
-Material material_from_file(const FileMaterial& f, const std::string& texture_label) {
+namespace {
+
+/// A file with a roughness (glTF; MTL's Pr): the principled material, every factor clamped.
+Material principled_from_file(const FileMaterial& f, const vec3& colour, const std::string& texture_label) {
     Material m;
+    m.kind = Material::Kind::Principled;
+    m.albedo.rgb = colour;
+    if (!texture_label.empty()) {
+        m.albedo.kind = Albedo::Kind::Texture;
+        m.albedo.texture_path = texture_label;
+    }
+    PrincipledMaterial& p = m.principled;
+    p.metallic = std::clamp(f.metallic, 0.0f, 1.0f);
+    p.roughness = std::clamp(f.roughness, 0.0f, 1.0f);
+    p.transmission = std::clamp(f.transmission, 0.0f, 1.0f);
+    p.ior = f.ior > 0 ? std::clamp(f.ior, kMinPrincipledIor, kMaxPrincipledIor) : 1.5f;
+    return m;
+}
+
+}  // namespace
+
+Material material_from_file(const FileMaterial& f, const std::string& texture_label) {
     const vec3 colour = glm::clamp(f.colour, vec3(0.0f), vec3(1.0f));
+    if (f.roughness >= 0) return principled_from_file(f, colour, texture_label);
+    Material m;
     if (f.transmission > 0) {
         m.kind = Material::Kind::Glass;
         m.ior = f.ior > 0 ? f.ior : 1.5f;

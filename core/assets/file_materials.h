@@ -10,11 +10,12 @@
 
 namespace dp {
 
-/// A file's material as one of ours: transmission > 0 is glass (ior from KHR_materials_ior,
-/// 1.5 without it; tint the base colour), else metallic >= 0.5 a mirror (reflectance the base
-/// colour), else diffuse with the colour, or with `texture_label` as its texture where the
-/// material has one (the decoded image travels beside it: FileMaterialAsset). Colours are
-/// clamped to [0, 1].
+/// A file's material as one of ours. With a roughness (every glTF material; MTL's Pr): the
+/// principled material, base colour the colour or `texture_label` as its texture, metallic,
+/// roughness, transmission and ior (KHR_materials_ior, 1.5 without it) from the file. Without
+/// one: transmission > 0 is glass (tint the colour), else metallic >= 0.5 a mirror
+/// (reflectance the colour), else diffuse with the colour or the texture. The decoded texture
+/// travels beside it (FileMaterialAsset). Colours and factors are clamped to their ranges.
 Material material_from_file(const FileMaterial& file, const std::string& texture_label = "");
 
 /// Decodes a texture stored inside mesh file `mesh_path`, as load_image decodes a file (the

@@ -80,8 +80,11 @@ struct Surface {
 
     /// Diffuse reflectance at a hit (texture lookup when there is one), clamped to [0, 0.98].
     vec3 reflectance_at(const vec2& uv) const;
-    /// Light passes through it (glass).
-    bool transmits() const { return is_virtual && material.kind == Material::Kind::Glass; }
+    /// Light passes through it (glass, or a principled material with some transmission).
+    bool transmits() const {
+        return is_virtual && (material.kind == Material::Kind::Glass ||
+                              (material.kind == Material::Kind::Principled && material.principled.transmission > 0));
+    }
 };
 
 /// A ray-surface intersection (ShapeHit) and the surface it found.

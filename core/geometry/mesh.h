@@ -48,6 +48,9 @@ struct FileMaterial {
     float metallic = 0;      ///< glTF metallicFactor
     float transmission = 0;  ///< glTF KHR_materials_transmission
     float ior = 0;           ///< glTF KHR_materials_ior; 0 where the file gives none
+    /// glTF roughnessFactor or MTL Pr; -1 where the file gives none (the material is then
+    /// mapped by today's thresholds, not onto the principled material).
+    float roughness = -1;
     bool operator==(const FileMaterial&) const = default;
 };
 

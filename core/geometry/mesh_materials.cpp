@@ -99,6 +99,8 @@ std::vector<FileMaterial> read_file_materials(const aiScene& scene, const std::s
         }
         f.metallic = number_of(*m, AI_MATKEY_METALLIC_FACTOR, 0.0f);
         f.transmission = number_of(*m, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f);
+        // glTF always has one (its default is 1); MTL's Pr only where the file writes it.
+        if (has_key(*m, "$mat.roughnessFactor")) f.roughness = number_of(*m, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f);
         // MTL's Ni is read into the same key; only a transmitting (glTF) material uses it.
         if (gltf) f.ior = number_of(*m, AI_MATKEY_REFRACTI, 0.0f);
 

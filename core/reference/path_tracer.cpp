@@ -8,6 +8,7 @@
 
 #include "base/rng.h"
 #include "base/sampling.h"
+#include "assets/principled_scatter.h"
 #include "assets/scattering.h"
 
 namespace dp {
@@ -23,6 +24,29 @@ struct PathTracer {
     }
     bool occluded(const Ray& r) const {
         return opt.include_virtual ? scene.occluded(r) : scene.occluded_real(r);
+    }
+
+    /// At a principled surface: the probe by next-event estimation (eval, MIS against the BSDF)
+    /// added to L, then the path continued by sampling the BSDF. False when the path ends.
+    bool principled(const Hit& hit, Ray& ray, vec3& beta, vec3& L, bool last, Rng& rng, float& bsdf_pdf) const {
+        const PrincipledBsdf bsdf = principled_at(*hit.surface, hit);
+        const Probe& probe = scene.probe();
+        const ProbeSample ls = probe.sample(rng.uniform(), rng.uniform(), rng.uniform());
+        if (ls.pdf > 0) {
+            const vec3 f = eval_principled(bsdf, hit, ray.dir, ls.dir, Transport::Radiance);
+            if (f != vec3(0) && !occluded(Ray{scene.offset_origin(hit, ls.dir), ls.dir})) {
+                const float w = last ? 1.0f : power_heuristic(ls.pdf, pdf_principled(bsdf, hit, ray.dir, ls.dir));
+                L += beta * f * ls.radiance * (w / ls.pdf);
+            }
+        }
+        if (last) return false;
+        const vec3 u(rng.uniform(), rng.uniform(), rng.uniform());
+        const PrincipledEvent e = sample_principled(bsdf, hit, ray.dir, u, Transport::Radiance);
+        if (e.weight == vec3(0)) return false;
+        beta *= e.weight;
+        bsdf_pdf = e.pdf;
+        ray = Ray{scene.offset_origin(hit, e.dir), e.dir};
+        return true;
     }
 
     vec3 radiance(Ray ray, Rng& rng) const {
@@ -41,7 +65,12 @@ struct PathTracer {
             }
             const Surface& s = *hit.surface;
             bool diffuse = !s.is_virtual || s.material.kind == Material::Kind::Diffuse;
-            if (!diffuse) {
+            L += beta * emitted_radiance(s);  // no light sampling reaches it: weight 1
+            if (s.is_virtual && s.material.kind == Material::Kind::Principled) {
+                const bool last = depth + 1 >= opt.max_depth;
+                if (!principled(hit, ray, beta, L, last, rng, last_bsdf_pdf)) break;
+                specular_bounce = false;
+            } else if (!diffuse) {
                 SpecularEvent e = scatter_specular(s.material, hit, ray.dir, rng.uniform());
                 beta *= e.weight;
                 ray = Ray{scene.offset_origin(hit, e.dir), e.dir};

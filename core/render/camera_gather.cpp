@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/photographed_radiance.h"
+#include "assets/principled_scatter.h"
 #include "assets/scattering.h"
 
 namespace dp {
@@ -109,6 +110,8 @@ vec3 CameraGather::radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int dep
     if (!hit.surface->is_virtual) return real_radiance(hit, ray.dir, rng);
     if (hit.surface->material.kind == Material::Kind::Diffuse)
         return virtual_diffuse_radiance(hit, ray.dir, rng, depth, 1);
+    if (hit.surface->material.kind == Material::Kind::Principled)
+        return principled_radiance(hit, ray.dir, rng, depth, from_diffuse, splits);
     return specular_radiance(hit, ray.dir, rng, depth, from_diffuse, splits);
 }
 
@@ -129,6 +132,36 @@ vec3 CameraGather::specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, 
     return follow(scatter_specular(m, hit, dir, rng.uniform()), 0);
 }
 
+vec3 CameraGather::principled_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,
+                                       int splits, PixelSampler* sampler) const {
+    // Emission is seen along every camera path; photons do not carry it (docs/materials.md).
+    vec3 L = emitted_radiance(*hit.surface);
+    if (depth >= max_depth_) return L;
+    const PrincipledBsdf bsdf = principled_at(*hit.surface, hit);
+    const ProbeLights& lights = scene_.probe_lights();
+    auto next2 = [&] { return sampler ? sampler->next2d() : vec2(rng.uniform(), rng.uniform()); };
+    const vec2 u_sun = next2(), u_sky = next2(), u_pick = next2(), u_dir = next2();
+    if (!from_diffuse) {
+        for (const ProbeSample& ls : {lights.sample_sun(u_sun), lights.sample_sky(u_sky)}) {
+            if (ls.pdf <= 0) continue;
+            const vec3 f = eval_principled(bsdf, hit, dir, ls.dir, Transport::Radiance);
+            if (f == vec3(0) || scene_.occluded(Ray{scene_.offset_origin(hit, ls.dir), ls.dir})) continue;
+            const float w = power_heuristic(ls.pdf, pdf_principled(bsdf, hit, dir, ls.dir));
+            L += f * ls.radiance * (w / ls.pdf);
+        }
+    }
+    const PrincipledEvent e = sample_principled(bsdf, hit, dir, vec3(u_dir, u_pick.x), Transport::Radiance);
+    if (e.weight == vec3(0)) return L;
+    const Ray ray{scene_.offset_origin(hit, e.dir), e.dir};
+    const Hit next = scene_.intersect(ray);
+    if (!next) {
+        if (!from_diffuse) L += e.weight * scene_.probe().radiance(e.dir) * power_heuristic(e.pdf, lights.pdf(e.dir));
+        return L;
+    }
+    const vec3 Li = radiance_at(next, ray, rng, depth + 1, from_diffuse, splits);
+    return is_finite(Li) ? L + e.weight * Li : L;
+}
+
 SampleResult CameraGather::shade_camera(int x, int y, float px, float py, PixelSampler& sampler, Rng& rng,
                                   const CameraWork& work) const {
     SampleResult r;
@@ -142,8 +175,11 @@ SampleResult CameraGather::shade_camera(int x, int y, float px, float py, PixelS
         return r;
     }
     r.alpha = 1;
-    const vec3 L = hit.surface->material.kind == Material::Kind::Diffuse
+    const Material::Kind kind = hit.surface->material.kind;
+    const vec3 L = kind == Material::Kind::Diffuse
                        ? virtual_diffuse_radiance(hit, ray.dir, rng, 0, camera_diffuse_samples_, &sampler)
+                   : kind == Material::Kind::Principled
+                       ? principled_radiance(hit, ray.dir, rng, 0, false, kGlassSplits, &sampler)
                        : specular_radiance(hit, ray.dir, rng, 0, false, kGlassSplits);
     r.pixel_change = L - scene_.photo().at(x, y);
     return r;

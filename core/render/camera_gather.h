@@ -96,6 +96,13 @@ public:
     /// Radiance arriving along `ray` whose first hit is already known (`hit` may be empty).
     vec3 radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const;
 
+    /// Radiance leaving a virtual principled point towards -dir: its emission, the probe by
+    /// next-event estimation (MIS against the BSDF; none from a diffuse gather, whose caustic
+    /// map has it), and one BSDF-sampled continuation followed like a specular chain. With
+    /// `sampler`, the first numbers come from the pixel's stream.
+    vec3 principled_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse, int splits,
+                             PixelSampler* sampler = nullptr) const;
+
 private:
     vec3 specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,
                            int splits) const;

@@ -19,7 +19,9 @@ vec3 albedo_along(const RenderScene& s, Ray ray, Hit hit) {
     vec3 throughput(1.0f);
     for (int bounce = 0; hit; ++bounce) {
         const Surface& surface = *hit.surface;
-        const bool specular = surface.is_virtual && surface.material.kind != Material::Kind::Diffuse;
+        // A principled surface guides by its base colour, as a diffuse one does.
+        const bool specular = surface.is_virtual && (surface.material.kind == Material::Kind::Mirror ||
+                                                     surface.material.kind == Material::Kind::Glass);
         if (!specular) return throughput * surface.reflectance_at(hit.uv);
         if (bounce == kMaxSpecularBounces) break;
         vec3 dir;

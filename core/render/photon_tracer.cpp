@@ -9,6 +9,7 @@
 #include "base/rng.h"
 #include "base/sampling.h"
 #include "render/photographed_radiance.h"
+#include "assets/principled_scatter.h"
 #include "assets/scattering.h"
 
 namespace dp {
@@ -85,7 +86,10 @@ struct Tracer {
                 next = sample_diffuse(hit, dir, vec2(rng.uniform(), rng.uniform()));
                 specular_only = false;
             } else {
-                SpecularEvent e = scatter_specular(s.material, hit, dir, rng.uniform());
+                // Mirror, glass, principled: the photon stays on a "specular" chain (caustics),
+                // as the camera gather does not gather photons on them either.
+                SpecularEvent e = scatter_non_diffuse(s, hit, dir, rng, Transport::Importance);
+                if (e.weight == vec3(0)) return;
                 flux *= e.weight;
                 next = e.dir;
                 // Roulette on |flux| relative to the start, never on its signed value.

@@ -65,13 +65,29 @@ struct Albedo {
     bool operator==(const Albedo&) const = default;
 };
 
+/// The principled material's parameters beyond its base colour (Material::albedo): glTF 2.0
+/// metallic-roughness with KHR_materials_ior, _specular and _transmission (docs/materials.md).
+struct PrincipledMaterial {
+    float metallic = 0.0f;      ///< [0, 1]: conductor over dielectric
+    float roughness = 0.5f;     ///< [0, 1], perceptual (alpha = roughness^2)
+    float ior = 1.5f;           ///< [1.01, 5]
+    float specular = 1.0f;      ///< [0, 1]: KHR_materials_specular's factor
+    float transmission = 0.0f;  ///< [0, 1]: share of the base that is rough transmission
+    vec3 emission{0.0f};        ///< emitted radiance (linear RGB, >= 0)
+    bool operator==(const PrincipledMaterial&) const = default;
+};
+
+/// The range of a principled material's `ior`.
+inline constexpr float kMinPrincipledIor = 1.01f, kMaxPrincipledIor = 5.0f;
+
 struct Material {
-    enum class Kind { Diffuse, Mirror, Glass };
+    enum class Kind { Diffuse, Mirror, Glass, Principled };
     Kind kind = Kind::Diffuse;
-    Albedo albedo;              ///< diffuse (Constant or Texture)
+    Albedo albedo;              ///< diffuse (Constant or Texture); principled: the base colour
     vec3 reflectance{0.95f};    ///< mirror
     float ior = 1.5f;           ///< glass
     vec3 tint{1.0f};            ///< glass: transmittance per unit crossing
+    PrincipledMaterial principled;  ///< principled
     bool operator==(const Material&) const = default;
 };
 

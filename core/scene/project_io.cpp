@@ -94,6 +94,37 @@ Albedo parse_albedo(const JsonReader& r, const json& j, const std::string& path,
     return a;
 }
 
+/// A number in [lo, hi] (an out-of-range value names the field and the range).
+float bounded(const JsonReader& r, const json& j, const std::string& path, float lo, float hi) {
+    const float v = r.real(j, path);
+    r.check(v >= lo && v <= hi, path,
+            "must be in [" + shortest_decimal(lo) + ", " + shortest_decimal(hi) + "] (got " + shortest_decimal(v) +
+                ")");
+    return v;
+}
+
+/// The principled material's fields other than its type (docs/project-format.md).
+void parse_principled(const JsonReader& r, const json& j, const std::string& path, Material& m) {
+    PrincipledMaterial& p = m.principled;
+    if (auto* v = r.optional(j, "base_colour")) m.albedo = parse_albedo(r, *v, json_join(path, "base_colour"), false);
+    auto unit = [&](const char* key, float& out) {
+        if (auto* v = r.optional(j, key)) out = bounded(r, *v, json_join(path, key), 0.0f, 1.0f);
+    };
+    unit("metallic", p.metallic);
+    unit("roughness", p.roughness);
+    unit("specular", p.specular);
+    unit("transmission", p.transmission);
+    if (auto* v = r.optional(j, "ior"))
+        p.ior = bounded(r, *v, json_join(path, "ior"), kMinPrincipledIor, kMaxPrincipledIor);
+    if (auto* v = r.optional(j, "emission")) {
+        const std::string e = json_join(path, "emission");
+        p.emission = r.vector3(*v, e);
+        for (int i = 0; i < 3; ++i)
+            r.check(p.emission[i] >= 0, json_at(e, size_t(i)),
+                    "must be >= 0 (got " + shortest_decimal(p.emission[i]) + ")");
+    }
+}
+
 Material parse_material(const JsonReader& r, const json& j, const std::string& path) {
     if (!j.is_object()) r.wrong_type(j, path, "an object");
     Material m;
@@ -101,7 +132,8 @@ Material parse_material(const JsonReader& r, const json& j, const std::string& p
                                       "material type",
                                       {{"diffuse", Material::Kind::Diffuse},
                                        {"mirror", Material::Kind::Mirror},
-                                       {"glass", Material::Kind::Glass}});
+                                       {"glass", Material::Kind::Glass},
+                                       {"principled", Material::Kind::Principled}});
     std::string ctx = " for material type '" + j["type"].get<std::string>() + "'";
     switch (m.kind) {
         case Material::Kind::Diffuse:
@@ -122,6 +154,12 @@ Material parse_material(const JsonReader& r, const json& j, const std::string& p
                         "must be > 0 (got " + shortest_decimal(m.ior) + ")");
             }
             if (auto* v = r.optional(j, "tint")) m.tint = r.colour(*v, json_join(path, "tint"));
+            break;
+        case Material::Kind::Principled:
+            r.object(j, path,
+                     {"type", "base_colour", "metallic", "roughness", "ior", "specular", "transmission", "emission"},
+                     ctx);
+            parse_principled(r, j, path, m);
             break;
     }
     return m;
@@ -354,6 +392,13 @@ J write_material(const Material& m) {
             return J{{"type", "mirror"}, {"reflectance", vec<J>(m.reflectance)}};
         case Material::Kind::Glass:
             return J{{"type", "glass"}, {"ior", num(m.ior)}, {"tint", vec<J>(m.tint)}};
+        case Material::Kind::Principled: {
+            const PrincipledMaterial& p = m.principled;
+            return J{{"type", "principled"},           {"base_colour", write_albedo<J>(m.albedo)},
+                     {"metallic", num(p.metallic)},    {"roughness", num(p.roughness)},
+                     {"ior", num(p.ior)},              {"specular", num(p.specular)},
+                     {"transmission", num(p.transmission)}, {"emission", vec<J>(p.emission)}};
+        }
     }
     return J();
 }

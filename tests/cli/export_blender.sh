@@ -177,4 +177,40 @@ DOCUMENTED=$(awk '$1 == "documented_iou" { print $2 }' blender.txt)
 WRONG=$(awk '$1 == "documented_iou" { print $4 }' blender.txt)
 awk -v v="$DOCUMENTED" 'BEGIN { exit !(v > 0.9) }' || fail "documented Mapping rotation: shadow IoU '$DOCUMENTED' <= 0.9"
 awk -v v="$WRONG" 'BEGIN { exit !(v < 0.6) }' || fail "the rotation's sign flipped: shadow IoU '$WRONG' >= 0.6"
+
+# A principled ball becomes a Principled BSDF with the project's numbers, by the input names of
+# the Blender that runs the script (3.4: Specular as F0 / 0.08, Transmission, Emission; 4 and
+# later: Specular IOR Level, Transmission Weight, Emission Color).
+sed 's/"material": {"type": "diffuse", "albedo": \[0.8, 0.3, 0.2\]}/"material": {"type": "principled", "base_colour": [0.9, 0.5, 0.25], "metallic": 1, "roughness": 0.3, "ior": 1.8, "specular": 0.5, "transmission": 0.25, "emission": [0, 1, 2]}/' \
+    small.json >principled.json
+grep -q principled principled.json || fail "the principled project was not written"
+run export blender principled.json -o principled.py --blend "$PWD/principled.blend"
+expect_rc 0 "export blender principled.json"
+run_blender --python principled.py
+cat >check_principled.py <<'PY'
+import bpy
+nodes = [n for m in bpy.data.materials if m.node_tree for n in m.node_tree.nodes if n.type == "BSDF_PRINCIPLED"]
+assert len(nodes) == 1, len(nodes)
+i = nodes[0].inputs
+def near(name, want):
+    got = i[name].default_value
+    got = list(got)[:3] if hasattr(got, "__len__") else [got]
+    want = want if isinstance(want, list) else [want]
+    assert all(abs(g - w) < 1e-4 for g, w in zip(got, want)), (name, got, want)
+near("Base Color", [0.9, 0.5, 0.25])
+near("Metallic", 1.0)
+near("Roughness", 0.3)
+near("IOR", 1.8)
+if "Specular IOR Level" in i:
+    near("Specular IOR Level", 0.25)
+    near("Transmission Weight", 0.25)
+    near("Emission Color", [0, 1, 2])
+else:
+    near("Specular", 0.5 * ((1.8 - 1) / (1.8 + 1)) ** 2 / 0.08)
+    near("Transmission", 0.25)
+    near("Emission", [0, 1, 2])
+print("principled_ok")
+PY
+run_blender principled.blend --python check_principled.py
+grep -q principled_ok blender.txt || fail "the Principled BSDF does not carry the project's numbers"
 echo "ok"

@@ -44,6 +44,14 @@ assert d["camera"]["fx"] > 0 and len(d["camera"]["position"]) == 3, d["camera"]
 assert len(d["emission_clusters"]) == 2 and d["warnings"] == [], d
 PY
 
+# A principled material is described with every parameter.
+COPPER='{"name": "copper", "shape": {"type": "sphere", "radius": 0.3},
+         "material": {"type": "principled", "base_colour": [0.95, 0.64, 0.54], "metallic": 1, "roughness": 0.3}}'
+write_project principled.json "$COPPER" "$ESTIMATED"
+run info principled.json
+expect_rc 0 "info on a principled material"
+expect_stdout "'copper': sphere radius 0.3, principled, base colour (0.95, 0.64, 0.54), metallic 1, roughness 0.3, ior 1.5, specular 1, transmission 0" "the principled material"
+
 run info
 expect_rc 2 "info without a project"
 echo "PASS"

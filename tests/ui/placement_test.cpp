@@ -43,6 +43,7 @@ private Q_SLOTS:
     void uniformLockScalesAllThreeFromOneField();
     void importedMeshesGetTheirUnitAndFitTheView();
     void anImportedMeshWithMaterialsIsDrawnWithThemAndThePanelSaysSo();
+    void thePanelSetsAPrincipledMaterialField();
 
 private:
     void press(int key, Qt::KeyboardModifiers modifiers = {});
@@ -404,6 +405,29 @@ void PlacementTest::anImportedMeshWithMaterialsIsDrawnWithThemAndThePanelSaysSo(
 
     w_->action("addSphere")->trigger();  // a primitive has no file
     QVERIFY(!panel->sourceBox()->isVisibleTo(panel));
+}
+
+void PlacementTest::thePanelSetsAPrincipledMaterialField() {
+    w_->action("addSphere")->trigger();
+    const int ball = int(w_->document()->project().objects.size()) - 1;
+    MaterialPanel* panel = w_->materialPanel();
+    NumberField* roughness = panel->principledField(MaterialPanel::Roughness);
+    QVERIFY(!roughness->isVisibleTo(panel));  // a diffuse ball: no principled fields
+    panel->kindBox()->setCurrentIndex(int(Material::Kind::Principled));
+    QCOMPARE(object(ball).material.kind, Material::Kind::Principled);
+    QVERIFY(roughness->isVisibleTo(panel));
+    typeIntoField(panel->principledField(MaterialPanel::Metallic), "1");
+    typeIntoField(roughness, "0.25");
+    typeIntoField(panel->principledField(MaterialPanel::Ior), "1.8");
+    typeIntoField(panel->principledField(MaterialPanel::Emission), "2");
+    const PrincipledMaterial& m = object(ball).material.principled;
+    QCOMPARE(m.metallic, 1.0f);
+    QCOMPARE(m.roughness, 0.25f);
+    QCOMPARE(m.ior, 1.8f);
+    QCOMPARE(m.emission, vec3(2.0f));
+    // Outside its range a typed value is refused, not clamped: the project keeps 1.8.
+    typeIntoField(panel->principledField(MaterialPanel::Ior), "9");
+    QCOMPARE(object(ball).material.principled.ior, 1.8f);
 }
 
 QTEST_MAIN(PlacementTest)

@@ -16,7 +16,36 @@
 using namespace dp;
 namespace fs = std::filesystem;
 
-TEST(FileMaterials, TransmissionMakesGlassMetallicAMirrorAndTheRestIsDiffuse) {
+TEST(FileMaterials, AMaterialWithARoughnessIsPrincipledWithEveryFactor) {
+    FileMaterial f;
+    f.colour = vec3(0.9f, 1.2f, 0.5f);  // out of range: clamped
+    f.metallic = 0.7f;
+    f.roughness = 0.35f;
+    f.transmission = 0.25f;
+    f.ior = 1.33f;
+    Material m = material_from_file(f);
+    EXPECT_EQ(m.kind, Material::Kind::Principled);
+    EXPECT_EQ(m.albedo.kind, Albedo::Kind::Constant);
+    EXPECT_EQ(m.albedo.rgb, vec3(0.9f, 1.0f, 0.5f));
+    EXPECT_EQ(m.principled.metallic, 0.7f);
+    EXPECT_EQ(m.principled.roughness, 0.35f);
+    EXPECT_EQ(m.principled.transmission, 0.25f);
+    EXPECT_EQ(m.principled.ior, 1.33f);
+    EXPECT_EQ(m.principled.specular, 1.0f);
+    f.ior = 0;  // no KHR_materials_ior
+    EXPECT_EQ(material_from_file(f).principled.ior, 1.5f);
+    f.ior = 1.0f;  // below the principled range: clamped
+    EXPECT_EQ(material_from_file(f).principled.ior, kMinPrincipledIor);
+    f.metallic = 2;
+    f.roughness = 3;
+    m = material_from_file(f, "rust.png");
+    EXPECT_EQ(m.principled.metallic, 1.0f);
+    EXPECT_EQ(m.principled.roughness, 1.0f);
+    EXPECT_EQ(m.albedo.kind, Albedo::Kind::Texture);
+    EXPECT_EQ(m.albedo.texture_path, "rust.png");
+}
+
+TEST(FileMaterials, WithoutARoughnessTransmissionMakesGlassMetallicAMirrorAndTheRestIsDiffuse) {
     FileMaterial f;
     f.colour = vec3(0.9f, 1.0f, 0.5f);
     f.transmission = 1;

@@ -138,6 +138,19 @@ TEST_F(MeshMaterials, FilesWithoutMaterialsHaveNone) {
     EXPECT_FALSE(stl.has_file_materials());
 }
 
+TEST_F(MeshMaterials, AnMtlRoughnessIsReadAndItsAbsenceIsMinusOne) {
+    write("m.mtl", "newmtl pbr\nKd 0.8 0.2 0.1\nPr 0.3\nPm 1\nnewmtl plain\nKd 0 0 1\n");
+    const LoadedMesh m = load_mesh(write("m.obj",
+                                         "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nv 0 2 0\n"
+                                         "usemtl pbr\nf 1 2 3\nusemtl plain\nf 2 4 5\n"));
+    ASSERT_EQ(m.materials.size(), 2u);
+    const FileMaterial& pbr = m.materials[0].name == "pbr" ? m.materials[0] : m.materials[1];
+    const FileMaterial& plain = m.materials[0].name == "pbr" ? m.materials[1] : m.materials[0];
+    EXPECT_FLOAT_EQ(pbr.roughness, 0.3f);
+    EXPECT_FLOAT_EQ(pbr.metallic, 1.0f);
+    EXPECT_EQ(plain.roughness, -1.0f);
+}
+
 TEST_F(MeshMaterials, ADroppedDegenerateTriangleTakesItsMaterialWithIt) {
     write("m.mtl", "newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 0 1\n");
     const LoadedMesh m =
@@ -154,7 +167,8 @@ TEST_F(MeshMaterials, ADroppedDegenerateTriangleTakesItsMaterialWithIt) {
 
 TEST_F(MeshMaterials, GltfMaterialsKeepTheirBaseColourMetallicTransmissionAndIor) {
     const std::string materials = R"([
-        {"name": "chrome", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.9, 0.8, 1], "metallicFactor": 1}},
+        {"name": "chrome", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.9, 0.8, 1], "metallicFactor": 1,
+         "roughnessFactor": 0.25}},
         {"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 1, 0.95, 1], "metallicFactor": 0},
          "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1}, "KHR_materials_ior": {"ior": 1.33}}}])";
     const LoadedMesh m = load_mesh(
@@ -168,6 +182,8 @@ TEST_F(MeshMaterials, GltfMaterialsKeepTheirBaseColourMetallicTransmissionAndIor
     EXPECT_EQ(chrome.metallic, 1.0f);
     EXPECT_EQ(chrome.colour, vec3(0.9f, 0.9f, 0.8f));
     EXPECT_EQ(chrome.transmission, 0.0f);
+    EXPECT_EQ(chrome.roughness, 0.25f);
+    EXPECT_EQ(glass.roughness, 1.0f);  // glTF's default
     EXPECT_EQ(glass.transmission, 1.0f);
     EXPECT_FLOAT_EQ(glass.ior, 1.33f);
     EXPECT_EQ(glass.colour, vec3(0.9f, 1.0f, 0.95f));

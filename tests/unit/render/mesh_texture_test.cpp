@@ -235,7 +235,7 @@ TEST_F(MeshTexture, AnObjsOwnMaterialAndTextureAreUsedWhereTheObjectTakesTheFile
     EXPECT_EQ(albedo_seen(*scene, 15.5f, 16.0f), vec3(0, 0.98f, 0));
 }
 
-TEST_F(MeshTexture, AGltfMeshIsDrawnWithAMirrorAGlassAndTheProjectsMaterialWhereItHasNone) {
+TEST_F(MeshTexture, AGltfMeshIsDrawnWithItsPrincipledMaterialsAndTheProjectsMaterialWhereItHasNone) {
     // Three quads side by side (x -1.5 to 1.5), facing the camera: chrome, glass, none.
     write("three.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
         "nodes": [{"mesh": 0}],
@@ -274,11 +274,15 @@ TEST_F(MeshTexture, AGltfMeshIsDrawnWithAMirrorAGlassAndTheProjectsMaterialWhere
     auto material_at = [&](float x) { return material_in(*scene, x); };
     const Material chrome = material_at(8.5f), glass = material_at(15.5f),
                    none = material_at(22.5f);
-    EXPECT_EQ(chrome.kind, Material::Kind::Mirror);
-    EXPECT_EQ(chrome.reflectance, vec3(0.9f, 0.8f, 0.7f));
-    EXPECT_EQ(glass.kind, Material::Kind::Glass);
-    EXPECT_FLOAT_EQ(glass.ior, 1.33f);
-    EXPECT_EQ(glass.tint, vec3(0.6f, 0.8f, 1.0f));
+    // glTF's metallic-roughness material, roughness 1 by glTF's default.
+    EXPECT_EQ(chrome.kind, Material::Kind::Principled);
+    EXPECT_EQ(chrome.albedo.rgb, vec3(0.9f, 0.8f, 0.7f));
+    EXPECT_EQ(chrome.principled.metallic, 1.0f);
+    EXPECT_EQ(chrome.principled.roughness, 1.0f);
+    EXPECT_EQ(glass.kind, Material::Kind::Principled);
+    EXPECT_FLOAT_EQ(glass.principled.ior, 1.33f);
+    EXPECT_EQ(glass.principled.transmission, 1.0f);
+    EXPECT_EQ(glass.albedo.rgb, vec3(0.6f, 0.8f, 1.0f));
     EXPECT_EQ(none.kind, Material::Kind::Diffuse);
     EXPECT_EQ(none.albedo.rgb, vec3(0.2f, 0.3f, 0.4f));
     EXPECT_TRUE(scene->has_transmissive());  // glass among the parts: photons carry its shadow
@@ -288,8 +292,8 @@ TEST_F(MeshTexture, AGltfMeshIsDrawnWithAMirrorAGlassAndTheProjectsMaterialWhere
     project.objects[0].material.albedo.rgb = vec3(0.7f, 0.1f, 0.1f);
     const std::shared_ptr<const RenderScene> edited = scene->with_materials(project);
     EXPECT_EQ(material_in(*edited, 22.5f).albedo.rgb, vec3(0.7f, 0.1f, 0.1f));
-    EXPECT_EQ(material_in(*edited, 8.5f).kind, Material::Kind::Mirror);
-    EXPECT_EQ(material_in(*edited, 15.5f).kind, Material::Kind::Glass);
+    EXPECT_EQ(material_in(*edited, 8.5f).kind, Material::Kind::Principled);
+    EXPECT_EQ(material_in(*edited, 15.5f).principled.transmission, 1.0f);
     EXPECT_EQ(material_at(22.5f).albedo.rgb, vec3(0.2f, 0.3f, 0.4f));
     EXPECT_EQ(&edited->assets(), &scene->assets());  // the decoded files are shared, not copied
 }

@@ -77,9 +77,23 @@ public:
 
     Material material() {
         Material m;
-        switch (integer(0, 2)) {
+        switch (integer(0, 3)) {
             case 0: m.kind = Material::Kind::Diffuse, m.albedo.rgb = colour(); break;
             case 1: m.kind = Material::Kind::Mirror, m.reflectance = colour(); break;
+            case 2: {
+                // Principled, its ranges' ends included (roughness 0 and 1, ior 1.01 and 5).
+                auto factor = [&] { return chance(0.3) ? float(integer(0, 1)) : float(log_uniform(1e-3, 1.0)); };
+                m.kind = Material::Kind::Principled;
+                m.albedo.rgb = colour();
+                m.principled.metallic = factor();
+                m.principled.roughness = factor();
+                m.principled.specular = factor();
+                m.principled.transmission = factor();
+                m.principled.ior = chance(0.2) ? (chance(0.5) ? kMinPrincipledIor : kMaxPrincipledIor)
+                                               : float(log_uniform(kMinPrincipledIor, kMaxPrincipledIor));
+                m.principled.emission = chance(0.2) ? colour() * float(log_uniform(1e-3, 1e3)) : vec3(0.0f);
+                break;
+            }
             default:
                 m.kind = Material::Kind::Glass;
                 m.ior = chance(0.2) ? (chance(0.5) ? 1.0f : 10.0f) : log_uniform(0.2, 4.0);

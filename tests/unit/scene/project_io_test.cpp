@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "base/error.h"
+#include "scene/project_diff.h"
 #include "scene/project_io.h"
 #include "scene_test_util.h"
 
@@ -177,6 +178,47 @@ TEST_F(ProjectIo, ProgrammaticProjectRoundTripsBitExactly) {
     EXPECT_EQ(load_project(saved), a);
     // to_json / parse_project round-trip without a file too.
     EXPECT_EQ(parse_project(to_json(a), "memory", dir_), a);
+}
+
+TEST_F(ProjectIo, APrincipledMaterialRoundTripsWithEveryFieldAndItsDefaults) {
+    Project a = load_project(write("rich.json", kRichProject));
+    Material& m = a.objects[0].material;
+    m = Material{};
+    m.kind = Material::Kind::Principled;
+    m.albedo.rgb = vec3(0.9f, 0.6f, 0.2f);
+    m.principled = {1.0f / 3.0f, 0.27f, 1.75f, 0.5f, 0.125f, vec3(0.0f, 2.5f, 10.0f)};
+    const nlohmann::json doc = to_json(a);
+    EXPECT_EQ(doc["objects"][0]["material"]["type"], "principled");
+    EXPECT_EQ(doc["objects"][0]["material"]["ior"], 1.75);
+    EXPECT_EQ(parse_project(doc, "memory", dir_), a);
+    // A textured base colour, as a diffuse albedo is written.
+    m.albedo = Albedo{};  // a texture's colour is not written
+    m.albedo.kind = Albedo::Kind::Texture;
+    m.albedo.texture_path = "textures/rust.png";
+    EXPECT_EQ(to_json(a)["objects"][0]["material"]["base_colour"]["texture"], "textures/rust.png");
+    EXPECT_EQ(parse_project(to_json(a), "memory", dir_), a);
+    // Only the type: the defaults (glTF's, but roughness 0.5 and a grey base).
+    nlohmann::json bare = doc;
+    bare["objects"][0]["material"] = {{"type", "principled"}};
+    const Material d = parse_project(bare, "memory", dir_).objects[0].material;
+    EXPECT_EQ(d.kind, Material::Kind::Principled);
+    EXPECT_EQ(d.principled, PrincipledMaterial{});
+    EXPECT_EQ(d.principled.ior, 1.5f);
+    EXPECT_EQ(d.principled.specular, 1.0f);
+    EXPECT_EQ(d.principled.emission, vec3(0.0f));
+}
+
+TEST_F(ProjectIo, EditingAPrincipledParameterIsAMaterialChange) {
+    Project a = load_project(write("rich.json", kRichProject));
+    a.objects[0].material = Material{};
+    a.objects[0].material.kind = Material::Kind::Principled;
+    Project b = a;
+    b.objects[0].material.principled.roughness = 0.8f;
+    EXPECT_EQ(classify(a, b), Change::Material);
+    b = a;
+    b.objects[0].material.principled.emission = vec3(1.0f);
+    EXPECT_EQ(classify(a, b), Change::Material);
+    EXPECT_EQ(classify(a, a), Change::None);
 }
 
 TEST_F(ProjectIo, EveryUpAxisAndAUnitScaleRoundTripAndAreWrittenForMeshesOnly) {
