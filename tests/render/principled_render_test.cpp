@@ -136,58 +136,50 @@ TEST(PrincipledRender, ABaseWithoutSpecularRendersAsTheDiffuseMaterial) {
     EXPECT_NEAR(ratio, 1.0, 0.03);
 }
 
-TEST(PrincipledRender, ARoughMetalBallMatchesThePathTracer) {
-    const Image probe = sun_sky();
-    const Project p = ball_on_floor(principled(vec3(0.9f, 0.7f, 0.4f), 1.0f, 0.4f));
+namespace {
+
+/// The differential render of `p` (its photograph rendered first) against the reference path
+/// tracer over the object and the real pixels it changes: relative RMSE and the object's mean
+/// ratio within the given bounds.
+void expect_matches_path_tracer(const char* what, const Project& p, const Image& probe, int samples, int passes,
+                                double max_rmse, double ratio_tolerance) {
     const Image photo = photograph(p, probe, 256);
     SceneAssets assets;
     assets.photo = Image(kW, kH);
     assets.probe_latlong = probe;
     const RenderScene scene(p, assets);
+    EXPECT_EQ(scene.has_transmissive(), p.objects[0].material.principled.transmission > 0) << what;
     ReferenceOptions o;
-    o.samples_per_pixel = 256;
+    o.samples_per_pixel = samples;
     o.seed = 12;
     const Image truth = render_reference(scene, o);
     Image alpha;
-    const Image out = differential(p, photo, probe, 16, &alpha);
+    const Image out = differential(p, photo, probe, passes, &alpha);
     size_t n = 0;
     const double rmse = relative_rmse(out, truth, photo, alpha, &n);
     const double ratio = object_mean(out, alpha) / object_mean(truth, alpha);
-    std::printf("rough metal against the path tracer: %zu pixels, relative RMSE %.4f, object mean ratio %.4f\n", n,
+    std::printf("%s against the path tracer: %zu pixels, relative RMSE %.4f, object mean ratio %.4f\n", what, n,
                 rmse, ratio);
-    EXPECT_GT(n, 200u);
-    EXPECT_NEAR(ratio, 1.0, 0.04);
-    EXPECT_LT(rmse, 0.08);  // the diffuse ball's figure in AgainstReference
+    EXPECT_GT(n, 200u) << what;
+    EXPECT_NEAR(ratio, 1.0, ratio_tolerance) << what;
+    EXPECT_LT(rmse, max_rmse) << what;
 }
 
+}  // namespace
+
+TEST(PrincipledRender, ARoughMetalBallMatchesThePathTracer) {
+    // 0.08: the diffuse ball's figure in AgainstReference.
+    expect_matches_path_tracer("rough metal", ball_on_floor(principled(vec3(0.9f, 0.7f, 0.4f), 1.0f, 0.4f)),
+                               sun_sky(), 256, 16, 0.08, 0.04);
+}
 
 TEST(PrincipledRender, ARoughGlassBallMatchesThePathTracer) {
     // Light through the object: its shadow and caustic go to photons (Surface::transmits). A
-    // large sun so that the path tracer finds the rough caustic by chance.
-    const Image probe = sun_sky(100.0f, 8.0f);
+    // large sun so that the path tracer finds the rough caustic by chance; 0.15: the glass
+    // ball's figure in AgainstReference.
     Material m = principled(vec3(0.95f), 0.0f, 0.2f);
     m.principled.transmission = 1.0f;
-    const Project p = ball_on_floor(m);
-    const Image photo = photograph(p, probe, 256);
-    SceneAssets assets;
-    assets.photo = Image(kW, kH);
-    assets.probe_latlong = probe;
-    const RenderScene scene(p, assets);
-    EXPECT_TRUE(scene.has_transmissive());
-    ReferenceOptions o;
-    o.samples_per_pixel = 2048;
-    o.seed = 12;
-    const Image truth = render_reference(scene, o);
-    Image alpha;
-    const Image out = differential(p, photo, probe, 32, &alpha);
-    size_t n = 0;
-    const double rmse = relative_rmse(out, truth, photo, alpha, &n);
-    const double ratio = object_mean(out, alpha) / object_mean(truth, alpha);
-    std::printf("rough glass against the path tracer: %zu pixels, relative RMSE %.4f, object mean ratio %.4f\n", n,
-                rmse, ratio);
-    EXPECT_GT(n, 200u);
-    EXPECT_NEAR(ratio, 1.0, 0.05);
-    EXPECT_LT(rmse, 0.15);  // the glass ball's figure in AgainstReference
+    expect_matches_path_tracer("rough glass", ball_on_floor(m), sun_sky(100.0f, 8.0f), 2048, 32, 0.15, 0.05);
 }
 
 TEST(PrincipledRender, TheCameraSeesTheEmission) {
