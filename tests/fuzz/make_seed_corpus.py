@@ -344,7 +344,14 @@ def projects():
     photons = json.loads(json.dumps(base))
     photons["render"]["estimator"] = "photons"
     photons["probe"]["format"] = "mirrorball"
+    principled = json.loads(json.dumps(base))
+    principled["objects"][0]["material"] = {"type": "principled", "base_colour": [0.95, 0.64, 0.54],
+                                            "metallic": 1, "roughness": 0.3}
+    principled["objects"][2]["material"] = {"type": "principled", "base_colour": {"texture": "texture.exr"},
+                                            "metallic": 0, "roughness": 0.2, "ior": 1.45, "specular": 0.5,
+                                            "transmission": 1, "emission": [0.1, 0.2, 0.3]}
     for target in ("project", "scene"):
+        put(target, "principled", json.dumps(principled, indent=1))
         put(target, "full", json.dumps(base, indent=1))
         put(target, "opencv_camera", json.dumps(opencv))
         put(target, "photon_estimator_mirror_ball", json.dumps(photons))
