@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "assets/material_presets.h"
 #include "document.h"
 #include "number_field.h"
 #include "image/image_io.h"
@@ -53,6 +54,12 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     kind_->addItems({tr("Diffuse"), tr("Mirror"), tr("Glass"), tr("Principled")});
     kind_->setToolTip(tr("Kind of material of the selected object"));
     form->addRow(tr("Material"), kind_);
+    preset_ = new QComboBox;
+    preset_->addItem(tr("Preset..."));
+    for (const MaterialPreset& preset : material_presets()) preset_->addItem(tr(preset.name));
+    preset_->setToolTip(tr("Make the material a principled preset, then adjust it; plastic, rubber and "
+                           "ceramic keep the colour"));
+    form->addRow(QString(), preset_);
     colour_ = new QPushButton;
     colour_->setToolTip(tr("Diffuse colour (albedo), or the principled base colour: click to pick"));
     form->addRow(tr("Colour"), colour_);
@@ -71,6 +78,16 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
         Project p = doc_->project();
         p.objects[size_t(sel)].material.kind = Material::Kind(k);
         doc_->edit(tr("Change material"), p);
+    });
+    connect(preset_, &QComboBox::activated, this, [this](int k) {
+        const int sel = doc_->selected();
+        if (refreshing_ || sel < 0 || k <= 0) return;
+        const MaterialPreset& preset = material_presets()[size_t(k - 1)];
+        Project p = doc_->project();
+        Material& m = p.objects[size_t(sel)].material;
+        m = with_preset(m, preset);
+        doc_->edit(tr("Material preset: %1").arg(tr(preset.name)), p);
+        preset_->setCurrentIndex(0);
     });
     connect(source_, &QComboBox::currentIndexChanged, this, [this](int k) {
         const int sel = doc_->selected();

@@ -29,6 +29,9 @@ public:
     QSlider* iorSlider() const { return ior_; }
     QComboBox* sourceBox() const { return source_; }
     QComboBox* kindBox() const { return kind_; }
+    /// "Preset...": picking one makes the material that principled preset (material_presets),
+    /// as one undo step, and the box goes back to its prompt.
+    QComboBox* presetBox() const { return preset_; }
     /// The principled material's fields, in PrincipledField order.
     enum PrincipledField { Metallic, Roughness, Ior, Specular, Transmission, Emission, kPrincipledFields };
     NumberField* principledField(PrincipledField f) const { return principled_[f]; }
@@ -52,7 +55,7 @@ private:
 
     Document* doc_;
     QFormLayout* form_;
-    QComboBox *kind_, *source_;
+    QComboBox *kind_, *source_, *preset_;
     QLabel* sourceNote_;
     QPushButton *colour_, *tint_;
     QSlider *reflectance_, *ior_;

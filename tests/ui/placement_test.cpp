@@ -17,8 +17,10 @@
 #include <QToolButton>
 #include <QUndoStack>
 #include <cmath>
+#include <cstdio>
 
 #include "document.h"
+#include "image/image_io.h"
 #include "gizmo.h"
 #include "material_panel.h"
 #include "number_field.h"
@@ -44,6 +46,7 @@ private Q_SLOTS:
     void importedMeshesGetTheirUnitAndFitTheView();
     void anImportedMeshWithMaterialsIsDrawnWithThemAndThePanelSaysSo();
     void thePanelSetsAPrincipledMaterialField();
+    void aPresetPickedByKeyTurnsTheBallToFrostedGlassOnScreenAndUndoTakesItBack();
 
 private:
     void press(int key, Qt::KeyboardModifiers modifiers = {});
@@ -428,6 +431,43 @@ void PlacementTest::thePanelSetsAPrincipledMaterialField() {
     // Outside its range a typed value is refused, not clamped: the project keeps 1.8.
     typeIntoField(panel->principledField(MaterialPanel::Ior), "9");
     QCOMPARE(object(ball).material.principled.ior, 1.8f);
+}
+
+void PlacementTest::aPresetPickedByKeyTurnsTheBallToFrostedGlassOnScreenAndUndoTakesItBack() {
+    w_->action("addSphere")->trigger();
+    const int ball = int(w_->document()->project().objects.size()) - 1;
+    const Material diffuse = object(ball).material;
+    // What the render shows, and where the objects are (the alpha layer), through exports.
+    auto shown = [this](const QString& name, const char* layer = "") {
+        const QString path = dir_->filePath(name);
+        if (!test::wait_refined(*w_) || !test::export_and_wait(*w_, path)) return Image();
+        return load_exr_layer(path.toStdString(), layer);
+    };
+    const Image before = shown("before.exr");
+    const Image alpha = load_exr_layer(dir_->filePath("before.exr").toStdString(), "alpha");
+    QVERIFY(before.width() > 0);
+    std::vector<uint8_t> objects(alpha.size());
+    for (size_t i = 0; i < alpha.size(); ++i) objects[i] = alpha[i].x > 0.5f;
+
+    // As a hand picks it: focus on the box and the key of the preset's first letter.
+    QComboBox* presets = w_->materialPanel()->presetBox();
+    presets->setFocus(Qt::TabFocusReason);
+    QTest::keyClick(presets, Qt::Key_F);
+    const Material& m = object(ball).material;
+    QCOMPARE(m.kind, Material::Kind::Principled);
+    QCOMPARE(m.principled.transmission, 1.0f);
+    QVERIFY(m.principled.roughness > 0.2f);
+    QCOMPARE(presets->currentIndex(), 0);  // back to its prompt
+    QCOMPARE(w_->document()->undoStack()->undoText(), QString("Material preset: Frosted glass"));
+    const Image glass = shown("glass.exr");
+
+    w_->document()->undoStack()->undo();
+    QVERIFY(object(ball).material == diffuse);
+    const Image undone = shown("undone.exr");
+    const double changed = test::mean_abs_diff(before, glass, objects);
+    const double restored = test::mean_abs_diff(before, undone, objects);
+    std::printf("objects' pixels: %.4f changed by the preset, %.4f apart after undo\n", changed, restored);
+    QVERIFY2(changed > 0.01 && changed > 4 * restored, qPrintable(QString("%1 / %2").arg(changed).arg(restored)));
 }
 
 QTEST_MAIN(PlacementTest)
