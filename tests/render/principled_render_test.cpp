@@ -105,35 +105,38 @@ double object_mean(const Image& img, const Image& alpha) {
 
 }  // namespace
 
+namespace {
+
+/// `principled` against the material it should render as (`same`), each rendered twice with
+/// other seeds: their difference within 1.5 times what their own noise explains, and the
+/// object's mean within `ratio_tolerance`.
+void expect_renders_as(const char* what, const Material& same, const Material& principled, const Image& probe,
+                       int photo_samples, int passes, double ratio_tolerance) {
+    const Project ps = ball_on_floor(same), pp = ball_on_floor(principled);
+    const Image photo = photograph(ps, probe, photo_samples);
+    Image alpha;
+    const Image s1 = differential(ps, photo, probe, passes, &alpha, 3), s2 = differential(ps, photo, probe, passes, nullptr, 4);
+    const Image p1 = differential(pp, photo, probe, passes, nullptr, 5), p2 = differential(pp, photo, probe, passes, nullptr, 6);
+    const double excess = difference_over_noise(p1, p2, s1, s2);
+    const double ratio = object_mean(p1, alpha) / object_mean(s1, alpha);
+    std::printf("%s: difference / noise %.3f, object mean ratio %.4f\n", what, excess, ratio);
+    EXPECT_LT(excess, 1.5) << what;
+    EXPECT_NEAR(ratio, 1.0, ratio_tolerance) << what;
+}
+
+}  // namespace
+
 TEST(PrincipledRender, ASmoothMetalRendersAsTheMirror) {
     // A wide, dim sun: a mirror's image of a small bright one is a few pixels' lottery.
-    const Image probe = sun_sky(10.0f, 20.0f);
-    const Project pm = ball_on_floor(mirror(vec3(0.9f))), pp = ball_on_floor(principled(vec3(0.9f), 1.0f, 0.01f));
-    const Image photo = photograph(pm, probe, 64);
-    Image alpha;
-    const Image m1 = differential(pm, photo, probe, 16, &alpha, 3), m2 = differential(pm, photo, probe, 16, nullptr, 4);
-    const Image p1 = differential(pp, photo, probe, 16, nullptr, 5), p2 = differential(pp, photo, probe, 16, nullptr, 6);
-    const double excess = difference_over_noise(p1, p2, m1, m2);
-    const double ratio = object_mean(p1, alpha) / object_mean(m1, alpha);
-    std::printf("smooth metal against the mirror: difference / noise %.3f, object mean ratio %.4f\n", excess, ratio);
-    EXPECT_LT(excess, 1.5);
-    // Schlick's Fresnel brightens the rim a little where the mirror keeps 0.9.
-    EXPECT_NEAR(ratio, 1.0, 0.04);
+    // Schlick's Fresnel brightens the rim a little where the mirror keeps 0.9: 4%.
+    expect_renders_as("smooth metal against the mirror", mirror(vec3(0.9f)), principled(vec3(0.9f), 1.0f, 0.01f),
+                      sun_sky(10.0f, 20.0f), 64, 16, 0.04);
 }
 
 TEST(PrincipledRender, ABaseWithoutSpecularRendersAsTheDiffuseMaterial) {
-    const Image probe = sun_sky();
     const vec3 albedo(0.6f, 0.5f, 0.4f);
-    const Project pd = ball_on_floor(diffuse(albedo)), pp = ball_on_floor(principled(albedo, 0.0f, 0.5f, 0.0f));
-    const Image photo = photograph(pd, probe, 64);
-    Image alpha;
-    const Image d1 = differential(pd, photo, probe, 8, &alpha, 3), d2 = differential(pd, photo, probe, 8, nullptr, 4);
-    const Image p1 = differential(pp, photo, probe, 8, nullptr, 5), p2 = differential(pp, photo, probe, 8, nullptr, 6);
-    const double excess = difference_over_noise(p1, p2, d1, d2);
-    const double ratio = object_mean(p1, alpha) / object_mean(d1, alpha);
-    std::printf("plain base against diffuse: difference / noise %.3f, object mean ratio %.4f\n", excess, ratio);
-    EXPECT_LT(excess, 1.5);
-    EXPECT_NEAR(ratio, 1.0, 0.03);
+    expect_renders_as("plain base against diffuse", diffuse(albedo), principled(albedo, 0.0f, 0.5f, 0.0f), sun_sky(),
+                      64, 8, 0.03);
 }
 
 namespace {
