@@ -12,6 +12,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/input_file.h"
 #include "base/text.h"
 #include "common.h"
 
@@ -21,12 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The file `path` names after symbolic links, or nothing when there is none.
-std::optional<struct stat> file_status(const std::string& path) {
-    struct stat st {};
-    if (path.empty() || ::stat(path.c_str(), &st) != 0) return std::nullopt;
-    return st;
-}
 
 fs::path folder_of(const std::string& path) {
     const fs::path folder = fs::path(path).parent_path();

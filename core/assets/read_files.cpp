@@ -5,6 +5,7 @@
 #include <optional>
 #include <system_error>
 
+#include "base/input_file.h"
 #include "geometry/mesh_side_files.h"
 #include "scene/relink.h"
 
@@ -14,12 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The file `path` names after symbolic links, or nothing when there is none.
-std::optional<struct stat> file_status(const std::string& path) {
-    struct stat st {};
-    if (path.empty() || ::stat(path.c_str(), &st) != 0) return std::nullopt;
-    return st;
-}
 
 /// "the texture named by mesh chair.obj's material file chair.mtl (objects[0].shape.path)".
 std::string side_file_what(const MeshSideFile& side, const InputFile& mesh) {

@@ -25,10 +25,15 @@ const char* special_kind(const struct stat& st) {
 
 }  // namespace
 
-std::string special_file_kind(const std::string& path) {
+std::optional<struct stat> file_status(const std::string& path) {
     struct stat st {};
-    if (path.empty() || ::stat(path.c_str(), &st) != 0) return "";
-    const char* kind = special_kind(st);
+    if (path.empty() || ::stat(path.c_str(), &st) != 0) return std::nullopt;
+    return st;
+}
+
+std::string special_file_kind(const std::string& path) {
+    const auto st = file_status(path);
+    const char* kind = st ? special_kind(*st) : nullptr;
     return kind ? kind : "";
 }
 

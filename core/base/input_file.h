@@ -1,5 +1,8 @@
 #pragma once
+#include <sys/stat.h>
+
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace dp {
@@ -11,6 +14,10 @@ namespace dp {
 /// Returns the file's size in bytes.
 uint64_t check_input_file(const std::string& path, const std::string& field, const std::string& what,
                           uint64_t max_bytes = 0);
+
+/// The file `path` names after symbolic links, or nothing when there is none (or it cannot be
+/// looked at).
+std::optional<struct stat> file_status(const std::string& path);
 
 /// What `path` is (after symlinks) when it exists but is no regular file, as check_input_file
 /// names it ("a folder", "a FIFO (named pipe)", "a character device"); empty for a regular
