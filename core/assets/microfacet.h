@@ -9,9 +9,9 @@ namespace dp {
 /// The smallest alpha the distribution takes: keeps D finite in floats.
 inline constexpr float kMinGgxAlpha = 1e-4f;
 
-/// Below this roughness (alpha = roughness^2 < 9e-4) a lobe is a mirror for rendering purposes:
-/// callers should use the specular code (scatter_specular, split_glass) instead of sampling
-/// GGX, whose peak is then too narrow to meet by chance or to evaluate accurately.
+/// Below this roughness (alpha = roughness^2 < 9e-4) GGX's peak is too narrow to meet by chance
+/// or to evaluate accurately in floats; the renderers raise a principled roughness to it
+/// (principled_at), where the lobes already reflect what a mirror or glass does within 1%.
 inline constexpr float kSpecularRoughness = 0.03f;
 
 /// glTF's convention: alpha = roughness^2, clamped to kMinGgxAlpha.

@@ -56,8 +56,6 @@ PrincipledBsdf::PrincipledBsdf(const PrincipledParams& params)
     transmit_strength_ = p_.transmission * mean(p_.base_colour);
 }
 
-bool PrincipledBsdf::is_near_specular() const { return p_.roughness < kSpecularRoughness; }
-
 float PrincipledBsdf::eta_for(float wo_z) const {
     return p_.transmission > 0 && wo_z < 0 ? 1 / p_.ior : p_.ior;
 }

@@ -88,10 +88,6 @@ public:
     /// Emitted radiance, for the caller to add; the BSDF itself does not emit.
     const vec3& emission() const { return p_.emission; }
 
-    /// True below kSpecularRoughness: the caller should treat the lobes as a perfect mirror or
-    /// glass (the existing specular code) instead of sampling them.
-    bool is_near_specular() const;
-
     /// f(wo, wi) |cos theta_i|; reflection when wo.z and wi.z have the same sign, transmission
     /// otherwise. Zero for grazing directions (z = 0).
     vec3 eval(const vec3& wo, const vec3& wi, Transport mode = Transport::Radiance) const;
