@@ -94,6 +94,13 @@ void check_extent_of(const Project& project, const std::vector<Surface>& real, c
     };
     for (const Surface& s : real) check(s);
     for (const Surface& s : virt) check(s);
+    for (size_t i = 0; i < project.lights.size(); ++i) {
+        const VirtualLight& l = project.lights[i];
+        const float reach = std::max(l.size.x, l.size.y) * std::max({l.transform.scale.x, l.transform.scale.z, 1.0f});
+        if (!ok(l.transform.translation) || !std::isfinite(reach) || reach > kMaxCoordinate)
+            throw InputError("", "lights[" + std::to_string(i) + "]",
+                             "'" + l.name + "' lies beyond 1e9 m from the origin (or is not finite): check its translation and size");
+    }
     if (!ok(camera.position()))
         throw InputError("", "camera", "the camera position is not finite or beyond 1e9 m from the origin");
 }
@@ -168,6 +175,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets, std::shared
     has_transmissive_ = any_transmits(virtual_surfaces_);
     check_extent();
     check_camera();
+    lights_ = LightSet(project_.lights);
     std::vector<PlacedShape> real, virt;
     for (const Surface& s : real_surfaces_) real.push_back(placed(s, true));
     for (size_t i = 0; i < virtual_surfaces_.size(); ++i)
@@ -280,6 +288,8 @@ std::shared_ptr<const RenderScene> RenderScene::with_materials(const Project& pr
         // Parts keep their file materials: only the triangles without one take the project's.
     }
     v->has_transmissive_ = any_transmits(v->virtual_surfaces_);
+    v->project_.lights = project.lights;
+    v->lights_ = LightSet(project.lights);
     return v;
 }
 

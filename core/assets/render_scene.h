@@ -10,6 +10,7 @@
 #include "probe/probe.h"
 #include "probe/probe_lights.h"
 #include "scene/project.h"
+#include "assets/virtual_lights.h"
 
 namespace dp {
 
@@ -121,6 +122,10 @@ public:
     const SceneAssets& assets() const { return *assets_; }
     const std::vector<EmissionCluster>& clusters() const { return clusters_; }
     bool has_virtual() const { return !clusters_.empty(); }
+    /// The virtual lights, placed.
+    const LightSet& lights() const { return lights_; }
+    /// Something virtual can change the photo: an object or a light.
+    bool has_change() const { return has_virtual() || !lights_.empty(); }
     /// Some virtual object transmits light (glass): its shadow and the light through it are
     /// left to photons together (docs/method-notes.md, "The split").
     bool has_transmissive() const { return has_transmissive_; }
@@ -151,7 +156,7 @@ public:
     /// photograph shows the point there, at the returned pixel.
     bool camera_sees(const vec3& p, const vec3& ng, vec2* pixel = nullptr) const;
 
-    /// A new version of this scene with `project`'s virtual materials, sharing its assets, world
+    /// A new version of this scene with `project`'s virtual materials and lights, sharing its assets, world
     /// meshes and BVHs (nothing is rebuilt). Shapes and transforms must match; the object count
     /// is checked. A scene never changes once built: what holds it as const may cache on it.
     std::shared_ptr<const RenderScene> with_materials(const Project& project) const;
@@ -192,6 +197,7 @@ private:
     std::shared_ptr<std::vector<TriangleMesh>> real_world_meshes_, virtual_world_meshes_;
     std::shared_ptr<SceneBVH> bvh_;
     std::vector<EmissionCluster> clusters_;
+    LightSet lights_;
     bool has_transmissive_ = false;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/light_estimate.h"
 #include "render/photographed_radiance.h"
 #include "assets/principled_scatter.h"
 #include "assets/scattering.h"
@@ -35,6 +36,9 @@ vec3 CameraGather::real_dL(const Hit& hit, const vec3& dir, Rng& rng, const Dire
     dvec3 E(0), E_photons(0);
     if (direct_ && direct && direct->weight > 0)
         E += direct_->estimate(hit, n, direct->u, rng) * direct->weight;
+    // The virtual lights' direct light: all of it is a change (the photo never had it).
+    if (direct && direct->weight > 0 && !scene_.lights().empty())
+        E += dvec3(light_irradiance(scene_, hit, n, rng)) * direct->weight;
     if (gather && !maps_.real.empty()) E_photons = maps_.real.gather(hit.p, n) * inv_area_;
     if (E == dvec3(0) && E_photons == dvec3(0)) return vec3(0);
     const dvec3 rho_over_pi = dvec3(hit.surface->reflectance_at(hit.uv)) * double(kInvPi);
@@ -81,6 +85,12 @@ vec3 CameraGather::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng
             const float weight = bounce ? power_heuristic(ls.pdf, cos_l * kInvPi) : 1.0f;
             sum += ls.radiance * (cos_l / ls.pdf) * weight * kInvPi;
         }
+        // The virtual lights, each by next-event estimation alone.
+        if (!scene_.lights().empty())
+            sum += reflected_light(scene_, h, rng, [&](const vec3& w) {
+                const float c = glm::dot(n, w);
+                return c > 0 && glm::dot(ng, w) > 0 ? vec3(c * kInvPi) : vec3(0);
+            });
         if (!bounce) continue;
         // One cosine-weighted bounce: real surroundings (the photo), other virtual objects, probe.
         vec3 d = sample_diffuse(h, -ng, u_bounce);
@@ -105,7 +115,13 @@ vec3 CameraGather::incoming(const Ray& ray, Rng& rng, int depth, bool from_diffu
 }
 
 vec3 CameraGather::radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse,
-                         int splits) const {
+                         int splits, bool lights_sampled) const {
+    // An area light's face in front of the surface (the lights are not in the BVH). After a
+    // diffuse bounce the caustic map carries the lights' light through specular chains.
+    if (!from_diffuse && !lights_sampled && !scene_.lights().empty()) {
+        const vec3 Le = scene_.lights().emitted(ray, hit ? hit.t : INFINITY);
+        if (Le != vec3(0)) return Le;
+    }
     if (!hit) return from_diffuse ? vec3(0) : scene_.probe().radiance(ray.dir);
     if (!hit.surface->is_virtual) return real_radiance(hit, ray.dir, rng);
     if (hit.surface->material.kind == Material::Kind::Diffuse)
@@ -149,6 +165,9 @@ vec3 CameraGather::principled_radiance(const Hit& hit, const vec3& dir, Rng& rng
             const float w = power_heuristic(ls.pdf, pdf_principled(bsdf, hit, dir, ls.dir));
             L += f * ls.radiance * (w / ls.pdf);
         }
+        L += reflected_light(scene_, hit, rng, [&](const vec3& w) {
+            return eval_principled(bsdf, hit, dir, w, Transport::Radiance);
+        });
     }
     const PrincipledEvent e = sample_principled(bsdf, hit, dir, vec3(u_dir, u_pick.x), Transport::Radiance);
     if (e.weight == vec3(0)) return L;
@@ -158,7 +177,8 @@ vec3 CameraGather::principled_radiance(const Hit& hit, const vec3& dir, Rng& rng
         if (!from_diffuse) L += e.weight * scene_.probe().radiance(e.dir) * power_heuristic(e.pdf, lights.pdf(e.dir));
         return L;
     }
-    const vec3 Li = radiance_at(next, ray, rng, depth + 1, from_diffuse, splits);
+    // The lights were sampled above (or are in the caustic map): their faces add nothing here.
+    const vec3 Li = radiance_at(next, ray, rng, depth + 1, from_diffuse, splits, true);
     return is_finite(Li) ? L + e.weight * Li : L;
 }
 
@@ -167,6 +187,15 @@ SampleResult CameraGather::shade_camera(int x, int y, float px, float py, PixelS
     SampleResult r;
     const Ray ray = scene_.camera_ray(px, py);
     const Hit hit = scene_.intersect(ray);
+    if (!scene_.lights().empty()) {
+        // An area light's face, seen directly: its glare replaces the photo like an object.
+        const vec3 Le = scene_.lights().emitted(ray, hit ? hit.t : INFINITY);
+        if (Le != vec3(0)) {
+            r.alpha = 1;
+            r.pixel_change = Le - scene_.photo().at(x, y);
+            return r;
+        }
+    }
     if (!hit) return r;  // nothing modelled here: the photo stands
     if (!hit.surface->is_virtual) {
         const DirectSamples direct = DirectSamples::from(sampler, work.direct_weight);

@@ -93,8 +93,11 @@ public:
     /// `from_diffuse`: light from the probe through specular chains is in the caustic map.
     vec3 incoming(const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const;
 
-    /// Radiance arriving along `ray` whose first hit is already known (`hit` may be empty).
-    vec3 radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits) const;
+    /// Radiance arriving along `ray` whose first hit is already known (`hit` may be empty), or
+    /// the face of a virtual area light before it. `lights_sampled`: the ray leaves a point whose
+    /// next-event estimation took the lights, so their faces add nothing.
+    vec3 radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits,
+                     bool lights_sampled = false) const;
 
     /// Radiance leaving a virtual principled point towards -dir: its emission, the probe by
     /// next-event estimation (MIS against the BSDF; none from a diffuse gather, whose caustic

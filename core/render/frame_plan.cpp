@@ -45,7 +45,7 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std:
     const Image& photo = s.photo();
     plan.value_floor = value_floor(photo);
     const float floor = plan.value_floor;
-    if (!s.has_virtual()) return plan;
+    if (!s.has_change()) return plan;
 
     // What a real surface behind an object could send, for the bound: the bright end of the
     // real surfaces in the photo, from every fourth pixel (the sky in the photo's background
@@ -65,6 +65,7 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std:
         }
     }
     const DirectChange direct(s, real_max);
+    const LightSet& lights = s.lights();
     std::vector<uint8_t> sees_virtual(n, 0);
     // A row at a time, so that an edit arriving meanwhile (a viewer's) does not wait for it all.
     auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
@@ -75,6 +76,11 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std:
             const size_t i = size_t(y) * W + x;
             const Ray ray = s.camera_ray(float(x), float(y));
             const Hit hit = s.intersect(ray);
+            // An area light's face is drawn like an object.
+            if (!lights.empty() && lights.emitted(ray, hit ? hit.t : INFINITY) != vec3(0)) {
+                sees_virtual[i] = 1;
+                continue;
+            }
             if (!hit) continue;
             if (hit.surface->is_virtual) {
                 sees_virtual[i] = 1;
@@ -84,6 +90,11 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std:
             const vec3 n_facing = facing_normal(hit.ng, ray.dir);
             const double density = pixels_per_area(s.camera(), hit.p, n_facing);
             if (density > 0) plan.splat_radius[i] = float(std::sqrt(1.0 / (double(kPi) * density)));
+            // A pixel a light can reach takes its light every pass, whatever the estimator.
+            if (!lights.empty() && lights.irradiance_bound(hit.p, n_facing) > 0) {
+                plan.direct_probability[i] = 1;
+                continue;
+            }
             if (!direct_by_rays) continue;
             const double bound = direct.bound(hit.p, n_facing);
             if (bound <= 0) continue;

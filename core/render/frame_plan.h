@@ -23,7 +23,8 @@ struct FramePlan {
     float value_floor = 0;
     std::vector<PixelKind> kind;  ///< per pixel
     /// Per real pixel: probability that a pass estimates its direct-light change (Russian
-    /// roulette on a bound of that change against the pixel's value; 1 near the objects).
+    /// roulette on a bound of that change against the pixel's value; 1 near the objects and
+    /// wherever a virtual light can reach).
     std::vector<float> direct_probability;
     /// Per real pixel: the radius of a disk as large as the pixel's footprint on the surface its
     /// centre sees. While a pass's gather radius is below it, the pass's photons are splatted
@@ -65,7 +66,7 @@ struct PixelWindow {
 /// Traces one ray through every pixel centre (of `window` only, when given: the pixels outside
 /// it are planned as seeing nothing that changes). With `direct_by_rays`, bounds each real pixel's
 /// direct-light change (DirectChange::bound) for the roulette; otherwise the probabilities
-/// stay 0 (the all-photon estimator has no direct term).
+/// stay 0 (the all-photon estimator has no direct term) but where a virtual light reaches.
 /// `cancel` becoming true stops it early: the plan returned is then incomplete (width 0).
 FramePlan build_frame_plan(const RenderScene& scene, bool direct_by_rays,
                            const std::atomic<bool>* cancel = nullptr, const PixelWindow* window = nullptr);

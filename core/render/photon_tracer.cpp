@@ -8,6 +8,7 @@
 
 #include "base/rng.h"
 #include "base/sampling.h"
+#include "render/light_estimate.h"
 #include "render/photographed_radiance.h"
 #include "assets/principled_scatter.h"
 #include "assets/scattering.h"
@@ -33,6 +34,7 @@ struct Tracer {
     const DirectChange* direct = nullptr;
     PhotonMap probe_map;     ///< this pass's probe photons on real surfaces, for the emitters
     double inv_area = 0;     ///< 1 / (pi r^2) of probe_map's gathers
+    double inv_light_count = 0;  ///< 1 / the number of light photons
 
     Tracer(const RenderScene& s, int64_t count, int64_t surround_count, const PhotonPassOptions& o)
         : scene(s), emitter(s, count, surround_count), max_depth(std::max(1, o.max_depth)),
@@ -122,6 +124,20 @@ struct Tracer {
         follow(hv, -w, flux, PhotonKind::Light, rng, out);
     }
 
+    /// A photon from a virtual light. All its light is new, so nothing is negative: where it
+    /// first lands on a real surface is direct light, which next-event estimation takes (it is
+    /// not stored there), and it bounces on from there and from the objects as light photons.
+    void trace_light(Rng& rng, Block& out) const {
+        ++out.stats.emitted;
+        const LightPhoton e = scene.lights().emit(rng, inv_light_count, scene.ray_epsilon());
+        if (!e.valid) return;
+        const Hit hit = scene.intersect(e.ray);
+        ++out.stats.rays;
+        if (!hit) return;
+        if (hit.surface->is_virtual) ++out.stats.hit_virtual;
+        follow(hit, e.ray.dir, e.flux, PhotonKind::Light, rng, out, true, false);
+    }
+
     /// How much a real point's radiance towards -dir has changed: the direct light the objects
     /// block there (rays, one estimate), and what the pass's probe photons changed there. The
     /// photo shows a floor under an object unshadowed, and it must not light the object's
@@ -139,6 +155,7 @@ struct Tracer {
             out.stats.rays += 4;  // about: the samples that reach a cone cost one or two rays
         }
         if (!probe_map.empty()) E += probe_map.gather(x.p, n) * inv_area;
+        E += dvec3(light_irradiance(scene, x, n, rng));
         if (E == dvec3(0)) return vec3(0);
         return vec3(dvec3(x.surface->reflectance_at(x.uv)) * double(kInvPi) * E);
     }
@@ -256,40 +273,51 @@ PhotonEmitter::SurroundLine PhotonEmitter::emit_surround_line(Rng& rng) const {
 PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass, int64_t count,
                          const std::atomic<bool>* cancel, PhotonPassOptions options) {
     PhotonPass result;
-    if (!scene.has_virtual() || count <= 0 || scene.probe().total_luminance_power() <= 0) return result;
-    const int64_t surround = options.from_surroundings ? count / kSurroundPhotonDivisor : 0;
-    const int64_t total = count + surround;
+    if (count <= 0) return result;
+    // Probe photons need objects to meet; light photons only lights.
+    const bool objects = scene.has_virtual() && scene.probe().total_luminance_power() > 0;
+    const int64_t probe = objects ? count : 0;
+    const int64_t lights = scene.lights().total_power() > 0 ? count : 0;
+    const int64_t surround = objects && options.from_surroundings ? count / kSurroundPhotonDivisor : 0;
+    if (probe + lights == 0) return result;
     Tracer tracer(scene, count, surround, options);
-    const int64_t probe_blocks = (count + kBlock - 1) / kBlock;  // probe and surroundings never share a block
-    std::vector<Block> out(size_t(probe_blocks + (surround + kBlock - 1) / kBlock));
-    // Block b of the probe photons covers photons [b kBlock, ...); block probe_blocks + c covers
-    // the surroundings' photons [c kBlock, ...), numbered after the probe photons.
+    tracer.inv_light_count = lights > 0 ? 1.0 / double(lights) : 0.0;
+    // Blocks in order: the probe photons, the light photons, the surroundings' photons (never
+    // two kinds in one block). Photon i of the pass is numbered across all three.
+    auto blocks = [](int64_t n) { return (n + kBlock - 1) / kBlock; };
+    const int64_t probe_blocks = blocks(probe), light_blocks = blocks(lights);
+    std::vector<Block> out(size_t(probe_blocks + light_blocks + blocks(surround)));
     auto run = [&](int64_t first_block, int64_t last_block) {
         tbb::parallel_for(tbb::blocked_range<int64_t>(first_block, last_block, 1), [&](const tbb::blocked_range<int64_t>& r) {
             for (int64_t b = r.begin(); b < r.end(); ++b) {
                 if (cancel && cancel->load(std::memory_order_relaxed)) return;
-                const bool probe = b < probe_blocks;
-                const int64_t begin = probe ? b * kBlock : count + (b - probe_blocks) * kBlock;
-                const int64_t end = probe ? std::min(count, begin + kBlock) : std::min(total, begin + kBlock);
+                const int kind = b < probe_blocks ? 0 : b < probe_blocks + light_blocks ? 1 : 2;
+                const int64_t first = kind == 0 ? 0 : kind == 1 ? probe : probe + lights;
+                const int64_t n = kind == 0 ? probe : kind == 1 ? lights : surround;
+                const int64_t local = b - (kind == 0 ? 0 : kind == 1 ? probe_blocks : probe_blocks + light_blocks);
+                const int64_t begin = first + local * kBlock, end = first + std::min(n, (local + 1) * kBlock);
                 for (int64_t i = begin; i < end; ++i) {
                     Rng rng = rng_stream::photon(seed, uint64_t(pass), uint64_t(i));
-                    if (probe)
+                    if (kind == 0)
                         tracer.trace_one(rng, out[b]);
+                    else if (kind == 1)
+                        tracer.trace_light(rng, out[b]);
                     else
                         tracer.trace_surround(rng, out[b]);
                 }
             }
         });
     };
-    run(0, probe_blocks);
+    run(0, probe_blocks + light_blocks);
     if (surround > 0 && options.emitter_radius > 0) {
-        // The probe photons first: the surroundings' emitters see the change they make.
-        std::vector<Photon> probe_real;
-        for (int64_t b = 0; b < probe_blocks; ++b) probe_real.insert(probe_real.end(), out[b].real.begin(), out[b].real.end());
-        tracer.probe_map.build(std::move(probe_real), options.emitter_radius);
+        // The probe's and lights' photons first: the surroundings' emitters see their change.
+        std::vector<Photon> first_real;
+        for (int64_t b = 0; b < probe_blocks + light_blocks; ++b)
+            first_real.insert(first_real.end(), out[b].real.begin(), out[b].real.end());
+        tracer.probe_map.build(std::move(first_real), options.emitter_radius);
         tracer.inv_area = 1.0 / (double(kPi) * options.emitter_radius * options.emitter_radius);
     }
-    run(probe_blocks, int64_t(out.size()));
+    run(probe_blocks + light_blocks, int64_t(out.size()));
     // Merge blocks in order (deterministic), copying in parallel into precomputed offsets.
     const int64_t merged = int64_t(out.size());
     std::vector<size_t> real_at(merged + 1, 0), caustic_at(merged + 1, 0);

@@ -12,8 +12,8 @@ namespace dp {
 
 /// Counters of one photon pass, for progress reports and benchmarks.
 struct PhotonStats {
-    uint64_t emitted = 0;        ///< photons shot at the clusters' disks
-    uint64_t hit_virtual = 0;    ///< probe photons whose first hit is a virtual object
+    uint64_t emitted = 0;        ///< photons shot at the clusters' disks and from the lights
+    uint64_t hit_virtual = 0;    ///< probe and light photons whose first hit is a virtual object
     uint64_t surround_hit_virtual = 0;  ///< photons from the real surroundings that meet one
     uint64_t stored_real = 0;    ///< signed photons stored on real surfaces
     uint64_t stored_caustic = 0; ///< caustic photons stored on virtual diffuse surfaces
@@ -94,7 +94,8 @@ struct PhotonPassOptions {
 };
 
 /// Shoots `count` photons from the probe at the emission clusters and traces their change to
-/// the light (docs/method-notes.md, "Photons"), then count / kSurroundPhotonDivisor photons
+/// the light (docs/method-notes.md, "Photons"), `count` photons from the virtual lights (when
+/// there are any; docs/lights.md), then count / kSurroundPhotonDivisor photons
 /// of light from the real surroundings at the same clusters (their photographed radiance where
 /// they are blocked, their radiance as the probe photons and rays change it where an object
 /// reflects it on).

@@ -65,7 +65,8 @@ std::filesystem::path Project::resolve(const std::string& path) const {
 bool Project::operator==(const Project& o) const {
     // base_dir records where the file was read from, not what it says.
     return schema_version == o.schema_version && photo == o.photo && probe == o.probe &&
-           camera == o.camera && real == o.real && objects == o.objects && render == o.render &&
+           camera == o.camera && real == o.real && objects == o.objects && lights == o.lights &&
+           render == o.render &&
            display == o.display;
 }
 

@@ -115,6 +115,35 @@ struct VirtualObject {
     bool operator==(const VirtualObject&) const = default;
 };
 
+/// A virtual lamp: its light on the real scene is added to the photograph, and it lights the
+/// virtual objects (docs/lights.md). Units and conventions are Blender's, so a hand-off keeps it.
+/// `transform` places it: its position is the translation, it shines along its local -Y (straight
+/// down with no rotation), and the area kinds lie in its local XZ plane, scaled by the
+/// transform's x and z scale.
+struct VirtualLight {
+    enum class Kind { Point, Spot, Rect, Disk };
+    std::string name;
+    Kind kind = Kind::Point;
+    Transform transform;
+    vec3 colour{1.0f};       ///< linear RGB, >= 0; multiplies the power
+    float power_w = 100.0f;  ///< radiant flux (W); a spot shines as a point of this power, cut to its cone
+    float spot_angle_deg = 45.0f;  ///< spot: the cone's full angle, (0, 180]
+    float spot_blend = 0.15f;      ///< spot: the soft share of the cone's edge, [0, 1]
+    vec2 size{0.5f};               ///< rect: x by z extent (m); disk: size.x is the diameter
+    bool visible = true;           ///< the camera (and mirrors) see an area light's emitting face
+    bool operator==(const VirtualLight&) const = default;
+};
+
+/// The light kinds by the names the project file, the CLI and the studio use.
+inline constexpr std::pair<const char*, VirtualLight::Kind> kLightKinds[] = {{"point", VirtualLight::Kind::Point},
+                                                                            {"spot", VirtualLight::Kind::Spot},
+                                                                            {"rect", VirtualLight::Kind::Rect},
+                                                                            {"disk", VirtualLight::Kind::Disk}};
+/// "point", "spot", "rect" or "disk".
+inline const char* light_kind_name(VirtualLight::Kind kind) { return kLightKinds[int(kind)].first; }
+/// The largest power a light may have (W): far past any lamp, short of overflowing a photon's flux.
+inline constexpr float kMaxLightPower = 1e9f;
+
 /// The material sources by the names the project file uses.
 inline constexpr std::pair<const char*, MaterialSource> kMaterialSources[] = {{"project", MaterialSource::Project},
                                                                              {"file", MaterialSource::File}};
@@ -225,6 +254,7 @@ struct Project {
     CameraSpec camera;
     std::vector<RealProxy> real;
     std::vector<VirtualObject> objects;
+    std::vector<VirtualLight> lights;
     RenderSettings render;
     DisplaySettings display;
 

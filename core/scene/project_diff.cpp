@@ -30,14 +30,15 @@ Change classify(const Project& a, const Project& b) {
             return Change::Scene;
         material |= !(ma == mb);
     }
-    if (material) return Change::Material;
+    // Lights are not in the BVH: a scene takes new ones as it takes new materials.
+    if (material || a.lights != b.lights) return Change::Material;
     return a.render != b.render ? Change::Settings : Change::None;
 }
 
 bool edited_objects(const Project& a, const Project& b, std::vector<int>& edited) {
     edited.clear();
     if (classify(a, b) == Change::Assets || !(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real ||
-        a.render != b.render)
+        a.render != b.render || a.lights != b.lights)
         return false;
     const size_t n = std::max(a.objects.size(), b.objects.size());
     for (size_t i = 0; i < n; ++i)

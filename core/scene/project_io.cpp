@@ -203,6 +203,40 @@ VirtualObject parse_object(const JsonReader& r, const json& j, const std::string
     return o;
 }
 
+VirtualLight parse_light(const JsonReader& r, const json& j, const std::string& path) {
+    if (!j.is_object()) r.wrong_type(j, path, "an object");
+    VirtualLight l;
+    l.kind = r.choice<VirtualLight::Kind>(r.required(j, path, "type"), json_join(path, "type"), "light type",
+                                          kLightKinds);
+    const std::string ctx = " for light type '" + j["type"].get<std::string>() + "'";
+    if (l.kind == VirtualLight::Kind::Point)
+        r.object(j, path, {"name", "type", "transform", "colour", "power_w"}, ctx);
+    else if (l.kind == VirtualLight::Kind::Spot)
+        r.object(j, path, {"name", "type", "transform", "colour", "power_w", "spot_angle_deg", "spot_blend"}, ctx);
+    else
+        r.object(j, path, {"name", "type", "transform", "colour", "power_w", "size", "visible"}, ctx);
+    l.name = parse_name(r, j, path);
+    if (auto* v = r.optional(j, "transform")) l.transform = parse_transform(r, *v, json_join(path, "transform"));
+    if (auto* v = r.optional(j, "colour")) l.colour = r.colour(*v, json_join(path, "colour"));
+    if (auto* v = r.optional(j, "power_w")) l.power_w = bounded(r, *v, json_join(path, "power_w"), 0.0f, kMaxLightPower);
+    if (auto* v = r.optional(j, "spot_angle_deg")) {
+        const std::string p = json_join(path, "spot_angle_deg");
+        l.spot_angle_deg = bounded(r, *v, p, 0.0f, 180.0f);
+        r.check(l.spot_angle_deg > 0, p, "must be > 0 (got 0)");
+    }
+    if (auto* v = r.optional(j, "spot_blend")) l.spot_blend = bounded(r, *v, json_join(path, "spot_blend"), 0.0f, 1.0f);
+    if (auto* v = r.optional(j, "size")) {
+        const std::string p = json_join(path, "size");
+        const size_t n = l.kind == VirtualLight::Kind::Disk ? 1 : 2;
+        const std::vector<float> s = r.numbers(*v, p, n);
+        for (size_t i = 0; i < n; ++i)
+            r.check(s[i] > 0 && s[i] <= 1e6f, json_at(p, i), "must be in (0, 1e6] metres (got " + shortest_decimal(s[i]) + ")");
+        l.size = n == 1 ? vec2(s[0]) : vec2(s[0], s[1]);
+    }
+    if (auto* v = r.optional(j, "visible")) l.visible = r.boolean(*v, json_join(path, "visible"));
+    return l;
+}
+
 void parse_lookat(const JsonReader& r, const json& j, CameraSpec& c) {
     c.eye = r.vector3(r.required(j, "camera", "eye"), "camera.eye");
     c.target = r.vector3(r.required(j, "camera", "target"), "camera.target");
@@ -466,6 +500,25 @@ J write_project(const Project& p) {
         object["visible"] = o.visible;
         doc["objects"].push_back(object);
     }
+    // Written only when there are lights: such a file stays readable by builds without them.
+    if (!p.lights.empty()) {
+        doc["lights"] = J::array();
+        for (const VirtualLight& l : p.lights) {
+            J light{{"name", l.name},
+                    {"type", light_kind_name(l.kind)},
+                    {"transform", write_transform<J>(l.transform)},
+                    {"colour", vec<J>(l.colour)},
+                    {"power_w", num(l.power_w)}};
+            if (l.kind == VirtualLight::Kind::Spot) {
+                light["spot_angle_deg"] = num(l.spot_angle_deg);
+                light["spot_blend"] = num(l.spot_blend);
+            }
+            if (l.kind == VirtualLight::Kind::Rect) light["size"] = J::array({num(l.size.x), num(l.size.y)});
+            if (l.kind == VirtualLight::Kind::Disk) light["size"] = J::array({num(l.size.x)});
+            if (l.kind == VirtualLight::Kind::Rect || l.kind == VirtualLight::Kind::Disk) light["visible"] = l.visible;
+            doc["lights"].push_back(light);
+        }
+    }
     const RenderSettings& s = p.render;
     J render;
     render["photons_per_pass"] = s.photons_per_pass;
@@ -503,7 +556,7 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
                 std::to_string(kProjectSchemaVersion));
     r.object(
         doc, "",
-        {"schema_version", "photo", "probe", "camera", "real", "objects", "render", "display"});
+        {"schema_version", "photo", "probe", "camera", "real", "objects", "lights", "render", "display"});
 
     Project p;
     p.base_dir = std::move(base_dir);
@@ -557,6 +610,7 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     each("objects", [&](const json& j, const std::string& path) {
         p.objects.push_back(parse_object(r, j, path));
     });
+    each("lights", [&](const json& j, const std::string& path) { p.lights.push_back(parse_light(r, j, path)); });
     if (auto* s = r.optional(doc, "render")) p.render = parse_render(r, *s);
     if (auto* d = r.optional(doc, "display")) {
         r.object(*d, "display", {"exposure", "view", "look"});
