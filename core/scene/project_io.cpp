@@ -228,6 +228,8 @@ VirtualLight parse_light(const JsonReader& r, const json& j, const std::string& 
     if (auto* v = r.optional(j, "size")) {
         const std::string p = json_join(path, "size");
         const size_t n = l.kind == VirtualLight::Kind::Disk ? 1 : 2;
+        r.check(!v->is_array() || v->size() == n, p,
+                n == 1 ? "a disk's size is one number, its diameter: [d]" : "a rect's size is two numbers: [x, z]");
         const std::vector<float> s = r.numbers(*v, p, n);
         for (size_t i = 0; i < n; ++i)
             r.check(s[i] > 0 && s[i] <= 1e6f, json_at(p, i), "must be in (0, 1e6] metres (got " + shortest_decimal(s[i]) + ")");
