@@ -238,6 +238,10 @@ std::vector<BadCase> bad_cases() {
          "must be in (0, 1e6] metres (got 0)"},
         {"LightColourAboveOne", [](json& j) { j["lights"] = {{{"type", "point"}, {"colour", {2, 1, 1}}}}; },
          "lights[0].colour[0]", "must be in [0, 1] (got 2)"},
+        {"GlossAboveOne", [](json& j) { j["real"][0]["gloss"] = {{"specular", 1.5}}; }, "real[0].gloss.specular",
+         "must be in [0, 1] (got 1.5)"},
+        {"GlossUnknownKey", [](json& j) { j["real"][0]["gloss"] = {{"shine", 1}}; }, "real[0].gloss.shine",
+         "unknown key 'shine'"},
         {"FloatOverflow", [](json& j) { j["objects"][0]["transform"]["translation"][0] = 1e39; },
          "objects[0].transform.translation[0]", "must be a finite number"},
     };

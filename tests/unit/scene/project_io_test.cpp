@@ -263,6 +263,19 @@ TEST_F(ProjectIo, EveryLightKindRoundTripsWithItsOwnFieldsOnly) {
     EXPECT_FALSE(edited_objects(a, b, edited));  // the whole picture can change
 }
 
+TEST_F(ProjectIo, AProxysGlossRoundTripsAndIsLeftOutWhenMatte) {
+    Project a = load_project(write("rich.json", kRichProject));
+    EXPECT_FALSE(to_json(a)["real"][0].contains("gloss"));
+    a.real[0].gloss = Gloss{0.04f, 0.15f};
+    const nlohmann::json doc = to_json(a);
+    EXPECT_EQ(doc["real"][0]["gloss"]["specular"], 0.04);
+    EXPECT_EQ(doc["real"][0]["gloss"]["roughness"], 0.15);
+    EXPECT_EQ(parse_project(doc, "memory", dir_), a);
+    nlohmann::json bare = doc;
+    bare["real"][0]["gloss"] = {{"specular", 0.5}};
+    EXPECT_EQ(parse_project(bare, "memory", dir_).real[0].gloss.roughness, Gloss{}.roughness);
+}
+
 TEST_F(ProjectIo, EveryUpAxisAndAUnitScaleRoundTripAndAreWrittenForMeshesOnly) {
     Project a = load_project(write("rich.json", kRichProject));
     for (const auto& [name, axis] : kUpAxes) {
