@@ -2,6 +2,7 @@
 #include "base/error.h"
 #include "base/euler.h"
 #include "assets/microfacet.h"
+#include "assets/principled_scatter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +62,49 @@ PlacedShape placed(const Surface& s, bool present) {
     p.present = present;
     p.needs_uv = s.texture != nullptr;
     return p;
+}
+
+/// The visible virtual objects whose material emits, as lights of their shape (the triangles a
+/// file material covers do not emit: a file's emission is not read).
+std::vector<EmissiveShape> emissive_shapes(const Project& project, const std::vector<Surface>& surfaces) {
+    std::vector<EmissiveShape> out;
+    for (size_t i = 0; i < surfaces.size() && i < project.objects.size(); ++i) {
+        const Surface& s = surfaces[i];
+        const vec3 L = emitted_radiance(s);
+        if (!project.objects[i].visible || L == vec3(0)) continue;
+        EmissiveShape e;
+        e.object = int(i);
+        e.radiance = L;
+        if (s.analytic_sphere) {
+            e.center = s.sphere_center;
+            e.radius = s.sphere_radius;
+            e.area = 4.0 * kPi * double(e.radius) * e.radius;
+        } else if (s.mesh) {
+            e.mesh = s.mesh;
+            std::vector<double> areas;
+            vec3 lo(INFINITY), hi(-INFINITY);
+            for (size_t t = 0; t < s.mesh->triangles.size(); ++t) {
+                if (&s.part(int(t)) != &s) continue;
+                const glm::uvec3 tri = s.mesh->triangles[t];
+                const vec3 &a = s.mesh->positions[tri.x], &b = s.mesh->positions[tri.y], &c = s.mesh->positions[tri.z];
+                const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+                if (!(area > 0) || !std::isfinite(area)) continue;
+                e.triangles.push_back(uint32_t(t));
+                areas.push_back(area);
+                e.area += area;
+                for (const vec3& v : {a, b, c}) lo = glm::min(lo, v), hi = glm::max(hi, v);
+            }
+            if (e.triangles.empty()) continue;
+            e.by_area = AliasTable(areas);
+            e.center = 0.5f * (lo + hi);
+            e.radius = 0.5f * glm::length(hi - lo);
+        } else {
+            continue;
+        }
+        e.power = 2.0 * kPi * e.area * luminance(dvec3(L));
+        if (std::isfinite(e.power) && e.power > 0) out.push_back(std::move(e));
+    }
+    return out;
 }
 
 /// RenderScene::check_extent's test of surfaces placed from `project`, and of `camera`'s position.
@@ -176,7 +220,7 @@ RenderScene::RenderScene(const Project& project, SceneAssets assets, std::shared
     has_transmissive_ = any_transmits(virtual_surfaces_);
     check_extent();
     check_camera();
-    lights_ = LightSet(project_.lights);
+    lights_ = LightSet(project_.lights, emissive_shapes(project_, virtual_surfaces_));
     std::vector<PlacedShape> real, virt;
     for (const Surface& s : real_surfaces_) real.push_back(placed(s, true));
     for (size_t i = 0; i < virtual_surfaces_.size(); ++i)
@@ -294,7 +338,7 @@ std::shared_ptr<const RenderScene> RenderScene::with_materials(const Project& pr
     }
     v->has_transmissive_ = any_transmits(v->virtual_surfaces_);
     v->project_.lights = project.lights;
-    v->lights_ = LightSet(project.lights);
+    v->lights_ = LightSet(project.lights, emissive_shapes(v->project_, v->virtual_surfaces_));
     return v;
 }
 

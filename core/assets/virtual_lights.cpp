@@ -78,16 +78,101 @@ float PlacedLight::spot_falloff(const vec3& w) const {
     return x * x * (3 - 2 * x);
 }
 
-LightSet::LightSet(const std::vector<VirtualLight>& lights) {
+LightSet::LightSet(const std::vector<VirtualLight>& lights, std::vector<EmissiveShape> emitters)
+    : emitters_(std::move(emitters)) {
     std::vector<double> power;
     for (size_t i = 0; i < lights.size(); ++i) {
         lights_.push_back(place(lights[i], int(i)));
         power.push_back(lights_.back().power);
     }
+    for (size_t k = 0; k < emitters_.size(); ++k) {
+        power.push_back(emitters_[k].power);
+        const size_t object = size_t(std::max(0, emitters_[k].object));
+        if (emitter_of_.size() <= object) emitter_of_.resize(object + 1, -1);
+        emitter_of_[object] = int(k);
+    }
     table_ = AliasTable(power);
 }
 
+namespace {
+
+/// A point uniform on the emitter's surface, its unit outward normal, from three numbers.
+void point_on_emitter(const EmissiveShape& e, double u0, const vec2& u, vec3& p, vec3& n) {
+    if (!e.mesh) {
+        n = sample_uniform_sphere(u);
+        p = e.center + e.radius * n;
+        return;
+    }
+    const size_t k = e.by_area.sample(u0);
+    const glm::uvec3 t = e.mesh->triangles[e.triangles[k]];
+    const vec3 &a = e.mesh->positions[t.x], &b = e.mesh->positions[t.y], &c = e.mesh->positions[t.z];
+    const float su = std::sqrt(u.x);
+    p = a * (1 - su) + b * (su * (1 - u.y)) + c * (su * u.y);
+    n = glm::normalize(glm::cross(b - a, c - a));
+}
+
+}  // namespace
+
+/// The cone of directions from x that meets sphere (c, R), when x is outside it.
+bool sphere_cone(const vec3& x, const vec3& c, float R, float& cos_max, float& solid_angle) {
+    const vec3 to = c - x;
+    const float d2 = glm::dot(to, to);
+    if (!(d2 > R * R * 1.0001f)) return false;
+    cos_max = std::sqrt(std::max(0.0f, 1 - R * R / d2));
+    solid_angle = 2 * kPi * (1 - cos_max);
+    return solid_angle > 0;
+}
+
+LightSample LightSet::sample_emitter(const EmissiveShape& e, const vec3& x, const vec2& u) const {
+    LightSample s;
+    float cos_max = 0, solid_angle = 0;
+    if (!e.mesh && sphere_cone(x, e.center, e.radius, cos_max, solid_angle)) {
+        // A sphere by the cone it fills: every sample meets its near side.
+        const vec3 axis = glm::normalize(e.center - x);
+        const float cos_t = 1 - u.x * (1 - cos_max), sin_t = std::sqrt(std::max(0.0f, 1 - cos_t * cos_t));
+        const float phi = 2 * kPi * u.y;
+        s.dir = Frame(axis).to_world(vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t));
+        const vec3 oc = x - e.center;
+        const float b = glm::dot(oc, s.dir), cc = glm::dot(oc, oc) - e.radius * e.radius;
+        s.dist = -b - std::sqrt(std::max(0.0f, b * b - cc));
+        s.weight = e.radiance * solid_angle;
+        s.pdf = 1 / solid_angle;
+        return s;
+    }
+    // The triangle from the first number, rescaled, the point from it and the second.
+    double u0 = u.x;
+    float ux = u.x;
+    if (e.mesh) {
+        double rest = 0;
+        e.by_area.sample(u0, &rest);
+        ux = float(rest);
+    }
+    vec3 p, n;
+    point_on_emitter(e, u0, vec2(ux, u.y), p, n);
+    const vec3 to = p - x;
+    const float d2 = glm::dot(to, to);
+    if (!(d2 > 0) || !std::isfinite(d2)) return s;
+    s.dist = std::sqrt(d2);
+    s.dir = to / s.dist;
+    // Both sides emit, as the camera sees them (a closed shape's inner side is hidden anyway).
+    const float cos_l = std::abs(glm::dot(s.dir, n));
+    if (cos_l <= 0) return s;
+    s.weight = e.radiance * float(double(cos_l) * e.area / d2);
+    s.pdf = float(d2 / (double(cos_l) * e.area));
+    return s;
+}
+
+float LightSet::emitter_pdf(int e, const vec3& origin, const vec3& dir, float t, const vec3& ng) const {
+    if (e < 0 || size_t(e) >= emitters_.size()) return 0;
+    const EmissiveShape& shape = emitters_[size_t(e)];
+    float cos_max = 0, solid_angle = 0;
+    if (!shape.mesh && sphere_cone(origin, shape.center, shape.radius, cos_max, solid_angle)) return 1 / solid_angle;
+    const float c = std::abs(glm::dot(dir, ng));
+    return c > 0 ? float(double(t) * t / (double(c) * emitters_[size_t(e)].area)) : 0.0f;
+}
+
 LightSample LightSet::sample(size_t i, const vec3& x, const vec2& u) const {
+    if (i >= lights_.size()) return sample_emitter(emitters_[i - lights_.size()], x, u);
     const PlacedLight& l = lights_[i];
     LightSample s;
     if (l.power <= 0) return s;
@@ -104,12 +189,14 @@ LightSample LightSet::sample(size_t i, const vec3& x, const vec2& u) const {
     const float cos_l = -glm::dot(s.dir, l.axis);
     if (cos_l <= 0) return s;
     s.weight = l.radiance * (cos_l * l.area / d2);  // radiance over the solid-angle density
+    s.pdf = d2 / (cos_l * l.area);
     return s;
 }
 
-vec3 LightSet::emitted(const Ray& ray, float tmax, float* t_out) const {
+vec3 LightSet::emitted(const Ray& ray, float tmax, float* t_out, float* pdf) const {
     vec3 L(0);
     float best = tmax;
+    if (pdf) *pdf = 0;
     for (const PlacedLight& l : lights_) {
         if (!l.is_area() || !l.visible || l.power <= 0) continue;
         const float denom = glm::dot(ray.dir, l.axis);
@@ -122,6 +209,7 @@ vec3 LightSet::emitted(const Ray& ray, float tmax, float* t_out) const {
         if (!inside) continue;
         best = t;
         L = l.radiance;
+        if (pdf) *pdf = t * t / (-denom * l.area);
     }
     if (t_out) *t_out = best;
     return L;
@@ -131,8 +219,9 @@ LightPhoton LightSet::emit(Rng& rng, double inv_count, float offset) const {
     LightPhoton e;
     if (table_.total() <= 0) return e;
     const size_t i = table_.sample(rng.uniform_double());
-    const PlacedLight& l = lights_[i];
     const double scale = inv_count / table_.pmf(i);
+    if (i >= lights_.size()) return emit_emitter(emitters_[i - lights_.size()], rng, scale, offset);
+    const PlacedLight& l = lights_[i];
     const vec2 u(rng.uniform(), rng.uniform());
     if (l.is_area()) {
         // Cosine-weighted about the axis from a point uniform on the face: flux L pi A.
@@ -154,8 +243,27 @@ LightPhoton LightSet::emit(Rng& rng, double inv_count, float offset) const {
     return e;
 }
 
+LightPhoton LightSet::emit_emitter(const EmissiveShape& e, Rng& rng, double scale, float offset) const {
+    LightPhoton ph;
+    vec3 p, n;
+    const double u0 = rng.uniform_double();
+    point_on_emitter(e, u0, vec2(rng.uniform(), rng.uniform()), p, n);
+    if (rng.uniform() < 0.5f) n = -n;  // either side, each half the flux 2 pi A L
+    ph.ray = Ray{p + n * offset, Frame(n).to_world(sample_cosine_hemisphere(vec2(rng.uniform(), rng.uniform())))};
+    ph.flux = vec3(dvec3(e.radiance) * (2.0 * kPi * e.area * scale));
+    ph.valid = ph.flux != vec3(0) && is_finite(ph.flux);
+    return ph;
+}
+
 double LightSet::irradiance_bound(const vec3& p, const vec3& n) const {
     double sum = 0;
+    for (const EmissiveShape& e : emitters_) {
+        const vec3 to = e.center - p;
+        const double d2 = glm::dot(to, to), r2 = double(e.radius) * e.radius;
+        if (glm::dot(n, to) < -e.radius) continue;
+        const double solid_angle = d2 > r2 ? 2.0 * kPi * (1.0 - std::sqrt(1.0 - r2 / d2)) : 2.0 * kPi;
+        sum += luminance(dvec3(e.radiance)) * std::min(solid_angle, double(kPi));
+    }
     for (const PlacedLight& l : lights_) {
         if (l.power <= 0) continue;
         const vec3 to = l.position - p;
@@ -177,6 +285,11 @@ double LightSet::irradiance_bound(const vec3& p, const vec3& n) const {
 }
 
 void LightSet::bounds(size_t i, vec3& center, float& radius) const {
+    if (i >= lights_.size()) {
+        center = emitters_[i - lights_.size()].center;
+        radius = emitters_[i - lights_.size()].radius;
+        return;
+    }
     const PlacedLight& l = lights_[i];
     center = l.position;
     radius = l.is_area() ? face_radius(l) : 0.0f;

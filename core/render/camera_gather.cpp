@@ -51,23 +51,25 @@ vec3 CameraGather::gloss_change(const Hit& hit, const vec3& dir, const vec2& u, 
     const GlossLobe lobe(hit, dir);
     if (!lobe.valid()) return vec3(0);
     vec3 dL(0);
-    // The lights' highlights, by next-event estimation alone (the sampled ray skips their faces).
+    // The lights' highlights: next-event estimation and the sampled ray, by MIS.
+    auto lobe_pdf = [&](const vec3& w) { return lobe.pdf(w); };
     if (!scene_.lights().empty())
-        dL += reflected_light(scene_, hit, rng, [&](const vec3& w) { return vec3(lobe.eval_cos(w)); });
+        dL += reflected_light(scene_, hit, rng, [&](const vec3& w) { return vec3(lobe.eval_cos(w)); }, lobe_pdf);
     vec3 wi;
     float weight = 0;
     if (!lobe.sample(u, wi, weight)) return dL;
     const Ray ray{scene_.offset_origin(hit, wi), wi};
     const Hit hv = scene_.intersect_virtual(ray), hr = scene_.intersect_real(ray);
-    vec3 change(0);
+    const Hit& first = hv && (!hr || hv.t < hr.t) ? hv : hr;
+    vec3 change = lights_seen(scene_, ray, first, lobe.pdf(wi));
     if (hv && (!hr || hv.t < hr.t)) {
         // An object now, where the photo shows what is behind it reflected.
         const vec3 now = radiance_at(hv, ray, rng, 1, false, kGlassSplits, true);
         const vec3 before = hr ? photographed_radiance(scene_, hr, wi, rng) : scene_.probe().radiance(wi);
-        change = now - before;
+        change += now - before;
     } else if (hr) {
         const DirectSamples direct = DirectSamples::from(rng);
-        change = real_dL(hr, wi, rng, &direct);  // a shadow or caustic on the real surface reflected
+        change += real_dL(hr, wi, rng, &direct);  // a shadow or caustic on the real surface reflected
     }
     if (is_finite(change)) dL += weight * change;
     return dL;
@@ -154,7 +156,7 @@ vec3 CameraGather::radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int dep
     if (hit.surface->material.kind == Material::Kind::Diffuse)
         return virtual_diffuse_radiance(hit, ray.dir, rng, depth, 1);
     if (hit.surface->material.kind == Material::Kind::Principled)
-        return principled_radiance(hit, ray.dir, rng, depth, from_diffuse, splits);
+        return principled_radiance(hit, ray.dir, rng, depth, from_diffuse, splits, nullptr, lights_sampled);
     return specular_radiance(hit, ray.dir, rng, depth, from_diffuse, splits);
 }
 
@@ -176,9 +178,10 @@ vec3 CameraGather::specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, 
 }
 
 vec3 CameraGather::principled_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,
-                                       int splits, PixelSampler* sampler) const {
-    // Emission is seen along every camera path; photons do not carry it (docs/materials.md).
-    vec3 L = emitted_radiance(*hit.surface);
+                                       int splits, PixelSampler* sampler, bool lights_sampled) const {
+    // Emission is a light (LightSet's emitters): seen where the lights' faces are, taken by
+    // next-event estimation and the light photons elsewhere.
+    vec3 L = from_diffuse || lights_sampled ? vec3(0) : emitted_radiance(*hit.surface);
     if (depth >= max_depth_) return L;
     const PrincipledBsdf bsdf = principled_at(*hit.surface, hit);
     const ProbeLights& lights = scene_.probe_lights();
@@ -192,14 +195,15 @@ vec3 CameraGather::principled_radiance(const Hit& hit, const vec3& dir, Rng& rng
             const float w = power_heuristic(ls.pdf, pdf_principled(bsdf, hit, dir, ls.dir));
             L += f * ls.radiance * (w / ls.pdf);
         }
-        L += reflected_light(scene_, hit, rng, [&](const vec3& w) {
-            return eval_principled(bsdf, hit, dir, w, Transport::Radiance);
-        });
+        L += reflected_light(
+            scene_, hit, rng, [&](const vec3& w) { return eval_principled(bsdf, hit, dir, w, Transport::Radiance); },
+            [&](const vec3& w) { return pdf_principled(bsdf, hit, dir, w); });
     }
     const PrincipledEvent e = sample_principled(bsdf, hit, dir, vec3(u_dir, u_pick.x), Transport::Radiance);
     if (e.weight == vec3(0)) return L;
     const Ray ray{scene_.offset_origin(hit, e.dir), e.dir};
     const Hit next = scene_.intersect(ray);
+    if (!from_diffuse) L += e.weight * lights_seen(scene_, ray, next, e.pdf);  // MIS with the lights' samples
     if (!next) {
         if (!from_diffuse) L += e.weight * scene_.probe().radiance(e.dir) * power_heuristic(e.pdf, lights.pdf(e.dir));
         return L;

@@ -104,12 +104,13 @@ public:
     vec3 radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int depth, bool from_diffuse, int splits,
                      bool lights_sampled = false) const;
 
-    /// Radiance leaving a virtual principled point towards -dir: its emission, the probe by
+    /// Radiance leaving a virtual principled point towards -dir: its emission (unless the
+    /// lights were sampled where the path comes from, or it comes from a diffuse gather), the probe by
     /// next-event estimation (MIS against the BSDF; none from a diffuse gather, whose caustic
     /// map has it), and one BSDF-sampled continuation followed like a specular chain. With
     /// `sampler`, the first numbers come from the pixel's stream.
     vec3 principled_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse, int splits,
-                             PixelSampler* sampler = nullptr) const;
+                             PixelSampler* sampler = nullptr, bool lights_sampled = false) const;
 
 private:
     vec3 specular_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, bool from_diffuse,

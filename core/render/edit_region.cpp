@@ -33,6 +33,14 @@ std::shared_ptr<const EditRegion> EditedStates::region(uint64_t base_generation,
     const State& base = it->second;
     std::vector<int> edited;
     if (!edited_objects(base.project, project, edited)) return nullptr;
+    // An object that glows (before or after the edit) lights far beyond its reach.
+    auto glows = [](const Project& p, int i) {
+        if (size_t(i) >= p.objects.size()) return false;
+        const Material& m = p.objects[size_t(i)].material;
+        return p.objects[size_t(i)].visible && m.kind == Material::Kind::Principled && m.principled.emission != vec3(0);
+    };
+    for (int i : edited)
+        if (glows(base.project, i) || glows(project, i)) return nullptr;
     std::vector<EditedBounds> spheres;
     for (int i : edited) {
         if (size_t(i) < base.bounds.size() && base.bounds[size_t(i)]) spheres.push_back(*base.bounds[size_t(i)]);

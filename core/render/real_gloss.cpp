@@ -38,6 +38,15 @@ bool GlossLobe::sample(const vec2& u, vec3& wi_world, float& weight) const {
     return std::isfinite(weight) && weight > 0;
 }
 
+float GlossLobe::pdf(const vec3& wi_world) const {
+    if (!valid_) return 0;
+    const vec3 wi = frame_.to_local(wi_world);
+    if (wi.z <= 0) return 0;
+    const vec3 m = glm::normalize(wo_ + wi);
+    const float c = glm::dot(wo_, m);
+    return c > 0 ? ggx_.visible_pdf(wo_, m) / (4 * c) : 0.0f;
+}
+
 float GlossLobe::cone_half_angle() const {
     return std::min(kPi, 2 * std::atan(10 * ggx_.alpha()));
 }

@@ -18,6 +18,8 @@ public:
     /// A direction by the visible normals: `weight` is eval_cos / pdf. False when it falls
     /// below the surface.
     bool sample(const vec2& u, vec3& wi, float& weight) const;
+    /// The density with which sample() draws unit world direction `wi`.
+    float pdf(const vec3& wi) const;
     /// The half-angle about the mirror direction holding all but about 1% of the lobe's
     /// reflected light (the half vectors within tan = 10 alpha).
     float cone_half_angle() const;

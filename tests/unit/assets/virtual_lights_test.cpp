@@ -151,3 +151,31 @@ TEST(VirtualLights, TheIrradianceBoundHoldsAndIsZeroWhereNoLightReaches) {
     EXPECT_EQ(LightSet({spot}).irradiance_bound(vec3(3, 0, 0), vec3(0, 1, 0)), 0.0);  // outside its cone
     EXPECT_EQ(LightSet({disk}).irradiance_bound(vec3(2, 2, 0), vec3(0, 1, 0)), 0.0);  // above its face
 }
+
+TEST(VirtualLights, AGlowingSphereGivesPiLRSquaredOverDSquared) {
+    EmissiveShape e;
+    e.radiance = vec3(5);
+    e.center = vec3(0, 1, 0);
+    e.radius = 0.2f;
+    e.area = 4 * kPi * 0.04;
+    e.power = 2 * kPi * e.area * 5;
+    const LightSet set({}, {e});
+    // Unoccluded, the far side's samples count too: a sphere seen from outside shows half its
+    // area, and only the near half reaches the point, which the shadow ray decides.
+    Rng rng(3, 1);
+    double sum = 0;
+    const int n = 400000;
+    const vec3 x(0.6f, 0, 0.4f);
+    for (int k = 0; k < n; ++k) {
+        const LightSample s = set.sample(0, x, vec2(rng.uniform(), rng.uniform()));
+        // Keep only points on the near side (what a shadow ray would let through).
+        const vec3 p = x + s.dir * s.dist;
+        if (glm::dot(p - e.center, x - e.center) <= 0) continue;
+        const vec3 m = glm::normalize(p - e.center);
+        if (glm::dot(m, -s.dir) <= 0) continue;
+        sum += double(s.weight.x) * std::max(0.0f, s.dir.y);
+    }
+    const vec3 to = e.center - x;
+    const double d2 = glm::dot(to, to);
+    EXPECT_NEAR(sum / n, kPi * 5 * 0.04 / d2 * to.y / std::sqrt(d2), 0.01 * kPi * 5 * 0.04 / d2);
+}

@@ -188,3 +188,40 @@ TEST(LightChange, ALampLightsAVirtualBallWhoseShadowFallsOnTheFloor) {
                 0.03 * without);
     EXPECT_LT(r.dL.at(int(px.x), int(px.y)).x, without / 6);
 }
+
+TEST(LightChange, AGlowingBallLightsTheFloorAsASphericalLampDoes) {
+    // A sphere of radiance L and radius R, its centre h above a floor point: E = pi L R^2 / h^2.
+    Project p = look_at_project(vec3(0, 3, 3), vec3(0, 0, 0), 60);
+    p.real.push_back(ground_plane(kAlbedo));
+    Material glow;
+    glow.kind = Material::Kind::Principled;
+    glow.albedo.rgb = vec3(0);
+    glow.principled.specular = 0;
+    glow.principled.emission = vec3(5);
+    const float R = 0.2f, h = 1.0f;
+    p.objects.push_back(sphere(vec3(0, h, 0), R, glow));
+    const Rendered r = render(p, 8);
+    const Camera& cam = r.scene->camera();
+    int n = 0;
+    double sum = 0, expected_sum = 0;
+    for (int k = 0; k < 24; ++k) {
+        // A ring of floor points around the ball's foot.
+        const float a = 2 * kPi * float(k) / 24;
+        const vec3 q(0.7f * std::cos(a), 0, 0.7f * std::sin(a));
+        vec2 px;
+        if (!cam.project(q, px) || r.scene->intersect_virtual(r.scene->camera_ray(std::round(px.x), std::round(px.y)))) continue;
+        const vec3 seen = r.scene->intersect(r.scene->camera_ray(std::round(px.x), std::round(px.y))).p;
+        const vec3 to = vec3(0, h, 0) - seen;
+        const double d2 = glm::dot(to, to), cos_q = to.y / std::sqrt(d2);
+        // Off the axis: the sphere subtends sin^2 = R^2/d^2 and is seen at cos_q.
+        expected_sum += kAlbedo.x * 5.0 * R * R / d2 * cos_q;
+        sum += r.dL.at(int(std::round(px.x)), int(std::round(px.y))).x;
+        ++n;
+    }
+    ASSERT_GT(n, 16);
+    EXPECT_NEAR(sum / expected_sum, 1.0, 0.02);
+    // The camera sees the ball at its emission.
+    vec2 px;
+    ASSERT_TRUE(cam.project(vec3(0, h, 0), px));
+    EXPECT_NEAR(r.image.at(int(px.x), int(px.y)).x, 5.0f, 0.05f);
+}
