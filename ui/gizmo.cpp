@@ -32,6 +32,60 @@ int pick_object(const Project& project, const Camera& camera, float px, float py
     return best;
 }
 
+void light_face(const VirtualLight& light, vec3 corners[4]) {
+    const glm::mat4 m = light.transform.matrix();
+    const float hx = 0.5f * light.size.x;
+    const float hz = 0.5f * (light.kind == VirtualLight::Kind::Disk ? light.size.x : light.size.y);
+    const vec2 c[4] = {vec2(-hx, -hz), vec2(hx, -hz), vec2(hx, hz), vec2(-hx, hz)};
+    for (int i = 0; i < 4; ++i) corners[i] = vec3(m * glm::vec4(c[i].x, 0, c[i].y, 1));
+}
+
+int pick_light(const Project& project, const Camera& camera, float px, float py, float radius) {
+    const Ray ray = camera.generate_ray(px, py);
+    int best = -1;
+    float best_d = radius;
+    for (size_t i = 0; i < project.lights.size(); ++i) {
+        const VirtualLight& l = project.lights[i];
+        vec2 at;
+        if (camera.project(l.transform.translation, at)) {
+            const float d = glm::length(at - vec2(px, py));
+            if (d <= best_d) {
+                best_d = d;
+                best = int(i);
+            }
+        }
+        if (best == int(i) || (l.kind != VirtualLight::Kind::Rect && l.kind != VirtualLight::Kind::Disk))
+            continue;
+        // The face: the ray meets its plane inside the rectangle (or the disk).
+        vec3 q[4];
+        light_face(l, q);
+        const vec3 u = q[1] - q[0], v = q[3] - q[0], n = glm::cross(u, v);
+        const float dn = glm::dot(ray.dir, n);
+        if (std::abs(dn) < 1e-12f || best >= 0) continue;
+        const float t = glm::dot(q[0] - ray.org, n) / dn;
+        if (!(t > 0)) continue;
+        const vec3 h = ray.org + t * ray.dir - q[0];
+        const float a = glm::dot(h, u) / glm::dot(u, u), b = glm::dot(h, v) / glm::dot(v, v);
+        const bool inside = l.kind == VirtualLight::Kind::Disk
+                                ? (a - 0.5f) * (a - 0.5f) + (b - 0.5f) * (b - 0.5f) <= 0.25f
+                                : a >= 0 && a <= 1 && b >= 0 && b <= 1;
+        if (inside) best = int(i);
+    }
+    return best;
+}
+
+Transform light_drag_transform(GizmoMode mode, const Transform& start, const Camera& camera,
+                               vec2 from, vec2 to, int axis) {
+    if (mode != GizmoMode::Rotate || axis >= 0)
+        return axis_drag_transform(mode, start, camera, from, to, axis, nullptr);
+    // Turning about Z by a positive angle tips the light's -Y towards +X: right on screen for a
+    // camera looking down -Z; up and down about X likewise.
+    Transform t = start;
+    t.rotation_deg = rotate_about_world_axis(start.rotation_deg, 2, 0.5f * (to.x - from.x));
+    t.rotation_deg = rotate_about_world_axis(t.rotation_deg, 0, -0.5f * (to.y - from.y));
+    return t;
+}
+
 bool ground_point(const Camera& camera, float px, float py, float height, vec3& out) {
     const Ray ray = camera.generate_ray(px, py);
     if (std::abs(ray.dir.y) < 1e-6f) return false;

@@ -11,6 +11,20 @@ enum class GizmoMode { Translate, Rotate, Scale };
 /// none.
 int pick_object(const Project& project, const Camera& camera, float px, float py);
 
+/// The light whose glyph is nearest pixel (px, py): its position projects within `radius`
+/// pixels of it, or (an area light) the ray through the pixel meets its face. -1 if none.
+int pick_light(const Project& project, const Camera& camera, float px, float py, float radius);
+
+/// The area light's face corners (a rectangle; a disk's bounding square) in world space.
+void light_face(const VirtualLight& light, vec3 corners[4]);
+
+/// drag_transform for a light: translate as an object's but with no snapping (a lamp hangs
+/// where it is put); rotate without an axis tilts it (across the screen about world Z, 0.5
+/// degree per pixel, up and down about world X), with an axis as an object's; scale as an
+/// object's.
+Transform light_drag_transform(GizmoMode mode, const Transform& start, const Camera& camera,
+                               vec2 from, vec2 to, int axis);
+
 /// Where the ray through pixel (px, py) meets the horizontal plane y = `height`; false if it
 /// misses (parallel, or the plane is behind the camera).
 bool ground_point(const Camera& camera, float px, float py, float height, vec3& out);

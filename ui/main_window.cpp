@@ -9,6 +9,7 @@
 #include <QKeySequence>
 #include <QComboBox>
 #include <QLabel>
+#include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressBar>
@@ -29,6 +30,7 @@
 #include "camera_panel.h"
 #include "document.h"
 #include "error_reporter.h"
+#include "light_panel.h"
 #include "material_panel.h"
 #include "probe_align_panel.h"
 #include "probe_panel.h"
@@ -208,11 +210,18 @@ void MainWindow::createActions() {
          [this] { addObject(Shape::Kind::Box); });
     make("addPlane", tr("Plane"), {}, tr("Add an upright card"),
          [this] { addObject(Shape::Kind::Plane); });
+    const char* lightNames[] = {"addPointLight", "addSpotLight", "addRectLight", "addDiskLight"};
+    const char* lightTips[] = {"A bulb shining all around", "A bulb cut to a cone, shining down",
+                               "A glowing rectangle, shining down", "A glowing disk, shining down"};
+    for (int k = 0; k < 4; ++k)
+        make(lightNames[k], tr(light_kind_label(VirtualLight::Kind(k))), {},
+             tr("Add a light above the view's centre: %1").arg(tr(lightTips[k])),
+             [this, k] { addLight(VirtualLight::Kind(k)); });
     make("import", tr("Import..."), QKeySequence(tr("Ctrl+I")),
          tr("Import an OBJ, PLY or glTF mesh"), [this] { importDialog(); });
     make("duplicate", tr("Duplicate"), QKeySequence(tr("Shift+D")),
-         tr("Duplicate the selected object"), [this] { duplicateSelected(); });
-    make("delete", tr("Delete"), QKeySequence(tr("X")), tr("Delete the selected object"),
+         tr("Duplicate the selected object or light"), [this] { duplicateSelected(); });
+    make("delete", tr("Delete"), QKeySequence(tr("X")), tr("Delete the selected object or light"),
          [this] {
              if (!viewport_->transforming()) deleteSelected();
          })
@@ -297,6 +306,8 @@ void MainWindow::createMenus() {
     edit->addSeparator();
     QMenu* add = edit->addMenu(tr("&Add"));
     add->addActions({action("addSphere"), action("addBox"), action("addPlane")});
+    add->addSeparator();
+    add->addMenu(lightMenu_);
     edit->addAction(action("import"));
     QMenu* object = menuBar()->addMenu(tr("&Object"));
     object->setObjectName("objectMenu");
@@ -333,13 +344,24 @@ void MainWindow::createDocks() {
         addDockWidget(area, d);
         return d;
     };
-    scenePanel_ = new ScenePanel(doc_, {action("addSphere"), action("addBox"), action("addPlane"),
-                                        action("import"), action("duplicate"), action("delete")});
+    lightMenu_ = new QMenu(tr("&Light"), this);
+    lightMenu_->setObjectName("lightMenu");
+    lightMenu_->addActions({action("addPointLight"), action("addSpotLight"), action("addRectLight"),
+                            action("addDiskLight")});
+    scenePanel_ = new ScenePanel(doc_,
+                                 {action("addSphere"), action("addBox"), action("addPlane"),
+                                  action("import"), action("duplicate"), action("delete")},
+                                 lightMenu_);
     materialPanel_ = new MaterialPanel(doc_);
+    lightPanel_ = new LightPanel(doc_);
     auto* objects = new QWidget;
     auto* col = new QVBoxLayout(objects);
     col->addWidget(scenePanel_, 1);
     col->addWidget(materialPanel_);
+    col->addWidget(lightPanel_);
+    // A light has no material: its own panel takes the material's place.
+    connect(doc_, &Document::selectionChanged, this,
+            [this] { materialPanel_->setVisible(doc_->selectedLight() < 0); });
     dock("sceneDock", tr("Scene"), objects, Qt::RightDockWidgetArea);
     settingsPanel_ = new SettingsPanel(doc_);
     connect(settingsPanel_, &SettingsPanel::noiseTargetChanged, this, [this](double target) {
@@ -373,6 +395,8 @@ void MainWindow::createDocks() {
     resizeDocks({render, findChild<QDockWidget*>("sceneDock")}, {300, 440}, Qt::Horizontal);
     connect(materialPanel_, &MaterialPanel::strokeStarted, this, [this] { beginInteraction(); });
     connect(materialPanel_, &MaterialPanel::strokeFinished, this, [this] { endInteraction(); });
+    connect(lightPanel_, &LightPanel::strokeStarted, this, [this] { beginInteraction(); });
+    connect(lightPanel_, &LightPanel::strokeFinished, this, [this] { endInteraction(); });
     connect(probePanel_, &ProbePanel::strokeStarted, this, [this] { beginInteraction(); });
     connect(probePanel_, &ProbePanel::strokeFinished, this, [this] { endInteraction(); });
     connect(cameraPanel_, &CameraPanel::overlaysChanged, this, [this] {

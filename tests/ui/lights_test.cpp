@@ -1,0 +1,303 @@
+// Virtual lights driven through the studio with real events: a point light added from the scene
+// panel's Add Light menu lights the real floor under it (and not the sky, where nothing is),
+// follows a gizmo drag (its bright patch goes with it), scales with the power typed into the
+// light panel, a power slider stroke is one undo step, and undoing every step gives back the
+// picture as it was; a frosted-glass ball and a spot lamp made by events change the picture
+// where each should.
+#include <QAction>
+#include <QApplication>
+#include <QComboBox>
+#include <QListWidget>
+#include <QMenu>
+#include <QSlider>
+#include <QTemporaryDir>
+#include <QTest>
+#include <QTimer>
+#include <QToolButton>
+#include <QUndoStack>
+#include <cmath>
+
+#include "document.h"
+#include "light_panel.h"
+#include "material_panel.h"
+#include "number_field.h"
+#include "render/view_frame.h"
+#include "render_controller.h"
+#include "scene/project_io.h"
+#include "scene_panel.h"
+#include "ui_test_support.h"
+#include "viewport.h"
+
+using namespace dp;
+using namespace dp::ui;
+
+class LightsTest : public QObject {
+    Q_OBJECT
+private Q_SLOTS:
+    void init();
+    void cleanup();
+    void aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoes();
+    void aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould();
+
+private:
+    /// Picks `name` from the scene panel's Add Light menu by clicking the button, then the item.
+    void addLightFromMenu(const QString& name);
+    /// The picture the viewport shows once the current state has finished refining.
+    std::shared_ptr<const RenderFrame> refined();
+    /// Mean luminance of the change (dL) over a 7 x 7 pixel box around world point `at`.
+    double changeAt(const RenderFrame& f, const vec3& at) const;
+    /// Render pixel of a world point.
+    vec2 pixelOf(const vec3& at) const;
+    void typeIntoField(NumberField* field, const QString& text);
+    const VirtualLight& light(int i) const { return w_->document()->project().lights[size_t(i)]; }
+
+    QTemporaryDir* dir_ = nullptr;
+    RecordingReporter* reporter_ = nullptr;
+    MainWindow* w_ = nullptr;
+};
+
+void LightsTest::init() {
+    dir_ = new QTemporaryDir;
+    reporter_ = new RecordingReporter;
+    // The sample's real floor and crate, without its balls: what the light does is then all
+    // the change there is.
+    const QString path = test::write_small_sample(dir_->path(), 30000, 4);
+    Project p = load_project(path.toStdString());
+    p.objects.clear();
+    save_project(p, path.toStdString());
+    w_ = new MainWindow(test::test_options(reporter_, dir_->filePath("recovery"), 384, 192));
+    w_->resize(1200, 800);
+    w_->show();
+    w_->activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(w_));
+    QVERIFY(w_->openProject(path));
+    QVERIFY(w_->viewport()->renderSize().isValid());
+}
+
+void LightsTest::cleanup() {
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("; ")));
+    w_->document()->undoStack()->setClean();
+    delete w_;
+    w_ = nullptr;
+    delete reporter_;
+    delete dir_;
+}
+
+void LightsTest::addLightFromMenu(const QString& name) {
+    QToolButton* button = w_->scenePanel()->addLightButton();
+    QVERIFY(button && button->isVisible());
+    bool clicked = false;
+    // The menu runs its own loop while it is open: the item is clicked from inside it.
+    QTimer::singleShot(200, this, [&] {
+        auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
+        if (!menu) return;
+        for (QAction* a : menu->actions()) {
+            if (a->text() != name) continue;
+            QTest::mouseClick(menu, Qt::LeftButton, {}, menu->actionGeometry(a).center());
+            clicked = true;
+        }
+    });
+    QTest::mouseClick(button, Qt::LeftButton);
+    QVERIFY(QTest::qWaitFor([&] { return clicked; }, 5000));
+}
+
+std::shared_ptr<const RenderFrame> LightsTest::refined() {
+    QTest::qWait(30);  // the edit's request goes out from the event loop
+    if (!test::wait_refined(*w_, 60000)) return nullptr;
+    auto f = w_->viewport()->frame();
+    if (!f || f->preview || f->generation != w_->renderer()->generation()) return nullptr;
+    return f;
+}
+
+vec2 LightsTest::pixelOf(const vec3& at) const {
+    vec2 px(-1);
+    w_->viewport()->viewCamera().project(at, px);
+    return px;
+}
+
+double LightsTest::changeAt(const RenderFrame& f, const vec3& at) const {
+    const Image& dL = f.dL();
+    const vec2 px = pixelOf(at);
+    double sum = 0;
+    int n = 0;
+    for (int y = int(px.y) - 3; y <= int(px.y) + 3; ++y)
+        for (int x = int(px.x) - 3; x <= int(px.x) + 3; ++x) {
+            if (x < 0 || y < 0 || x >= dL.width() || y >= dL.height()) continue;
+            sum += double(luminance(dL.at(x, y)));
+            ++n;
+        }
+    return n ? sum / n : -1.0;
+}
+
+void LightsTest::typeIntoField(NumberField* field, const QString& text) {
+    QTest::mouseClick(field, Qt::LeftButton);
+    QTest::keyClick(field, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(field, text);
+    QTest::keyClick(field, Qt::Key_Return);
+}
+
+void LightsTest::aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoes() {
+    const auto before = refined();
+    QVERIFY(before);
+    const Image beforeImage = before->image();
+    const int undoBase = w_->document()->undoStack()->index();
+
+    addLightFromMenu(tr("Point"));
+    QCOMPARE(int(w_->document()->project().lights.size()), 1);
+    QCOMPARE(w_->document()->selectedLight(), 0);
+    QCOMPARE(w_->document()->selected(), -1);
+    QListWidget* list = w_->scenePanel()->list();
+    QCOMPARE(list->count(), 1);
+    QCOMPARE(list->currentRow(), w_->scenePanel()->lightRow(0));
+    QVERIFY(!list->item(0)->icon().isNull());
+    QVERIFY(w_->lightPanel()->isVisible());
+    QVERIFY(!w_->materialPanel()->isVisible());
+
+    // Above the floor, shining on it: a visible patch under it, nothing in the sky.
+    const vec3 start = light(0).transform.translation;
+    QVERIFY2(start.y > 0.5f && start.y < 3.0f, qPrintable(QString::number(start.y)));
+    const vec3 foot(start.x, 0, start.z);
+    const auto lit = refined();
+    QVERIFY(lit);
+    const double underStart = changeAt(*lit, foot);
+    // Above the horizon, two degrees up: no real surface there.
+    const vec3 eye = w_->viewport()->viewCamera().position();
+    const vec3 sky = eye + vec3(start.x - eye.x, 0, start.z - eye.z) * 100.0f + vec3(0, 300 * 0.035f, 0);
+    QVERIFY2(pixelOf(sky).y >= 3, qPrintable(QString::number(pixelOf(sky).y)));
+    qInfo("light at %.2f %.2f %.2f, %.0f W; change under it %.4f, in the sky %.6f", start.x,
+          start.y, start.z, double(light(0).power_w), underStart, changeAt(*lit, sky));
+    QVERIFY2(underStart > 0.02, qPrintable(QString::number(underStart)));
+    QVERIFY(std::abs(changeAt(*lit, sky)) < 1e-5);
+    QVERIFY(std::abs(changeAt(*before, foot)) < 1e-6);
+
+    // Dragged with the gizmo, at 60 moves a second, 2.5 m to the left and 0.6 m nearer.
+    const vec3 target = start + vec3(-2.5f, 0, 0.6f);
+    QPointF from, to;
+    QVERIFY(w_->viewport()->widgetPosition(start, from));
+    QVERIFY(w_->viewport()->widgetPosition(target, to));
+    const int steps = w_->document()->undoStack()->index();
+    test::drag(w_->viewport(), from, to, 30);
+    QCOMPARE(w_->document()->selectedLight(), 0);
+    QCOMPARE(w_->document()->undoStack()->index(), steps + 1);  // one step for the drag
+    const vec3 moved = light(0).transform.translation;
+    // A plane seen almost edge on (the light hangs near the eye's height): a pixel is some cm.
+    QVERIFY2(glm::length(moved - target) < 0.15f && moved.y == start.y,
+             qPrintable(QStringLiteral("%1 %2 %3").arg(moved.x).arg(moved.y).arg(moved.z)));
+    const auto after = refined();
+    QVERIFY(after);
+    const vec3 newFoot(moved.x, 0, moved.z);
+    const double underNew = changeAt(*after, newFoot), underOld = changeAt(*after, foot);
+    // Where it was is now lit from afar: by (h / r)^3 as much (distance squared, and the
+    // slant), not as before.
+    const float h = start.y, dist = glm::length(moved - foot);
+    const double expected = underStart * std::pow(h / dist, 3.0f);
+    qInfo("after the move: under the light %.4f, where it was %.4f (expected %.4f)", underNew,
+          underOld, expected);
+    QVERIFY(std::abs(underNew / underStart - 1) < 0.1);
+    QVERIFY(std::abs(underOld / expected - 1) < 0.2);
+    QVERIFY(underOld < 0.5 * underStart);
+
+    // Four times the power, typed: four times the light.
+    w_->lightPanel()->powerField()->setFocus();
+    typeIntoField(w_->lightPanel()->powerField(), QString::number(4 * double(light(0).power_w)));
+    const auto brighter = refined();
+    QVERIFY(brighter);
+    const double ratio = changeAt(*brighter, newFoot) / underNew;
+    qInfo("four times the power: %.3f times the change", ratio);
+    QVERIFY2(ratio > 3.6 && ratio < 4.4, qPrintable(QString::number(ratio)));
+
+    // A stroke of the power slider: live, one undo step.
+    QSlider* slider = w_->lightPanel()->powerSlider();
+    const int strokeBase = w_->document()->undoStack()->index();
+    const float powerBefore = light(0).power_w;
+    const QRect g = slider->rect();
+    const QPoint handle(int(g.left() + g.width() * double(slider->value() - slider->minimum()) /
+                                           (slider->maximum() - slider->minimum())),
+                        g.center().y());
+    test::drag(slider, handle, handle - QPoint(g.width() / 5, 0), 20);
+    QVERIFY2(light(0).power_w < 0.5f * powerBefore, qPrintable(QString::number(double(light(0).power_w))));
+    QCOMPARE(w_->document()->undoStack()->index(), strokeBase + 1);
+
+    // Undo everything: no light, and the picture as it was.
+    while (w_->document()->undoStack()->index() > undoBase) {
+        w_->viewport()->setFocus();
+        QTest::keyClick(w_->viewport(), Qt::Key_Z, Qt::ControlModifier);
+    }
+    QVERIFY(w_->document()->project().lights.empty());
+    QCOMPARE(list->count(), 0);
+    const auto undone = refined();
+    QVERIFY(undone);
+    const double diff = test::mean_abs_diff(undone->image(), beforeImage);
+    qInfo("after undo: mean difference from the first picture %.6f", diff);
+    QVERIFY(diff < 1e-4);
+    QVERIFY(std::abs(changeAt(*undone, newFoot)) < 1e-5);
+}
+
+void LightsTest::aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould() {
+    // A ball, made frosted glass with the material panel's preset box.
+    w_->action("addSphere")->trigger();
+    QCOMPARE(w_->document()->selected(), 0);
+    QComboBox* preset = w_->materialPanel()->presetBox();
+    const int frosted = preset->findText(tr("Frosted glass"));
+    QVERIFY(frosted > 0);
+    // As a hand picks it: focus on the box, the key of the preset's first letter.
+    preset->setFocus(Qt::TabFocusReason);
+    QTest::keyClick(preset, Qt::Key_F);
+    QCOMPARE(w_->document()->undoStack()->undoText(), QString("Material preset: Frosted glass"));
+    const VirtualObject ball = w_->document()->project().objects[0];
+    QCOMPARE(ball.material.kind, Material::Kind::Principled);
+    QVERIFY(ball.material.principled.transmission > 0.5f);
+    QVERIFY(ball.material.principled.roughness > 0.05f);
+    const vec3 centre = ball.transform.translation;
+    const float radius = ball.shape.radius;
+    const auto withBall = refined();
+    QVERIFY(withBall);
+
+    // A spot lamp from the Add Light menu, moved 1.5 m to the left of the ball by typing into
+    // the scene panel's position field, shining down a 40 degree cone.
+    addLightFromMenu(tr("Spot"));
+    QCOMPARE(w_->document()->selectedLight(), 0);
+    QVERIFY(w_->lightPanel()->spotAngleSlider()->isVisible());
+    QVERIFY(!w_->lightPanel()->sizeField(0)->isVisible());
+    NumberField* x = w_->scenePanel()->transformField(0);
+    typeIntoField(x, QString::number(double(centre.x) - 1.5, 'f', 3));
+    typeIntoField(w_->lightPanel()->spotAngleField(), QStringLiteral("40"));
+    const VirtualLight lamp = light(0);
+    QCOMPARE(lamp.kind, VirtualLight::Kind::Spot);
+    QCOMPARE(lamp.spot_angle_deg, 40.0f);
+    QVERIFY(std::abs(lamp.transform.translation.x - (centre.x - 1.5f)) < 1e-3f);
+    const auto lamped = refined();
+    QVERIFY(lamped);
+
+    const vec3 pool(lamp.transform.translation.x, 0, lamp.transform.translation.z);
+    // Outside the cone: as far from the axis as the lamp is high, at 45 degrees off it.
+    const vec3 dark = pool + vec3(0, 0, lamp.transform.translation.y * 1.2f);
+    const double inPool = changeAt(*lamped, pool), before = changeAt(*withBall, pool);
+    const double outside = changeAt(*lamped, dark) - changeAt(*withBall, dark);
+    qInfo("spot: change in its pool %.4f (before %.4f), outside the cone %.5f", inPool, before, outside);
+    QVERIFY(inPool > before + 0.02);
+    QVERIFY(std::abs(outside) < 0.1 * (inPool - before));
+
+    // The ball lit from the side: its pixels change, the sky's do not.
+    const vec2 c = pixelOf(centre);
+    const vec2 edge = pixelOf(centre + vec3(radius, 0, 0));
+    const int r = std::max(2, int(0.6f * glm::length(edge - c)));
+    double ballChange = 0;
+    int n = 0;
+    for (int y = int(c.y) - r; y <= int(c.y) + r; ++y)
+        for (int xx = int(c.x) - r; xx <= int(c.x) + r; ++xx) {
+            if (xx < 0 || y < 0 || xx >= lamped->image().width() || y >= lamped->image().height()) continue;
+            ballChange += std::abs(double(luminance(lamped->image().at(xx, y))) -
+                                   double(luminance(withBall->image().at(xx, y))));
+            ++n;
+        }
+    ballChange /= std::max(n, 1);
+    const vec3 eye = w_->viewport()->viewCamera().position();
+    const vec3 sky = eye + vec3(centre.x - eye.x, 0, centre.z - eye.z) * 100.0f + vec3(0, 300 * 0.035f, 0);
+    qInfo("ball: mean change %.4f over %d pixels", ballChange, n);
+    QVERIFY(ballChange > 0.01);
+    QVERIFY(std::abs(changeAt(*lamped, sky) - changeAt(*withBall, sky)) < 1e-5);
+}
+
+QTEST_MAIN(LightsTest)
+#include "lights_test.moc"
