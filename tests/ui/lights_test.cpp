@@ -16,6 +16,7 @@
 #include <QToolButton>
 #include <QUndoStack>
 #include <cmath>
+#include <vector>
 
 #include "document.h"
 #include "light_panel.h"
@@ -170,10 +171,34 @@ void LightsTest::aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoe
     QVERIFY(std::abs(changeAt(*lit, sky)) < 1e-5);
     QVERIFY(std::abs(changeAt(*before, foot)) < 1e-6);
 
-    // Dragged with the gizmo, at 60 moves a second, 2.5 m to the left and 0.6 m nearer.
-    const vec3 target = start + vec3(-2.5f, 0, 0.6f);
+    // Found on screen: with the overlays on (H) its glyph is drawn where it hangs, and a click
+    // on it selects it after a click on the empty sky let it go.
     QPointF from, to;
     QVERIFY(w_->viewport()->widgetPosition(start, from));
+    const QRect around(from.toPoint() - QPoint(12, 12), QSize(25, 25));
+    const QImage bare = w_->viewport()->grab(around).toImage();
+    w_->viewport()->setFocus();
+    QTest::keyClick(w_->viewport(), Qt::Key_H);
+    QVERIFY(w_->viewport()->overlaysDrawn());
+    const QImage drawn = w_->viewport()->grab(around).toImage();
+    int glyph = 0;
+    for (int y = 0; y < drawn.height(); ++y)
+        for (int x = 0; x < drawn.width(); ++x) {
+            const QColor c = drawn.pixelColor(x, y), b = bare.pixelColor(x, y);
+            glyph += c.red() > 200 && c.green() > 150 && c.blue() < 120 && c != b;  // warm, new
+        }
+    QVERIFY2(glyph >= 20, qPrintable(QString::number(glyph)));
+    QPointF skyAt;
+    QVERIFY(w_->viewport()->widgetPosition(sky + vec3(120, 0, 0), skyAt));  // right of the light
+    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, skyAt.toPoint());
+    QCOMPARE(w_->document()->selectedLight(), -1);
+    QCOMPARE(list->currentRow(), -1);
+    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, from.toPoint() + QPoint(3, -2));
+    QCOMPARE(w_->document()->selectedLight(), 0);
+    QCOMPARE(list->currentRow(), w_->scenePanel()->lightRow(0));
+
+    // Dragged with the gizmo, at 60 moves a second, 2.5 m to the left and 0.6 m nearer.
+    const vec3 target = start + vec3(-2.5f, 0, 0.6f);
     QVERIFY(w_->viewport()->widgetPosition(target, to));
     const int steps = w_->document()->undoStack()->index();
     test::drag(w_->viewport(), from, to, 30);
@@ -206,7 +231,12 @@ void LightsTest::aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoe
     qInfo("four times the power: %.3f times the change", ratio);
     QVERIFY2(ratio > 3.6 && ratio < 4.4, qPrintable(QString::number(ratio)));
 
-    // A stroke of the power slider: live, one undo step.
+    // A stroke of the power slider: live (quick previews while the hand moves), one undo step.
+    std::vector<std::shared_ptr<const RenderFrame>> previews;
+    bool stroking = true;
+    connect(w_->renderer(), &RenderController::frameReady, this, [&](std::shared_ptr<const RenderFrame> f) {
+        if (stroking && f->preview) previews.push_back(f);
+    });
     QSlider* slider = w_->lightPanel()->powerSlider();
     const int strokeBase = w_->document()->undoStack()->index();
     const float powerBefore = light(0).power_w;
@@ -215,6 +245,9 @@ void LightsTest::aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoe
                                            (slider->maximum() - slider->minimum())),
                         g.center().y());
     test::drag(slider, handle, handle - QPoint(g.width() / 5, 0), 20);
+    stroking = false;
+    qInfo("slider stroke: %zu preview frames", previews.size());
+    QVERIFY(previews.size() >= 2);
     QVERIFY2(light(0).power_w < 0.5f * powerBefore, qPrintable(QString::number(double(light(0).power_w))));
     QCOMPARE(w_->document()->undoStack()->index(), strokeBase + 1);
 
