@@ -26,6 +26,8 @@ public:
     QListWidget* list() const { return list_; }
     /// The row of light `i` in the list.
     int lightRow(int i) const;
+    /// The selected object's or light's name.
+    QLineEdit* nameField() const { return name_; }
     /// Opens the Add Light menu (null without one).
     QToolButton* addLightButton() const { return addLight_; }
     /// Translation x y z, rotation x y z (degrees), scale x y z.

@@ -6,7 +6,11 @@
 // where each should.
 #include <QAction>
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
+#include <QLabel>
+#include <QLineEdit>
+#include <QMenuBar>
 #include <QListWidget>
 #include <QMenu>
 #include <QSlider>
@@ -39,6 +43,7 @@ private Q_SLOTS:
     void cleanup();
     void aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoes();
     void aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould();
+    void anAreaLightIsRenamedTurnedSeenOrNotResizedDeletedAndUndone();
 
 private:
     /// Picks `name` from the scene panel's Add Light menu by clicking the button, then the item.
@@ -330,6 +335,64 @@ void LightsTest::aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould() 
     qInfo("ball: mean change %.4f over %d pixels", ballChange, n);
     QVERIFY(ballChange > 0.01);
     QVERIFY(std::abs(changeAt(*lamped, sky) - changeAt(*withBall, sky)) < 1e-5);
+}
+
+void LightsTest::anAreaLightIsRenamedTurnedSeenOrNotResizedDeletedAndUndone() {
+    // Edit > Add holds the light menu; its rectangle item adds one.
+    QMenu* lights = w_->lightMenu();
+    bool inEdit = false;
+    for (QAction* a : w_->menuBar()->actions())
+        if (a->menu())
+            for (QAction* b : a->menu()->actions())
+                if (b->menu())
+                    for (QAction* c : b->menu()->actions()) inEdit |= c->menu() == lights;
+    QVERIFY(inEdit);
+    addLightFromMenu(tr("Area (rectangle)"));
+    QCOMPARE(light(0).kind, VirtualLight::Kind::Rect);
+    LightPanel* panel = w_->lightPanel();
+    QVERIFY(panel->sizeField(0)->isVisible() && panel->sizeField(1)->isVisible());
+    QVERIFY(panel->visibleBox()->isVisible() && !panel->spotAngleSlider()->isVisible());
+
+    // Renamed by typing.
+    QLineEdit* name = w_->scenePanel()->nameField();
+    QTest::mouseClick(name, Qt::LeftButton);
+    QTest::keyClick(name, Qt::Key_A, Qt::ControlModifier);
+    QTest::keyClicks(name, "key light");
+    QTest::keyClick(name, Qt::Key_Return);
+    QCOMPARE(QString::fromStdString(light(0).name), QString("key light"));
+    QCOMPARE(w_->scenePanel()->list()->item(0)->text(), QString("key light"));
+
+    // Turned to face the camera (-60 degrees about X) and a metre wide: its face is in the
+    // picture, glowing, until "Visible to camera" is unticked.
+    typeIntoField(w_->scenePanel()->transformField(3), "-60");
+    typeIntoField(panel->sizeField(0), "1");
+    QCOMPARE(light(0).transform.rotation_deg.x, -60.0f);
+    QCOMPARE(light(0).size.x, 1.0f);
+    const vec3 centre = light(0).transform.translation;
+    auto faceAt = [&](const RenderFrame& f) {
+        const vec2 px = pixelOf(centre);
+        return double(luminance(f.image().at(int(px.x), int(px.y))));
+    };
+    const auto seen = refined();
+    QVERIFY(seen);
+    QTest::mouseClick(panel->visibleBox(), Qt::LeftButton, {}, QPoint(8, panel->visibleBox()->height() / 2));
+    QVERIFY(!light(0).visible);
+    const auto unseen = refined();
+    QVERIFY(unseen);
+    qInfo("the face's pixel: %.3f seen, %.3f not", faceAt(*seen), faceAt(*unseen));
+    QVERIFY(faceAt(*seen) > faceAt(*unseen) + 0.5);
+
+    // X deletes it, Ctrl+Z brings it back as it was.
+    const VirtualLight kept = light(0);
+    w_->viewport()->setFocus();
+    QTest::keyClick(w_->viewport(), Qt::Key_X);
+    QVERIFY(w_->document()->project().lights.empty());
+    QCOMPARE(w_->scenePanel()->list()->count(), 0);
+    QVERIFY(!panel->isVisible());
+    QTest::keyClick(w_->viewport(), Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(int(w_->document()->project().lights.size()), 1);
+    QVERIFY(light(0) == kept);
+    QCOMPARE(w_->scenePanel()->list()->item(0)->text(), QString("key light"));
 }
 
 QTEST_MAIN(LightsTest)
