@@ -582,7 +582,7 @@ void MainWindow::showKeyMap() {
     row(tr("X / Y / Z during G / R / S"), tr("Keep to that world axis (again: free)"));
     row(tr("Digits during G / R / S"), tr("Type the value: metres, degrees or a factor"));
     row(tr("Esc / right click"), tr("Cancel a transform or a pick"));
-    row(tr("Left drag"), tr("Transform the object in the toolbar's mode"));
+    row(tr("Left drag"), tr("Transform the object or light in the toolbar's mode (a light's rotate tilts it)"));
     row(tr("Wheel / middle drag"), tr("Zoom / pan the view"));
     const QString text =
         tr("<table cellspacing='6'>%1</table><p>In number fields the letter keys stay shortcuts "

@@ -112,7 +112,7 @@ void MainWindow::startModal(GizmoMode mode) {
     if (viewport_->transforming()) return;
     if (doc_->selected() < 0 && doc_->selectedLight() < 0) {
         statusBar()->showMessage(
-            tr("Select an object first (click it in the viewport or the list)"), 5000);
+            tr("Select an object or a light first (click it in the viewport or the list)"), 5000);
         return;
     }
     commitTypedValue();  // a value typed into a field counts before the object moves

@@ -104,6 +104,16 @@ void draw_shape(LineDrawer& d, const Shape& s, const Transform& t) {
     }
 }
 
+/// The selection's gizmo axes: X red, Y green, Z blue, `len` long from `c`.
+void draw_axes(QPainter& painter, LineDrawer& d, const vec3& c, float len) {
+    painter.setPen(QPen(QColor(230, 60, 60), 2));
+    d.line(c, c + vec3(len, 0, 0), 1);
+    painter.setPen(QPen(QColor(60, 200, 60), 2));
+    d.line(c, c + vec3(0, len, 0), 1);
+    painter.setPen(QPen(QColor(70, 110, 240), 2));
+    d.line(c, c + vec3(0, 0, len), 1);
+}
+
 /// The sun glyph of a light's position, at a fixed size on screen so it can be found at any
 /// distance: a disk with eight rays.
 void draw_bulb(QPainter& p, QPointF c, bool filled) {
@@ -202,15 +212,7 @@ void draw_overlays(QPainter& painter, const Project& project, const Camera& came
                 glm::cross(w, std::abs(w.y) < 0.99f ? vec3(0, 1, 0) : vec3(1, 0, 0)));
             d.circle(c, u, glm::cross(w, u), r);
             painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
-            if (sel) {
-                const float len = 1.5f * r;
-                painter.setPen(QPen(QColor(230, 60, 60), 2));
-                d.line(c, c + vec3(len, 0, 0), 1);
-                painter.setPen(QPen(QColor(60, 200, 60), 2));
-                d.line(c, c + vec3(0, len, 0), 1);
-                painter.setPen(QPen(QColor(70, 110, 240), 2));
-                d.line(c, c + vec3(0, 0, len), 1);
-            }
+            if (sel) draw_axes(painter, d, c, 1.5f * r);
         }
         // Lights over everything, in their own warm colour; the selected one brighter.
         const float scale = 0.5f * std::max(0.2f, glm::length(camera.position() - view_target(project)));
@@ -218,6 +220,7 @@ void draw_overlays(QPainter& painter, const Project& project, const Camera& came
             const bool sel = int(i) == o.selectedLight;
             painter.setPen(QPen(sel ? QColor(255, 190, 40) : QColor(255, 235, 150, 220), sel ? 2.0 : 1.2));
             draw_light(painter, d, project, project.lights[i], 0.25f * scale);
+            if (sel) draw_axes(painter, d, project.lights[i].transform.translation, 0.15f * scale);
         }
     }
     painter.restore();

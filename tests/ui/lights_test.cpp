@@ -382,6 +382,24 @@ void LightsTest::anAreaLightIsRenamedTurnedSeenOrNotResizedDeletedAndUndone() {
     qInfo("the face's pixel: %.3f seen, %.3f not", faceAt(*seen), faceAt(*unseen));
     QVERIFY(faceAt(*seen) > faceAt(*unseen) + 0.5);
 
+    // G Y 0.5 Enter (y is up here): half a metre up, exactly.
+    const float height = light(0).transform.translation.y;
+    QPointF at;
+    QVERIFY(w_->viewport()->widgetPosition(centre, at));
+    QTest::mouseMove(w_->viewport(), at.toPoint());
+    w_->viewport()->setFocus();
+    if (QApplication::activeWindow() != w_) {
+        w_->activateWindow();
+        QVERIFY(QTest::qWaitForWindowActive(w_));
+    }
+    QTest::keyClick(QApplication::focusWidget(), Qt::Key_G);
+    QVERIFY(w_->viewport()->transforming());
+    for (Qt::Key k : {Qt::Key_Y, Qt::Key_0, Qt::Key_Period, Qt::Key_5, Qt::Key_Return})
+        QTest::keyClick(QApplication::focusWidget(), k);
+    QVERIFY(!w_->viewport()->transforming());
+    QCOMPARE(light(0).transform.translation.y, height + 0.5f);
+    QCOMPARE(light(0).transform.translation.x, centre.x);
+
     // X deletes it, Ctrl+Z brings it back as it was.
     const VirtualLight kept = light(0);
     w_->viewport()->setFocus();
