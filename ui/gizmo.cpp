@@ -74,8 +74,41 @@ int pick_light(const Project& project, const Camera& camera, float px, float py,
     return best;
 }
 
+namespace {
+
+/// Where the ray through pixel (px, py) meets the plane through `at` with normal `n`.
+bool plane_point(const Camera& camera, float px, float py, const vec3& at, const vec3& n, vec3& out) {
+    const Ray ray = camera.generate_ray(px, py);
+    const float dn = glm::dot(ray.dir, n);
+    if (std::abs(dn) < 1e-6f) return false;
+    const float t = glm::dot(at - ray.org, n) / dn;
+    if (!(t > 0) || !std::isfinite(t)) return false;
+    out = ray.org + t * ray.dir;
+    return true;
+}
+
+}  // namespace
+
 Transform light_drag_transform(GizmoMode mode, const Transform& start, const Camera& camera,
                                vec2 from, vec2 to, int axis) {
+    if (mode == GizmoMode::Translate && axis < 0) {
+        // A lamp often hangs near the eye's height, where its horizontal plane is seen edge on
+        // and a pixel is metres of depth: there it slides across the view at its height.
+        const vec3 sight = start.translation - camera.position();
+        const float len = glm::length(sight);
+        vec3 flat(sight.x, 0, sight.z);
+        if (len > 0 && std::abs(sight.y) < 0.17f * len && glm::length(flat) > 1e-6f) {
+            flat = glm::normalize(flat);
+            vec3 a, b;
+            Transform t = start;
+            if (plane_point(camera, from.x, from.y, start.translation, flat, a) &&
+                plane_point(camera, to.x, to.y, start.translation, flat, b)) {
+                t.translation.x += b.x - a.x;
+                t.translation.z += b.z - a.z;
+            }
+            return t;
+        }
+    }
     if (mode != GizmoMode::Rotate || axis >= 0)
         return axis_drag_transform(mode, start, camera, from, to, axis, nullptr);
     // Turning about Z by a positive angle tips the light's -Y towards +X: right on screen for a

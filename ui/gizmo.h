@@ -19,7 +19,9 @@ int pick_light(const Project& project, const Camera& camera, float px, float py,
 void light_face(const VirtualLight& light, vec3 corners[4]);
 
 /// drag_transform for a light: translate as an object's but with no snapping (a lamp hangs
-/// where it is put); rotate without an axis tilts it (across the screen about world Z, 0.5
+/// where it is put), and where the line of sight to it is within 10 degrees of level (its
+/// horizontal plane seen edge on) across the view instead, in the upright plane facing the
+/// camera, at its height; rotate without an axis tilts it (across the screen about world Z, 0.5
 /// degree per pixel, up and down about world X), with an axis as an object's; scale as an
 /// object's.
 Transform light_drag_transform(GizmoMode mode, const Transform& start, const Camera& camera,

@@ -18,7 +18,7 @@ Viewport::Viewport(Document* doc, QWidget* parent)
     setMinimumSize(320, 200);
     setAttribute(Qt::WA_OpaquePaintEvent);
     setToolTip(
-        tr("Click an object to select it; drag to move (G), rotate (R) or scale (S).\n"
+        tr("Click an object or a light's glyph to select it; drag to move (G), rotate (R) or scale (S).\n"
            "Wheel zooms, middle button pans, X deletes, Esc cancels a drag."));
     connect(doc_, &Document::changed, this, [this] { update(); });
     connect(pick_, &PickTool::changed, this, [this] { update(); });
