@@ -7,10 +7,12 @@
 #include <QAction>
 #include <QApplication>
 #include <QCheckBox>
+#include <QColorDialog>
 #include <QComboBox>
 #include <QLabel>
 #include <QLineEdit>
 #include <QMenuBar>
+#include <QPushButton>
 #include <QListWidget>
 #include <QMenu>
 #include <QSlider>
@@ -308,6 +310,8 @@ void LightsTest::aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould() 
     QVERIFY(lamped);
 
     const vec3 pool(lamp.transform.translation.x, 0, lamp.transform.translation.z);
+    const vec3 poolColour = lamped->dL().at(int(pixelOf(pool).x), int(pixelOf(pool).y));
+    QVERIFY(poolColour.x > 0 && poolColour.x < 2 * poolColour.z);  // white light: not red
     // Outside the cone: as far from the axis as the lamp is high, at 45 degrees off it.
     const vec3 dark = pool + vec3(0, 0, lamp.transform.translation.y * 1.2f);
     const double inPool = changeAt(*lamped, pool), before = changeAt(*withBall, pool);
@@ -335,6 +339,22 @@ void LightsTest::aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould() 
     qInfo("ball: mean change %.4f over %d pixels", ballChange, n);
     QVERIFY(ballChange > 0.01);
     QVERIFY(std::abs(changeAt(*lamped, sky) - changeAt(*withBall, sky)) < 1e-5);
+
+    // Its colour button and the colour dialog: an orange lamp lights an orange pool.
+    QTimer::singleShot(300, this, [] {
+        if (auto* dialog = qobject_cast<QColorDialog*>(QApplication::activeModalWidget())) {
+            dialog->setCurrentColor(QColor(255, 140, 0));
+            dialog->accept();
+        }
+    });
+    QTest::mouseClick(w_->lightPanel()->colourButton(), Qt::LeftButton);
+    QVERIFY(light(0).colour.x > 0.99f && light(0).colour.z < 0.01f);
+    const auto orange = refined();
+    QVERIFY(orange);
+    const vec3 lit = orange->dL().at(int(pixelOf(pool).x), int(pixelOf(pool).y));
+    qInfo("pool change: white lamp %.3f %.3f %.3f, orange %.3f %.3f %.3f", poolColour.x, poolColour.y,
+          poolColour.z, lit.x, lit.y, lit.z);
+    QVERIFY(lit.x > 10 * std::abs(lit.z) && lit.x > lit.y && std::abs(lit.x / poolColour.x - 1) < 0.1);
 }
 
 void LightsTest::anAreaLightIsRenamedTurnedSeenOrNotResizedDeletedAndUndone() {
@@ -411,6 +431,18 @@ void LightsTest::anAreaLightIsRenamedTurnedSeenOrNotResizedDeletedAndUndone() {
     QCOMPARE(int(w_->document()->project().lights.size()), 1);
     QVERIFY(light(0) == kept);
     QCOMPARE(w_->scenePanel()->list()->item(0)->text(), QString("key light"));
+
+    // Selected again from the list, Shift+D duplicates it beside itself under a new name.
+    QListWidget* list = w_->scenePanel()->list();
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, {}, list->visualItemRect(list->item(0)).center());
+    QCOMPARE(w_->document()->selectedLight(), 0);
+    w_->viewport()->setFocus();
+    QTest::keyClick(w_->viewport(), Qt::Key_D, Qt::ShiftModifier);
+    QCOMPARE(int(w_->document()->project().lights.size()), 2);
+    QCOMPARE(w_->document()->selectedLight(), 1);
+    QCOMPARE(QString::fromStdString(light(1).name), QString("key light 2"));
+    QVERIFY(light(1).transform.translation.x > light(0).transform.translation.x);
+    QCOMPARE(list->currentRow(), w_->scenePanel()->lightRow(1));
 }
 
 QTEST_MAIN(LightsTest)
