@@ -210,13 +210,6 @@ void MainWindow::createActions() {
          [this] { addObject(Shape::Kind::Box); });
     make("addPlane", tr("Plane"), {}, tr("Add an upright card"),
          [this] { addObject(Shape::Kind::Plane); });
-    const char* lightNames[] = {"addPointLight", "addSpotLight", "addRectLight", "addDiskLight"};
-    const char* lightTips[] = {"A bulb shining all around", "A bulb cut to a cone, shining down",
-                               "A glowing rectangle, shining down", "A glowing disk, shining down"};
-    for (int k = 0; k < 4; ++k)
-        make(lightNames[k], tr(light_kind_label(VirtualLight::Kind(k))), {},
-             tr("Add a light above the view's centre: %1").arg(tr(lightTips[k])),
-             [this, k] { addLight(VirtualLight::Kind(k)); });
     make("import", tr("Import..."), QKeySequence(tr("Ctrl+I")),
          tr("Import an OBJ, PLY or glTF mesh"), [this] { importDialog(); });
     make("duplicate", tr("Duplicate"), QKeySequence(tr("Shift+D")),
@@ -344,10 +337,7 @@ void MainWindow::createDocks() {
         addDockWidget(area, d);
         return d;
     };
-    lightMenu_ = new QMenu(tr("&Light"), this);
-    lightMenu_->setObjectName("lightMenu");
-    lightMenu_->addActions({action("addPointLight"), action("addSpotLight"), action("addRectLight"),
-                            action("addDiskLight")});
+    createLightMenu();
     scenePanel_ = new ScenePanel(doc_,
                                  {action("addSphere"), action("addBox"), action("addPlane"),
                                   action("import"), action("duplicate"), action("delete")},

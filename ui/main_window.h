@@ -168,6 +168,9 @@ protected:
 
 private:
     void createActions();
+    /// The Add Light menu and its actions (addPointLight, addSpotLight, addRectLight,
+    /// addDiskLight).
+    void createLightMenu();
     void createMenus();
     void createDocks();
     void createToolbar();

@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QComboBox>
 #include <QLabel>
+#include <QMenu>
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QStatusBar>
@@ -38,6 +39,21 @@ void MainWindow::addObject(Shape::Kind kind) {
         new_primitive(p, placementCamera(), kind, unique_name(p, shape_kind_name(kind))));
     doc_->edit(tr("Add %1").arg(shape_kind_name(kind)), p);
     doc_->select(int(p.objects.size()) - 1);
+}
+
+void MainWindow::createLightMenu() {
+    lightMenu_ = new QMenu(tr("&Light"), this);
+    lightMenu_->setObjectName("lightMenu");
+    const char* names[] = {"addPointLight", "addSpotLight", "addRectLight", "addDiskLight"};
+    const char* tips[] = {"A bulb shining all around", "A bulb cut to a cone, shining down",
+                          "A glowing rectangle, shining down", "A glowing disk, shining down"};
+    for (int k = 0; k < 4; ++k) {
+        QAction* a = lightMenu_->addAction(tr(light_kind_label(VirtualLight::Kind(k))));
+        a->setObjectName(names[k]);
+        a->setToolTip(tr("Add a light above the view's centre: %1").arg(tr(tips[k])));
+        a->setStatusTip(a->toolTip());
+        connect(a, &QAction::triggered, this, [this, k] { addLight(VirtualLight::Kind(k)); });
+    }
 }
 
 void MainWindow::addLight(VirtualLight::Kind kind) {

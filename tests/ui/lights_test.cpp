@@ -57,6 +57,21 @@ private:
     /// Render pixel of a world point.
     vec2 pixelOf(const vec3& at) const;
     void typeIntoField(NumberField* field, const QString& text);
+    /// Overlays on: the glyph of the light at `at` is drawn; a click on `sky` lets it go, one
+    /// on the glyph selects light 0 again.
+    void findAndClick(const vec3& at, const vec3& sky);
+    /// Drags the power slider down a fifth of its length: previews while it moves, a lower
+    /// power, one undo step.
+    void strokePowerSlider();
+    /// Drags selected light 0 with the mouse from the screen position of world point `from` to
+    /// that of `to` (at its height): one undo step, and it lands there. Returns where
+    /// it is.
+    vec3 dragLight(const vec3& from, const vec3& to);
+    /// Mean absolute luminance difference of `a` and `b` over the middle of the sphere at
+    /// `centre` (radius `radius`) on screen.
+    double changeOverBall(const Image& a, const Image& b, const vec3& centre, float radius) const;
+    /// Whether Edit > Add holds the Add Light menu.
+    bool lightMenuInEditAdd() const;
     const VirtualLight& light(int i) const { return w_->document()->project().lights[size_t(i)]; }
 
     QTemporaryDir* dir_ = nullptr;
@@ -144,6 +159,99 @@ void LightsTest::typeIntoField(NumberField* field, const QString& text) {
     QTest::keyClick(field, Qt::Key_Return);
 }
 
+void LightsTest::findAndClick(const vec3& at, const vec3& sky) {
+    // With the overlays on (H) the glyph is drawn where the light hangs, and a click on it
+    // selects it after a click on the empty sky let it go.
+    QListWidget* list = w_->scenePanel()->list();
+    QPointF from;
+    QVERIFY(w_->viewport()->widgetPosition(at, from));
+    const QRect around(from.toPoint() - QPoint(12, 12), QSize(25, 25));
+    const QImage bare = w_->viewport()->grab(around).toImage();
+    w_->viewport()->setFocus();
+    QTest::keyClick(w_->viewport(), Qt::Key_H);
+    QVERIFY(w_->viewport()->overlaysDrawn());
+    const QImage drawn = w_->viewport()->grab(around).toImage();
+    int glyph = 0;
+    for (int y = 0; y < drawn.height(); ++y)
+        for (int x = 0; x < drawn.width(); ++x) {
+            const QColor c = drawn.pixelColor(x, y), b = bare.pixelColor(x, y);
+            glyph += c.red() > 200 && c.green() > 150 && c.blue() < 120 && c != b;  // warm, new
+        }
+    QVERIFY2(glyph >= 20, qPrintable(QString::number(glyph)));
+    QPointF skyAt;
+    QVERIFY(w_->viewport()->widgetPosition(sky + vec3(120, 0, 0), skyAt));  // right of the light
+    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, skyAt.toPoint());
+    QCOMPARE(w_->document()->selectedLight(), -1);
+    QCOMPARE(list->currentRow(), -1);
+    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, from.toPoint() + QPoint(3, -2));
+    QCOMPARE(w_->document()->selectedLight(), 0);
+    QCOMPARE(list->currentRow(), w_->scenePanel()->lightRow(0));
+}
+
+void LightsTest::strokePowerSlider() {
+    std::vector<std::shared_ptr<const RenderFrame>> previews;
+    const QMetaObject::Connection spy = connect(
+        w_->renderer(), &RenderController::frameReady, this, [&](std::shared_ptr<const RenderFrame> f) {
+            if (f->preview) previews.push_back(f);
+        });
+    QSlider* slider = w_->lightPanel()->powerSlider();
+    const int strokeBase = w_->document()->undoStack()->index();
+    const float powerBefore = light(0).power_w;
+    const QRect g = slider->rect();
+    const QPoint handle(int(g.left() + g.width() * double(slider->value() - slider->minimum()) /
+                                           (slider->maximum() - slider->minimum())),
+                        g.center().y());
+    test::drag(slider, handle, handle - QPoint(g.width() / 5, 0), 20);
+    disconnect(spy);
+    qInfo("slider stroke: %zu preview frames", previews.size());
+    QVERIFY(previews.size() >= 2);
+    QVERIFY2(light(0).power_w < 0.5f * powerBefore, qPrintable(QString::number(double(light(0).power_w))));
+    QCOMPARE(w_->document()->undoStack()->index(), strokeBase + 1);
+}
+
+double LightsTest::changeOverBall(const Image& a, const Image& b, const vec3& centre, float radius) const {
+    const vec2 c = pixelOf(centre);
+    const vec2 edge = pixelOf(centre + vec3(radius, 0, 0));
+    const int r = std::max(2, int(0.6f * glm::length(edge - c)));
+    double sum = 0;
+    int n = 0;
+    for (int y = int(c.y) - r; y <= int(c.y) + r; ++y)
+        for (int x = int(c.x) - r; x <= int(c.x) + r; ++x) {
+            if (x < 0 || y < 0 || x >= a.width() || y >= a.height()) continue;
+            sum += std::abs(double(luminance(a.at(x, y))) - double(luminance(b.at(x, y))));
+            ++n;
+        }
+    return n ? sum / n : 0.0;
+}
+
+bool LightsTest::lightMenuInEditAdd() const {
+    for (QAction* a : w_->menuBar()->actions())
+        if (a->menu())
+            for (QAction* b : a->menu()->actions())
+                if (b->menu())
+                    for (QAction* c : b->menu()->actions())
+                        if (c->menu() == w_->lightMenu()) return true;
+    return false;
+}
+
+vec3 LightsTest::dragLight(const vec3& from, const vec3& to) {
+    QPointF a, b;
+    if (!w_->viewport()->widgetPosition(from, a) || !w_->viewport()->widgetPosition(to, b))
+        return from;
+    const int steps = w_->document()->undoStack()->index();
+    test::drag(w_->viewport(), a, b, 30);
+    [&] {
+        QCOMPARE(w_->document()->selectedLight(), 0);
+        QCOMPARE(w_->document()->undoStack()->index(), steps + 1);  // one step for the drag
+    }();
+    const vec3 moved = light(0).transform.translation;
+    [&] {
+        QVERIFY2(glm::length(moved - to) < 0.03f && moved.y == from.y,
+                 qPrintable(QStringLiteral("%1 %2 %3").arg(moved.x).arg(moved.y).arg(moved.z)));
+    }();
+    return moved;
+}
+
 void LightsTest::aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoes() {
     const auto before = refined();
     QVERIFY(before);
@@ -178,43 +286,14 @@ void LightsTest::aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoe
     QVERIFY(std::abs(changeAt(*lit, sky)) < 1e-5);
     QVERIFY(std::abs(changeAt(*before, foot)) < 1e-6);
 
-    // Found on screen: with the overlays on (H) its glyph is drawn where it hangs, and a click
-    // on it selects it after a click on the empty sky let it go.
-    QPointF from, to;
-    QVERIFY(w_->viewport()->widgetPosition(start, from));
-    const QRect around(from.toPoint() - QPoint(12, 12), QSize(25, 25));
-    const QImage bare = w_->viewport()->grab(around).toImage();
-    w_->viewport()->setFocus();
-    QTest::keyClick(w_->viewport(), Qt::Key_H);
-    QVERIFY(w_->viewport()->overlaysDrawn());
-    const QImage drawn = w_->viewport()->grab(around).toImage();
-    int glyph = 0;
-    for (int y = 0; y < drawn.height(); ++y)
-        for (int x = 0; x < drawn.width(); ++x) {
-            const QColor c = drawn.pixelColor(x, y), b = bare.pixelColor(x, y);
-            glyph += c.red() > 200 && c.green() > 150 && c.blue() < 120 && c != b;  // warm, new
-        }
-    QVERIFY2(glyph >= 20, qPrintable(QString::number(glyph)));
-    QPointF skyAt;
-    QVERIFY(w_->viewport()->widgetPosition(sky + vec3(120, 0, 0), skyAt));  // right of the light
-    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, skyAt.toPoint());
-    QCOMPARE(w_->document()->selectedLight(), -1);
-    QCOMPARE(list->currentRow(), -1);
-    QTest::mouseClick(w_->viewport(), Qt::LeftButton, {}, from.toPoint() + QPoint(3, -2));
-    QCOMPARE(w_->document()->selectedLight(), 0);
-    QCOMPARE(list->currentRow(), w_->scenePanel()->lightRow(0));
+    // Found on screen: its glyph is drawn where it hangs and a click on it selects it.
+    findAndClick(start, sky);
+    if (QTest::currentTestFailed()) return;
 
     // Dragged with the gizmo, at 60 moves a second, 2.5 m to the left (it hangs near the eye's
     // height: across the view).
-    const vec3 target = start + vec3(-2.5f, 0, 0);
-    QVERIFY(w_->viewport()->widgetPosition(target, to));
-    const int steps = w_->document()->undoStack()->index();
-    test::drag(w_->viewport(), from, to, 30);
-    QCOMPARE(w_->document()->selectedLight(), 0);
-    QCOMPARE(w_->document()->undoStack()->index(), steps + 1);  // one step for the drag
-    const vec3 moved = light(0).transform.translation;
-    QVERIFY2(glm::length(moved - target) < 0.03f && moved.y == start.y,
-             qPrintable(QStringLiteral("%1 %2 %3").arg(moved.x).arg(moved.y).arg(moved.z)));
+    const vec3 moved = dragLight(start, start + vec3(-2.5f, 0, 0));
+    if (QTest::currentTestFailed()) return;
     const auto after = refined();
     QVERIFY(after);
     const vec3 newFoot(moved.x, 0, moved.z);
@@ -239,24 +318,8 @@ void LightsTest::aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoe
     QVERIFY2(ratio > 3.6 && ratio < 4.4, qPrintable(QString::number(ratio)));
 
     // A stroke of the power slider: live (quick previews while the hand moves), one undo step.
-    std::vector<std::shared_ptr<const RenderFrame>> previews;
-    bool stroking = true;
-    connect(w_->renderer(), &RenderController::frameReady, this, [&](std::shared_ptr<const RenderFrame> f) {
-        if (stroking && f->preview) previews.push_back(f);
-    });
-    QSlider* slider = w_->lightPanel()->powerSlider();
-    const int strokeBase = w_->document()->undoStack()->index();
-    const float powerBefore = light(0).power_w;
-    const QRect g = slider->rect();
-    const QPoint handle(int(g.left() + g.width() * double(slider->value() - slider->minimum()) /
-                                           (slider->maximum() - slider->minimum())),
-                        g.center().y());
-    test::drag(slider, handle, handle - QPoint(g.width() / 5, 0), 20);
-    stroking = false;
-    qInfo("slider stroke: %zu preview frames", previews.size());
-    QVERIFY(previews.size() >= 2);
-    QVERIFY2(light(0).power_w < 0.5f * powerBefore, qPrintable(QString::number(double(light(0).power_w))));
-    QCOMPARE(w_->document()->undoStack()->index(), strokeBase + 1);
+    strokePowerSlider();
+    if (QTest::currentTestFailed()) return;
 
     // Undo everything: no light, and the picture as it was.
     while (w_->document()->undoStack()->index() > undoBase) {
@@ -321,22 +384,10 @@ void LightsTest::aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould() 
     QVERIFY(std::abs(outside) < 0.1 * (inPool - before));
 
     // The ball lit from the side: its pixels change, the sky's do not.
-    const vec2 c = pixelOf(centre);
-    const vec2 edge = pixelOf(centre + vec3(radius, 0, 0));
-    const int r = std::max(2, int(0.6f * glm::length(edge - c)));
-    double ballChange = 0;
-    int n = 0;
-    for (int y = int(c.y) - r; y <= int(c.y) + r; ++y)
-        for (int xx = int(c.x) - r; xx <= int(c.x) + r; ++xx) {
-            if (xx < 0 || y < 0 || xx >= lamped->image().width() || y >= lamped->image().height()) continue;
-            ballChange += std::abs(double(luminance(lamped->image().at(xx, y))) -
-                                   double(luminance(withBall->image().at(xx, y))));
-            ++n;
-        }
-    ballChange /= std::max(n, 1);
+    const double ballChange = changeOverBall(lamped->image(), withBall->image(), centre, radius);
     const vec3 eye = w_->viewport()->viewCamera().position();
     const vec3 sky = eye + vec3(centre.x - eye.x, 0, centre.z - eye.z) * 100.0f + vec3(0, 300 * 0.035f, 0);
-    qInfo("ball: mean change %.4f over %d pixels", ballChange, n);
+    qInfo("ball: mean change %.4f", ballChange);
     QVERIFY(ballChange > 0.01);
     QVERIFY(std::abs(changeAt(*lamped, sky) - changeAt(*withBall, sky)) < 1e-5);
 
@@ -359,14 +410,7 @@ void LightsTest::aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould() 
 
 void LightsTest::anAreaLightIsRenamedTurnedSeenOrNotResizedDeletedAndUndone() {
     // Edit > Add holds the light menu; its rectangle item adds one.
-    QMenu* lights = w_->lightMenu();
-    bool inEdit = false;
-    for (QAction* a : w_->menuBar()->actions())
-        if (a->menu())
-            for (QAction* b : a->menu()->actions())
-                if (b->menu())
-                    for (QAction* c : b->menu()->actions()) inEdit |= c->menu() == lights;
-    QVERIFY(inEdit);
+    QVERIFY(lightMenuInEditAdd());
     addLightFromMenu(tr("Area (rectangle)"));
     QCOMPARE(light(0).kind, VirtualLight::Kind::Rect);
     LightPanel* panel = w_->lightPanel();
