@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "project_edit.h"
 #include "assets/scene_builder.h"
@@ -111,11 +112,16 @@ Transform light_drag_transform(GizmoMode mode, const Transform& start, const Cam
     }
     if (mode != GizmoMode::Rotate || axis >= 0)
         return axis_drag_transform(mode, start, camera, from, to, axis, nullptr);
-    // Turning about Z by a positive angle tips the light's -Y towards +X: right on screen for a
-    // camera looking down -Z; up and down about X likewise.
+    // Tilts about the level axes of the view at the light: across the screen about the line of
+    // sight (the light's beam swings the way the mouse goes), up and down about the view's right.
+    const vec3 sight = start.translation - camera.position();
+    vec3 ahead(sight.x, 0, sight.z);
+    ahead = glm::length(ahead) > 1e-6f ? glm::normalize(ahead) : vec3(0, 0, -1);
+    const vec3 right = glm::cross(ahead, vec3(0, 1, 0));
     Transform t = start;
-    t.rotation_deg = rotate_about_world_axis(start.rotation_deg, 2, 0.5f * (to.x - from.x));
-    t.rotation_deg = rotate_about_world_axis(t.rotation_deg, 0, -0.5f * (to.y - from.y));
+    const glm::mat4 turn = glm::rotate(glm::mat4(1), glm::radians(-0.5f * (to.y - from.y)), right) *
+                           glm::rotate(glm::mat4(1), glm::radians(0.5f * (to.x - from.x)), -ahead);
+    t.rotation_deg = euler_deg(glm::mat3(turn) * glm::mat3(start.matrix()));
     return t;
 }
 
@@ -194,7 +200,10 @@ vec3 rotate_about_world_axis(const vec3& e, int axis, float degrees) {
     Transform a, b;
     a.rotation_deg = e;
     b.rotation_deg[axis] = degrees;
-    const glm::mat3 r = glm::mat3(b.matrix()) * glm::mat3(a.matrix());
+    return euler_deg(glm::mat3(b.matrix()) * glm::mat3(a.matrix()));
+}
+
+vec3 euler_deg(const glm::mat3& r) {
     // r = Rz(c) Ry(b) Rx(a), glm's m[col][row].
     const float sb = std::clamp(-r[0][2], -1.0f, 1.0f);
     const float by = std::asin(sb);
