@@ -19,6 +19,7 @@
 #include <QTemporaryDir>
 #include <QTest>
 #include <QTimer>
+#include <QToolBar>
 #include <QToolButton>
 #include <QUndoStack>
 #include <cmath>
@@ -46,6 +47,7 @@ private Q_SLOTS:
     void aPointLightLightsTheFloorFollowsTheGizmoScalesWithPowerAndUndoes();
     void aFrostedGlassBallAndASpotLampChangeThePictureWhereEachShould();
     void anAreaLightIsRenamedTurnedSeenOrNotResizedDeletedAndUndone();
+    void aSpotTiltedWithTheRotateGizmoMovesItsPool();
 
 private:
     /// Picks `name` from the scene panel's Add Light menu by clicking the button, then the item.
@@ -487,6 +489,43 @@ void LightsTest::anAreaLightIsRenamedTurnedSeenOrNotResizedDeletedAndUndone() {
     QCOMPARE(QString::fromStdString(light(1).name), QString("key light 2"));
     QVERIFY(light(1).transform.translation.x > light(0).transform.translation.x);
     QCOMPARE(list->currentRow(), w_->scenePanel()->lightRow(1));
+}
+
+void LightsTest::aSpotTiltedWithTheRotateGizmoMovesItsPool() {
+    addLightFromMenu(tr("Spot"));
+    typeIntoField(w_->lightPanel()->spotAngleField(), QStringLiteral("40"));
+    const VirtualLight spot = light(0);
+    const vec3 p = spot.transform.translation, below(p.x, 0, p.z);
+    const auto straight = refined();
+    QVERIFY(straight);
+    const double pool = changeAt(*straight, below);
+    QVERIFY(pool > 0.1);
+
+    // The toolbar's Rotate, then a drag from the lamp's glyph to the right.
+    QWidget* rotate = w_->findChild<QToolBar*>("toolbar")->widgetForAction(w_->action("gizmoRotate"));
+    QTest::mouseClick(rotate, Qt::LeftButton);
+    QCOMPARE(w_->viewport()->gizmoMode(), GizmoMode::Rotate);
+    QPointF at;
+    QVERIFY(w_->viewport()->widgetPosition(p, at));
+    const double perPixel = w_->viewport()->imageRect().width() / w_->viewport()->renderSize().width();
+    test::drag(w_->viewport(), at, at + QPointF(60 * perPixel, 0), 20);  // 60 render pixels
+    const vec3 axis = glm::mat3(light(0).transform.matrix()) * vec3(0, -1, 0);
+    const float tilt = glm::degrees(std::acos(-axis.y));
+    QVERIFY2(std::abs(tilt - 30) < 2, qPrintable(QString::number(double(tilt))));
+    QVERIFY(light(0).transform.translation == p);
+
+    // The pool slides along the beam: where the axis meets the floor it is as bright as before
+    // (a little less: further, and slanted), straight below (30 degrees off a 20 degree
+    // half-cone) it is gone.
+    const vec3 hit = p + axis * (p.y / -axis.y);
+    const auto tilted = refined();
+    QVERIFY(tilted);
+    const double there = changeAt(*tilted, hit), gone = changeAt(*tilted, below);
+    qInfo("pool %.4f below; tilted %.1f degrees: %.4f where the beam lands, %.5f below", pool,
+          double(tilt), there, gone);
+    const double expected = pool * std::pow(std::cos(glm::radians(double(tilt))), 3.0);
+    QVERIFY2(std::abs(there / expected - 1) < 0.1, qPrintable(QString::number(there / expected)));
+    QVERIFY(std::abs(gone) < 0.05 * pool);
 }
 
 QTEST_MAIN(LightsTest)
