@@ -62,6 +62,7 @@ void Document::reset(const Project& project, const QString& path, bool modified)
     project_ = project;
     open_ = true;
     selected_ = -1;
+    selectedLight_ = -1;
     setPath(path);
     if (modified) {
         // A recovered project is unsaved work: mark it so, with nothing to undo.
@@ -107,13 +108,23 @@ void Document::apply(const Project& project) {
     const Change change = classify(project_, project);
     project_ = project;
     if (selected_ >= int(project_.objects.size())) select(-1);  // e.g. an "add" undone
+    if (selectedLight_ >= int(project_.lights.size())) selectLight(-1);
     Q_EMIT changed(change);
 }
 
 void Document::select(int index) {
     if (index < -1 || index >= int(project_.objects.size())) index = -1;
-    if (index == selected_) return;
+    if (index == selected_ && (index >= 0 || selectedLight_ < 0)) return;
     selected_ = index;
+    selectedLight_ = -1;
+    Q_EMIT selectionChanged(selected_);
+}
+
+void Document::selectLight(int index) {
+    if (index < -1 || index >= int(project_.lights.size())) index = -1;
+    if (index == selectedLight_ && (index >= 0 || selected_ < 0)) return;
+    selectedLight_ = index;
+    selected_ = -1;
     Q_EMIT selectionChanged(selected_);
 }
 

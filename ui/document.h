@@ -10,8 +10,8 @@
 
 namespace dp::ui {
 
-/// The open project: its file, its undo history and the selected object. Every edit goes
-/// through edit(), so it can be undone and the renderer hears about it.
+/// The open project: its file, its undo history and the selection (one object or one light).
+/// Every edit goes through edit(), so it can be undone and the renderer hears about it.
 class Document : public QObject {
     Q_OBJECT
 public:
@@ -55,8 +55,14 @@ public:
     /// A merge key no earlier edit used: one per drag or slider stroke.
     int newMergeKey() { return nextKey_++; }
 
+    /// The selected object (-1: none, or a light is selected).
     int selected() const { return selected_; }
+    /// Selects object `index` (-1: none); the light selection is cleared.
     void select(int index);
+    /// The selected light, an index into project().lights (-1: none, or an object is selected).
+    int selectedLight() const { return selectedLight_; }
+    /// Selects light `index` (-1: none); the object selection is cleared.
+    void selectLight(int index);
 
     /// Sets the project without recording (used by the undo commands).
     void apply(const Project& project);
@@ -67,6 +73,8 @@ Q_SIGNALS:
     /// A new project was opened or created (the views reload everything).
     void reloaded();
     void pathChanged(const QString& path);
+    /// The object or light selection changed; `index` is the selected object (-1 for none or a
+    /// light: selectedLight says which).
     void selectionChanged(int index);
     void modifiedChanged(bool modified);
     /// A typed edit was refused; `reason` is the core's message.
@@ -80,6 +88,7 @@ private:
     QByteArray diskHash_;
     QUndoStack stack_;
     int selected_ = -1;
+    int selectedLight_ = -1;
     int nextKey_ = 1;
     bool open_ = false;
 };

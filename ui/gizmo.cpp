@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "project_edit.h"
 #include "assets/scene_builder.h"
@@ -30,6 +31,98 @@ int pick_object(const Project& project, const Camera& camera, float px, float py
         }
     }
     return best;
+}
+
+void light_face(const VirtualLight& light, vec3 corners[4]) {
+    const glm::mat4 m = light.transform.matrix();
+    const float hx = 0.5f * light.size.x;
+    const float hz = 0.5f * (light.kind == VirtualLight::Kind::Disk ? light.size.x : light.size.y);
+    const vec2 c[4] = {vec2(-hx, -hz), vec2(hx, -hz), vec2(hx, hz), vec2(-hx, hz)};
+    for (int i = 0; i < 4; ++i) corners[i] = vec3(m * glm::vec4(c[i].x, 0, c[i].y, 1));
+}
+
+int pick_light(const Project& project, const Camera& camera, float px, float py, float radius) {
+    const Ray ray = camera.generate_ray(px, py);
+    int best = -1;
+    float best_d = radius;
+    for (size_t i = 0; i < project.lights.size(); ++i) {
+        const VirtualLight& l = project.lights[i];
+        vec2 at;
+        if (camera.project(l.transform.translation, at)) {
+            const float d = glm::length(at - vec2(px, py));
+            if (d <= best_d) {
+                best_d = d;
+                best = int(i);
+            }
+        }
+        if (best == int(i) || (l.kind != VirtualLight::Kind::Rect && l.kind != VirtualLight::Kind::Disk))
+            continue;
+        // The face: the ray meets its plane inside the rectangle (or the disk).
+        vec3 q[4];
+        light_face(l, q);
+        const vec3 u = q[1] - q[0], v = q[3] - q[0], n = glm::cross(u, v);
+        const float dn = glm::dot(ray.dir, n);
+        if (std::abs(dn) < 1e-12f || best >= 0) continue;
+        const float t = glm::dot(q[0] - ray.org, n) / dn;
+        if (!(t > 0)) continue;
+        const vec3 h = ray.org + t * ray.dir - q[0];
+        const float a = glm::dot(h, u) / glm::dot(u, u), b = glm::dot(h, v) / glm::dot(v, v);
+        const bool inside = l.kind == VirtualLight::Kind::Disk
+                                ? (a - 0.5f) * (a - 0.5f) + (b - 0.5f) * (b - 0.5f) <= 0.25f
+                                : a >= 0 && a <= 1 && b >= 0 && b <= 1;
+        if (inside) best = int(i);
+    }
+    return best;
+}
+
+namespace {
+
+/// Where the ray through pixel (px, py) meets the plane through `at` with normal `n`.
+bool plane_point(const Camera& camera, float px, float py, const vec3& at, const vec3& n, vec3& out) {
+    const Ray ray = camera.generate_ray(px, py);
+    const float dn = glm::dot(ray.dir, n);
+    if (std::abs(dn) < 1e-6f) return false;
+    const float t = glm::dot(at - ray.org, n) / dn;
+    if (!(t > 0) || !std::isfinite(t)) return false;
+    out = ray.org + t * ray.dir;
+    return true;
+}
+
+}  // namespace
+
+Transform light_drag_transform(GizmoMode mode, const Transform& start, const Camera& camera,
+                               vec2 from, vec2 to, int axis) {
+    if (mode == GizmoMode::Translate && axis < 0) {
+        // A lamp often hangs near the eye's height, where its horizontal plane is seen edge on
+        // and a pixel is metres of depth: there it slides across the view at its height.
+        const vec3 sight = start.translation - camera.position();
+        const float len = glm::length(sight);
+        vec3 flat(sight.x, 0, sight.z);
+        if (len > 0 && std::abs(sight.y) < 0.17f * len && glm::length(flat) > 1e-6f) {
+            flat = glm::normalize(flat);
+            vec3 a, b;
+            Transform t = start;
+            if (plane_point(camera, from.x, from.y, start.translation, flat, a) &&
+                plane_point(camera, to.x, to.y, start.translation, flat, b)) {
+                t.translation.x += b.x - a.x;
+                t.translation.z += b.z - a.z;
+            }
+            return t;
+        }
+    }
+    if (mode != GizmoMode::Rotate || axis >= 0)
+        return axis_drag_transform(mode, start, camera, from, to, axis, nullptr);
+    // Tilts about the level axes of the view at the light: across the screen about the line of
+    // sight (the light's beam swings the way the mouse goes), up and down about the view's right.
+    const vec3 sight = start.translation - camera.position();
+    vec3 ahead(sight.x, 0, sight.z);
+    ahead = glm::length(ahead) > 1e-6f ? glm::normalize(ahead) : vec3(0, 0, -1);
+    const vec3 right = glm::cross(ahead, vec3(0, 1, 0));
+    Transform t = start;
+    const glm::mat4 turn = glm::rotate(glm::mat4(1), glm::radians(-0.5f * (to.y - from.y)), right) *
+                           glm::rotate(glm::mat4(1), glm::radians(0.5f * (to.x - from.x)), -ahead);
+    t.rotation_deg = euler_deg(glm::mat3(turn) * glm::mat3(start.matrix()));
+    return t;
 }
 
 bool ground_point(const Camera& camera, float px, float py, float height, vec3& out) {
@@ -107,7 +200,10 @@ vec3 rotate_about_world_axis(const vec3& e, int axis, float degrees) {
     Transform a, b;
     a.rotation_deg = e;
     b.rotation_deg[axis] = degrees;
-    const glm::mat3 r = glm::mat3(b.matrix()) * glm::mat3(a.matrix());
+    return euler_deg(glm::mat3(b.matrix()) * glm::mat3(a.matrix()));
+}
+
+vec3 euler_deg(const glm::mat3& r) {
     // r = Rz(c) Ry(b) Rx(a), glm's m[col][row].
     const float sb = std::clamp(-r[0][2], -1.0f, 1.0f);
     const float by = std::asin(sb);

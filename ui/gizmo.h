@@ -11,6 +11,23 @@ enum class GizmoMode { Translate, Rotate, Scale };
 /// none.
 int pick_object(const Project& project, const Camera& camera, float px, float py);
 
+/// The light whose glyph is nearest pixel (px, py): its position projects within `radius`
+/// pixels of it, or (an area light) the ray through the pixel meets its face. -1 if none.
+int pick_light(const Project& project, const Camera& camera, float px, float py, float radius);
+
+/// The area light's face corners (a rectangle; a disk's bounding square) in world space.
+void light_face(const VirtualLight& light, vec3 corners[4]);
+
+/// drag_transform for a light: translate as an object's but with no snapping (a lamp hangs
+/// where it is put), and where the line of sight to it is within 10 degrees of level (its
+/// horizontal plane seen edge on) across the view instead, in the upright plane facing the
+/// camera, at its height; rotate without an axis tilts it, 0.5 degree per pixel (across the
+/// screen about the level line of sight, so that its beam swings the way the mouse goes; up
+/// and down about the view's level right axis), with an axis as an object's; scale as an
+/// object's.
+Transform light_drag_transform(GizmoMode mode, const Transform& start, const Camera& camera,
+                               vec2 from, vec2 to, int axis);
+
 /// Where the ray through pixel (px, py) meets the horizontal plane y = `height`; false if it
 /// misses (parallel, or the plane is behind the camera).
 bool ground_point(const Camera& camera, float px, float py, float height, vec3& out);
@@ -27,6 +44,9 @@ float support_height(const Project& project, float x, float z);
 /// centre on screen.
 Transform drag_transform(GizmoMode mode, const Transform& start, const Camera& camera, vec2 from,
                          vec2 to, const Project* snap = nullptr);
+
+/// Euler angles (degrees, X then Y then Z as in Transform) of the rotation matrix `r`.
+vec3 euler_deg(const glm::mat3& r);
 
 /// Euler angles (degrees, X then Y then Z as in Transform) of the rotation `euler_deg` followed
 /// by a turn of `degrees` about the world axis `axis` (0 X, 1 Y, 2 Z). A turn about Z, or

@@ -9,6 +9,7 @@
 #include <QKeySequence>
 #include <QComboBox>
 #include <QLabel>
+#include <QMenu>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QProgressBar>
@@ -29,6 +30,7 @@
 #include "camera_panel.h"
 #include "document.h"
 #include "error_reporter.h"
+#include "light_panel.h"
 #include "material_panel.h"
 #include "probe_align_panel.h"
 #include "probe_panel.h"
@@ -211,8 +213,8 @@ void MainWindow::createActions() {
     make("import", tr("Import..."), QKeySequence(tr("Ctrl+I")),
          tr("Import an OBJ, PLY or glTF mesh"), [this] { importDialog(); });
     make("duplicate", tr("Duplicate"), QKeySequence(tr("Shift+D")),
-         tr("Duplicate the selected object"), [this] { duplicateSelected(); });
-    make("delete", tr("Delete"), QKeySequence(tr("X")), tr("Delete the selected object"),
+         tr("Duplicate the selected object or light"), [this] { duplicateSelected(); });
+    make("delete", tr("Delete"), QKeySequence(tr("X")), tr("Delete the selected object or light"),
          [this] {
              if (!viewport_->transforming()) deleteSelected();
          })
@@ -297,6 +299,8 @@ void MainWindow::createMenus() {
     edit->addSeparator();
     QMenu* add = edit->addMenu(tr("&Add"));
     add->addActions({action("addSphere"), action("addBox"), action("addPlane")});
+    add->addSeparator();
+    add->addMenu(lightMenu_);
     edit->addAction(action("import"));
     QMenu* object = menuBar()->addMenu(tr("&Object"));
     object->setObjectName("objectMenu");
@@ -333,13 +337,21 @@ void MainWindow::createDocks() {
         addDockWidget(area, d);
         return d;
     };
-    scenePanel_ = new ScenePanel(doc_, {action("addSphere"), action("addBox"), action("addPlane"),
-                                        action("import"), action("duplicate"), action("delete")});
+    createLightMenu();
+    scenePanel_ = new ScenePanel(doc_,
+                                 {action("addSphere"), action("addBox"), action("addPlane"),
+                                  action("import"), action("duplicate"), action("delete")},
+                                 lightMenu_);
     materialPanel_ = new MaterialPanel(doc_);
+    lightPanel_ = new LightPanel(doc_);
     auto* objects = new QWidget;
     auto* col = new QVBoxLayout(objects);
     col->addWidget(scenePanel_, 1);
     col->addWidget(materialPanel_);
+    col->addWidget(lightPanel_);
+    // A light has no material: its own panel takes the material's place.
+    connect(doc_, &Document::selectionChanged, this,
+            [this] { materialPanel_->setVisible(doc_->selectedLight() < 0); });
     dock("sceneDock", tr("Scene"), objects, Qt::RightDockWidgetArea);
     settingsPanel_ = new SettingsPanel(doc_);
     connect(settingsPanel_, &SettingsPanel::noiseTargetChanged, this, [this](double target) {
@@ -373,6 +385,8 @@ void MainWindow::createDocks() {
     resizeDocks({render, findChild<QDockWidget*>("sceneDock")}, {300, 440}, Qt::Horizontal);
     connect(materialPanel_, &MaterialPanel::strokeStarted, this, [this] { beginInteraction(); });
     connect(materialPanel_, &MaterialPanel::strokeFinished, this, [this] { endInteraction(); });
+    connect(lightPanel_, &LightPanel::strokeStarted, this, [this] { beginInteraction(); });
+    connect(lightPanel_, &LightPanel::strokeFinished, this, [this] { endInteraction(); });
     connect(probePanel_, &ProbePanel::strokeStarted, this, [this] { beginInteraction(); });
     connect(probePanel_, &ProbePanel::strokeFinished, this, [this] { endInteraction(); });
     connect(cameraPanel_, &CameraPanel::overlaysChanged, this, [this] {
@@ -558,7 +572,7 @@ void MainWindow::showKeyMap() {
     row(tr("X / Y / Z during G / R / S"), tr("Keep to that world axis (again: free)"));
     row(tr("Digits during G / R / S"), tr("Type the value: metres, degrees or a factor"));
     row(tr("Esc / right click"), tr("Cancel a transform or a pick"));
-    row(tr("Left drag"), tr("Transform the object in the toolbar's mode"));
+    row(tr("Left drag"), tr("Transform the object or light in the toolbar's mode (a light's rotate tilts it)"));
     row(tr("Wheel / middle drag"), tr("Zoom / pan the view"));
     const QString text =
         tr("<table cellspacing='6'>%1</table><p>In number fields the letter keys stay shortcuts "

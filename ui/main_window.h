@@ -32,6 +32,7 @@ class CalibrationPanel;
 class CameraPanel;
 class Document;
 class ErrorReporter;
+class LightPanel;
 class MaterialPanel;
 class MissingFilesDialog;
 class ProbeAlignPanel;
@@ -59,6 +60,10 @@ public:
     DenoiseWorker* denoiser() const { return denoiser_; }
     Viewport* viewport() const { return viewport_; }
     MaterialPanel* materialPanel() const { return materialPanel_; }
+    /// The selected light's settings (shown in place of the material while a light is selected).
+    LightPanel* lightPanel() const { return lightPanel_; }
+    /// Edit > Add > Light, and the scene panel's Add Light button.
+    QMenu* lightMenu() const { return lightMenu_; }
     CameraPanel* cameraPanel() const { return cameraPanel_; }
     CalibrationPanel* calibrationPanel() const { return calibrationPanel_; }
     ProxyPanel* proxyPanel() const { return proxyPanel_; }
@@ -140,7 +145,12 @@ public:
 
     // Edits.
     void addObject(Shape::Kind kind);
+    /// Adds a light of `kind` above the real surface under the view centre, shining down
+    /// (new_light), and selects it.
+    void addLight(VirtualLight::Kind kind);
+    /// Duplicates the selected object or light.
     void duplicateSelected();
+    /// Deletes the selected object or light.
     void deleteSelected();
     void toggleSelectedVisible();
     /// Moves the selected object down (or up) onto the real surface below it (Object > On
@@ -158,6 +168,9 @@ protected:
 
 private:
     void createActions();
+    /// The Add Light menu and its actions (addPointLight, addSpotLight, addRectLight,
+    /// addDiskLight).
+    void createLightMenu();
     void createMenus();
     void createDocks();
     void createToolbar();
@@ -212,6 +225,8 @@ private:
     Viewport* viewport_;
     ScenePanel* scenePanel_ = nullptr;
     MaterialPanel* materialPanel_ = nullptr;
+    LightPanel* lightPanel_ = nullptr;
+    QMenu* lightMenu_ = nullptr;
     SettingsPanel* settingsPanel_ = nullptr;
     DenoiseWorker* denoiser_ = nullptr;
     QElapsedTimer sinceDenoise_;  ///< since a refined frame was last sent to the denoiser

@@ -1,11 +1,13 @@
-// MainWindow: object edits (add, duplicate, delete, hide, on ground, G / R / S) and the
+// MainWindow: object and light edits (add, duplicate, delete, hide, on ground, G / R / S) and the
 // display (exposure per project, overlays).
 #include <QAction>
 #include <QComboBox>
 #include <QLabel>
+#include <QMenu>
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QStatusBar>
+#include <algorithm>
 #include <cmath>
 
 #include "document.h"
@@ -39,10 +41,45 @@ void MainWindow::addObject(Shape::Kind kind) {
     doc_->select(int(p.objects.size()) - 1);
 }
 
+void MainWindow::createLightMenu() {
+    lightMenu_ = new QMenu(tr("&Light"), this);
+    lightMenu_->setObjectName("lightMenu");
+    const char* names[] = {"addPointLight", "addSpotLight", "addRectLight", "addDiskLight"};
+    const char* tips[] = {"A bulb shining all around", "A bulb cut to a cone, shining down",
+                          "A glowing rectangle, shining down", "A glowing disk, shining down"};
+    for (int k = 0; k < 4; ++k) {
+        QAction* a = lightMenu_->addAction(tr(light_kind_label(VirtualLight::Kind(k))));
+        a->setObjectName(names[k]);
+        a->setToolTip(tr("Add a light above the view's centre: %1").arg(tr(tips[k])));
+        a->setStatusTip(a->toolTip());
+        connect(a, &QAction::triggered, this, [this, k] { addLight(VirtualLight::Kind(k)); });
+    }
+}
+
+void MainWindow::addLight(VirtualLight::Kind kind) {
+    if (!doc_->isOpen()) return;
+    Project p = doc_->project();
+    const std::string base = std::string(light_kind_name(kind)) + " light";
+    p.lights.push_back(new_light(p, placementCamera(), kind, unique_light_name(p, base)));
+    doc_->edit(tr("Add %1 light").arg(light_kind_name(kind)), p);
+    doc_->selectLight(int(p.lights.size()) - 1);
+}
+
 void MainWindow::duplicateSelected() {
+    Project p = doc_->project();
+    if (const int light = doc_->selectedLight(); light >= 0) {
+        VirtualLight copy = p.lights[size_t(light)];
+        copy.name = unique_light_name(p, copy.name);
+        // Beside the original: a third of its height above the surface, so both stay in view.
+        copy.transform.translation.x += std::max(0.1f, (copy.transform.translation.y -
+                                                        surface_below(p, copy.transform.translation)) / 3);
+        p.lights.push_back(copy);
+        doc_->edit(tr("Duplicate light"), p);
+        doc_->selectLight(int(p.lights.size()) - 1);
+        return;
+    }
     const int sel = doc_->selected();
     if (sel < 0) return;
-    Project p = doc_->project();
     VirtualObject copy = p.objects[size_t(sel)];
     copy.name = unique_name(p, copy.name);
     vec3 c;
@@ -55,9 +92,15 @@ void MainWindow::duplicateSelected() {
 }
 
 void MainWindow::deleteSelected() {
+    Project p = doc_->project();
+    if (const int light = doc_->selectedLight(); light >= 0) {
+        p.lights.erase(p.lights.begin() + light);
+        doc_->selectLight(-1);
+        doc_->edit(tr("Delete light"), p);
+        return;
+    }
     const int sel = doc_->selected();
     if (sel < 0) return;
-    Project p = doc_->project();
     p.objects.erase(p.objects.begin() + sel);
     doc_->select(-1);
     doc_->edit(tr("Delete object"), p);
@@ -83,9 +126,9 @@ void MainWindow::dropSelectedToSurface() {
 
 void MainWindow::startModal(GizmoMode mode) {
     if (viewport_->transforming()) return;
-    if (doc_->selected() < 0) {
+    if (doc_->selected() < 0 && doc_->selectedLight() < 0) {
         statusBar()->showMessage(
-            tr("Select an object first (click it in the viewport or the list)"), 5000);
+            tr("Select an object or a light first (click it in the viewport or the list)"), 5000);
         return;
     }
     commitTypedValue();  // a value typed into a field counts before the object moves

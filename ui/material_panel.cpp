@@ -12,31 +12,11 @@
 #include "assets/material_presets.h"
 #include "document.h"
 #include "number_field.h"
+#include "panel_widgets.h"
 #include "image/image_io.h"
 #include "stroke_slider.h"
 
 namespace dp::ui {
-
-namespace {
-
-// Colours are linear in the project and sRGB on screen.
-QColor to_qcolor(const vec3& linear) {
-    auto c = [](float v) {
-        return int(std::lround(linear_to_srgb(std::clamp(v, 0.0f, 1.0f)) * 255));
-    };
-    return QColor(c(linear.x), c(linear.y), c(linear.z));
-}
-
-vec3 to_linear(const QColor& c) {
-    return vec3(srgb_to_linear(float(c.redF())), srgb_to_linear(float(c.greenF())),
-                srgb_to_linear(float(c.blueF())));
-}
-
-void paint_swatch(QPushButton* b, const QColor& c) {
-    b->setStyleSheet(QStringLiteral("background-color: %1; min-height: 1.4em;").arg(c.name()));
-}
-
-}  // namespace
 
 MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
     auto* form = new QFormLayout(this);

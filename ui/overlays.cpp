@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 
+#include "gizmo.h"
+#include "placement.h"
 #include "project_edit.h"
 
 namespace dp::ui {
@@ -35,6 +37,14 @@ public:
                 path.lineTo(q);
         }
         p_.drawPath(path);
+    }
+
+    /// Widget position of a world point; false behind the camera.
+    bool point(const vec3& w, QPointF& out) const {
+        vec2 px;
+        if (cam_z(w) <= 1e-3f || !c_.project(w, px)) return false;
+        out = t_.map(QPointF(px.x, px.y));
+        return true;
     }
 
     void circle(const vec3& centre, const vec3& u, const vec3& v, float r, int pieces = 48) {
@@ -94,6 +104,71 @@ void draw_shape(LineDrawer& d, const Shape& s, const Transform& t) {
     }
 }
 
+/// The selection's gizmo axes: X red, Y green, Z blue, `len` long from `c`.
+void draw_axes(QPainter& painter, LineDrawer& d, const vec3& c, float len) {
+    painter.setPen(QPen(QColor(230, 60, 60), 2));
+    d.line(c, c + vec3(len, 0, 0), 1);
+    painter.setPen(QPen(QColor(60, 200, 60), 2));
+    d.line(c, c + vec3(0, len, 0), 1);
+    painter.setPen(QPen(QColor(70, 110, 240), 2));
+    d.line(c, c + vec3(0, 0, len), 1);
+}
+
+/// The sun glyph of a light's position, at a fixed size on screen so it can be found at any
+/// distance: a disk with eight rays.
+void draw_bulb(QPainter& p, QPointF c, bool filled) {
+    p.setBrush(filled ? p.pen().color() : QColor(Qt::transparent));
+    p.drawEllipse(c, 4.0, 4.0);
+    p.setBrush(Qt::NoBrush);
+    for (int i = 0; i < 8; ++i) {
+        const double a = i * kPi / 4;
+        const QPointF d(std::cos(a), std::sin(a));
+        p.drawLine(c + 6.5 * d, c + 10.0 * d);
+    }
+}
+
+void draw_light(QPainter& painter, LineDrawer& d, const Project& project, const VirtualLight& l,
+                float scale) {
+    const vec3 pos = l.transform.translation;
+    const glm::mat3 r = glm::mat3(l.transform.matrix());
+    const vec3 axis = glm::normalize(r * vec3(0, -1, 0));
+    QPointF at;
+    if (d.point(pos, at)) draw_bulb(painter, at, l.kind == VirtualLight::Kind::Point);
+    // How high it hangs: a dashed line down to the real surface below.
+    const QPen pen = painter.pen();
+    painter.setPen(QPen(pen.color(), 1.0, Qt::DashLine));
+    d.line(pos, vec3(pos.x, surface_below(project, pos), pos.z), 1);
+    painter.setPen(pen);
+    const vec3 side = glm::normalize(glm::cross(axis, std::abs(axis.y) < 0.99f ? vec3(0, 1, 0) : vec3(1, 0, 0)));
+    const vec3 up = glm::cross(axis, side);
+    if (l.kind == VirtualLight::Kind::Spot) {
+        // The cone, cut a scene-sized length along the axis.
+        const float half = glm::radians(std::min(l.spot_angle_deg, 170.0f) * 0.5f);
+        const float len = scale, rad = len * std::tan(half);
+        const vec3 c = pos + len * axis;
+        d.circle(c, side, up, rad, 32);
+        for (int i = 0; i < 4; ++i) {
+            const float a = float(i) * kPi / 2;
+            d.line(pos, c + rad * (std::cos(a) * side + std::sin(a) * up), 4);
+        }
+    } else if (l.kind == VirtualLight::Kind::Rect || l.kind == VirtualLight::Kind::Disk) {
+        vec3 q[4];
+        light_face(l, q);
+        if (l.kind == VirtualLight::Kind::Rect) {
+            for (int i = 0; i < 4; ++i) d.line(q[i], q[(i + 1) % 4], 4);
+        } else {
+            const vec3 c = 0.5f * (q[0] + q[2]);
+            d.circle(c, 0.5f * (q[1] - q[0]), 0.5f * (q[3] - q[0]), 1.0f, 32);
+        }
+        d.line(pos, pos + 0.5f * scale * axis, 1);  // which way it shines
+    }
+}
+
+/// Where the camera looks: the look-at target, or the origin.
+vec3 view_target(const Project& project) {
+    return project.camera.model == CameraSpec::Model::LookAt ? project.camera.target : vec3(0);
+}
+
 }  // namespace
 
 void draw_overlays(QPainter& painter, const Project& project, const Camera& camera,
@@ -137,15 +212,15 @@ void draw_overlays(QPainter& painter, const Project& project, const Camera& came
                 glm::cross(w, std::abs(w.y) < 0.99f ? vec3(0, 1, 0) : vec3(1, 0, 0)));
             d.circle(c, u, glm::cross(w, u), r);
             painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
-            if (sel) {
-                const float len = 1.5f * r;
-                painter.setPen(QPen(QColor(230, 60, 60), 2));
-                d.line(c, c + vec3(len, 0, 0), 1);
-                painter.setPen(QPen(QColor(60, 200, 60), 2));
-                d.line(c, c + vec3(0, len, 0), 1);
-                painter.setPen(QPen(QColor(70, 110, 240), 2));
-                d.line(c, c + vec3(0, 0, len), 1);
-            }
+            if (sel) draw_axes(painter, d, c, 1.5f * r);
+        }
+        // Lights over everything, in their own warm colour; the selected one brighter.
+        const float scale = 0.5f * std::max(0.2f, glm::length(camera.position() - view_target(project)));
+        for (size_t i = 0; i < project.lights.size(); ++i) {
+            const bool sel = int(i) == o.selectedLight;
+            painter.setPen(QPen(sel ? QColor(255, 190, 40) : QColor(255, 235, 150, 220), sel ? 2.0 : 1.2));
+            draw_light(painter, d, project, project.lights[i], 0.25f * scale);
+            if (sel) draw_axes(painter, d, project.lights[i].transform.translation, 0.15f * scale);
         }
     }
     painter.restore();

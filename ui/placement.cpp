@@ -318,6 +318,21 @@ VirtualObject new_primitive(const Project& project, const Camera& camera, Shape:
     return o;
 }
 
+VirtualLight new_light(const Project& project, const Camera& camera, VirtualLight::Kind kind,
+                       const std::string& name) {
+    const VisibleGround g = visible_ground(project, camera);
+    const float height = g.valid ? std::clamp(0.25f * g.extent, 0.3f, 50.0f) : 1.5f;
+    VirtualLight l;
+    l.name = name;
+    l.kind = kind;
+    l.transform.translation = view_centre_point(project, camera) + vec3(0, height, 0);
+    // Irradiance falls with the distance squared: scaled so, the floor below is lit alike.
+    l.power_w = std::min(150.0f * (height / 1.5f) * (height / 1.5f), kMaxLightPower);
+    l.spot_angle_deg = 60.0f;
+    l.size = vec2(height / 3.0f);
+    return l;
+}
+
 UnitGuess guess_mesh_unit(float size) {
     // Objects put into photographs are mostly 0.1 to 10 m: the unit that brings the file's
     // numbers into that range is the likely one.

@@ -69,6 +69,13 @@ void place_free(const Project& project, VirtualObject& object, const vec3& at,
 VirtualObject new_primitive(const Project& project, const Camera& camera, Shape::Kind kind,
                             const std::string& name);
 
+/// A new light of `kind` above the real surface under the view centre, shining straight down:
+/// at a quarter of the visible ground's extent (within [0.3, 50] m; 1.5 m when the camera sees
+/// no ground), 150 W at 1.5 m scaled by the height squared (the same light on the
+/// floor at any scale); area lights a third of the height across, spots 60 degrees wide.
+VirtualLight new_light(const Project& project, const Camera& camera, VirtualLight::Kind kind,
+                       const std::string& name);
+
 /// The unit a mesh's file most likely uses, from its largest dimension `size` in file units,
 /// and the scale to metres it implies.
 struct UnitGuess {

@@ -16,6 +16,21 @@ std::string unique_name(const Project& project, const std::string& base) {
     }
 }
 
+std::string unique_light_name(const Project& project, const std::string& base) {
+    std::set<std::string> used;
+    for (const VirtualLight& l : project.lights) used.insert(l.name);
+    if (!used.count(base)) return base;
+    for (int i = 2;; ++i) {
+        std::string name = base + " " + std::to_string(i);
+        if (!used.count(name)) return name;
+    }
+}
+
+const char* light_kind_label(VirtualLight::Kind kind) {
+    static const char* labels[] = {"Point", "Spot", "Area (rectangle)", "Area (disk)"};
+    return labels[int(kind)];
+}
+
 std::string unique_real_name(const Project& project, const std::string& base) {
     std::set<std::string> used;
     for (const RealProxy& r : project.real) used.insert(r.name);

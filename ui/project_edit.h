@@ -12,6 +12,12 @@ namespace dp::ui {
 /// A name not yet used by the project's objects ("sphere", "sphere 2", ...).
 std::string unique_name(const Project& project, const std::string& base);
 
+/// A name not yet used by the project's lights ("point light", "point light 2", ...).
+std::string unique_light_name(const Project& project, const std::string& base);
+
+/// The light kind as the studio names it: "Point", "Spot", "Area (rectangle)", "Area (disk)".
+const char* light_kind_label(VirtualLight::Kind kind);
+
 /// A name not yet used by the project's real proxies ("ground", "ground 2", ...).
 std::string unique_real_name(const Project& project, const std::string& base);
 

@@ -18,7 +18,7 @@ Viewport::Viewport(Document* doc, QWidget* parent)
     setMinimumSize(320, 200);
     setAttribute(Qt::WA_OpaquePaintEvent);
     setToolTip(
-        tr("Click an object to select it; drag to move (G), rotate (R) or scale (S).\n"
+        tr("Click an object or a light's glyph to select it; drag to move (G), rotate (R) or scale (S).\n"
            "Wheel zooms, middle button pans, X deletes, Esc cancels a drag."));
     connect(doc_, &Document::changed, this, [this] { update(); });
     connect(pick_, &PickTool::changed, this, [this] { update(); });
@@ -186,6 +186,7 @@ void Viewport::paintEvent(QPaintEvent*) {
     if (overlaysDrawn()) {
         OverlayOptions o = overlays_;
         o.selected = doc_->selected();
+        o.selectedLight = doc_->selectedLight();
         p.setClipRect(imageRect());  // overlays belong to the photo, not the margin around it
         draw_overlays(p, doc_->project(), camera(), camToWidget, o);
         p.setClipping(false);
@@ -205,13 +206,21 @@ void Viewport::paintEvent(QPaintEvent*) {
     }
 }
 
+bool Viewport::hasSelection() const {
+    return doc_->selected() >= 0 || doc_->selectedLight() >= 0;
+}
+
+Transform& Viewport::selectionTransform(Project& p) const {
+    if (doc_->selectedLight() >= 0) return p.lights[size_t(doc_->selectedLight())].transform;
+    return p.objects[size_t(doc_->selected())].transform;
+}
+
 void Viewport::beginDrag(QPointF pos) {
-    const int sel = doc_->selected();
-    if (sel < 0) return;
+    if (!hasSelection()) return;
     dragging_ = true;
     pressPos_ = lastPos_ = pos;
     projectAtDrag_ = doc_->project();
-    dragStart_ = projectAtDrag_.objects[size_t(sel)].transform;
+    dragStart_ = selectionTransform(projectAtDrag_);
     dragKey_ = doc_->newMergeKey();
     axis_ = -1;
     typed_.clear();
@@ -219,12 +228,12 @@ void Viewport::beginDrag(QPointF pos) {
 }
 
 bool Viewport::startModalTransform(GizmoMode mode) {
-    const int sel = doc_->selected();
-    if (dragging_ || pick_->active() || sel < 0 || !renderSize_.isValid()) return false;
+    if (dragging_ || pick_->active() || !hasSelection() || !renderSize_.isValid()) return false;
     QPointF at = mapFromGlobal(QCursor::pos());
     if (!rect().contains(at.toPoint())) {
         // The key was pressed with the mouse over a panel: start from the object itself.
-        if (!widgetPosition(doc_->project().objects[size_t(sel)].transform.translation, at))
+        Project p = doc_->project();
+        if (!widgetPosition(selectionTransform(p).translation, at))
             at = QPointF(rect().center());
         QCursor::setPos(mapToGlobal(at.toPoint()));
     }
@@ -267,6 +276,14 @@ void Viewport::mousePressEvent(QMouseEvent* e) {
     if (e->button() != Qt::LeftButton || !renderSize_.isValid()) return;
     const vec2 px = toImage(e->position());
     if (pick_->press(QPointF(px.x, px.y))) return;
+    // A light's glyph is small and drawn over what is behind it: it is picked first.
+    const float perPixel = float(imageToWidget().m11());
+    const int light = pick_light(doc_->project(), camera(), px.x, px.y, 12.0f / std::max(perPixel, 1e-3f));
+    if (light >= 0) {
+        doc_->selectLight(light);
+        beginDrag(e->position());
+        return;
+    }
     const int hit = pick_object(doc_->project(), camera(), px.x, px.y);
     doc_->select(hit);
     if (hit >= 0) beginDrag(e->position());
@@ -284,18 +301,31 @@ void Viewport::mouseMoveEvent(QMouseEvent* e) {
         pick_->move(QPointF(px.x, px.y));
         return;
     }
-    if (!dragging_ || doc_->selected() < 0) return;
+    if (!dragging_ || !hasSelection()) return;
     lastPos_ = e->position();
     if (typed_.isEmpty()) applyDrag();  // a typed value holds until it is erased
 }
 
 void Viewport::applyDrag() {
-    const int sel = doc_->selected();
-    if (!dragging_ || sel < 0) return;
-    Project p = projectAtDrag_;
-    VirtualObject& obj = p.objects[size_t(sel)];
+    if (!dragging_ || !hasSelection()) return;
     bool typed = false;
     const float value = typed_.toFloat(&typed);
+    static const char* verbs[] = {"Move", "Rotate", "Scale"};
+    if (const int light = doc_->selectedLight(); light >= 0) {
+        Project p = projectAtDrag_;
+        VirtualLight& l = p.lights[size_t(light)];
+        if (typed && std::isfinite(value) && !(gizmo_ == GizmoMode::Scale && value <= 0))
+            l.transform = typed_transform(gizmo_, dragStart_, axis_, value);
+        else
+            l.transform = light_drag_transform(gizmo_, dragStart_, camera(), toImage(pressPos_),
+                                               toImage(lastPos_), axis_);
+        doc_->edit(tr("%1 %2").arg(tr(verbs[int(gizmo_)]), QString::fromStdString(l.name)), p, dragKey_);
+        update();
+        return;
+    }
+    const int sel = doc_->selected();
+    Project p = projectAtDrag_;
+    VirtualObject& obj = p.objects[size_t(sel)];
     if (typed && std::isfinite(value) && !(gizmo_ == GizmoMode::Scale && value <= 0))
         obj.transform = typed_transform(gizmo_, dragStart_, axis_, value);
     else
@@ -305,7 +335,6 @@ void Viewport::applyDrag() {
     if (gizmo_ == GizmoMode::Scale)
         obj.transform =
             kept_on_base(projectAtDrag_, projectAtDrag_.objects[size_t(sel)], obj.transform);
-    static const char* verbs[] = {"Move", "Rotate", "Scale"};
     doc_->edit(tr("%1 %2").arg(tr(verbs[int(gizmo_)]), QString::fromStdString(obj.name)), p,
                dragKey_);
     update();

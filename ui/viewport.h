@@ -14,7 +14,8 @@ namespace dp::ui {
 class Document;
 
 /// Shows the progressive render (photo / augmented / dL), zooms (wheel) and pans (middle
-/// mouse), draws the overlays, and moves the selected object with the gizmo: click selects,
+/// mouse), draws the overlays, and moves the selected object or light with the gizmo: click
+/// selects (a light's glyph before the object behind it),
 /// left-drag applies the toolbar's mode, and startModalTransform (the window's G, R and S keys)
 /// makes the object follow the mouse until a click or Enter confirms it; Esc or the right button
 /// cancels a drag. While the pick tool is active, left clicks and drags go to it
@@ -104,6 +105,10 @@ protected:
     QTransform imageToWidget() const;
     vec2 toImage(QPointF widget) const;
     Camera camera() const;
+    /// An object or a light is selected.
+    bool hasSelection() const;
+    /// The selected object's or light's transform in `p`.
+    Transform& selectionTransform(Project& p) const;
     void beginDrag(QPointF pos);
     void finishDrag(bool cancel);
     /// Applies the drag so far: the typed value if there is one, else the cursor's travel.
