@@ -111,7 +111,7 @@ namespace {
 constexpr int kW = 64, kH = 48;
 
 /// A real floor and back wall, a diffuse virtual ball, a rect light above and in front of it
-/// (its face in view), under a dim sky.
+/// and a disk light facing the camera, under a dim sky.
 Project lit_corner() {
     Project p = look_at_project(vec3(0, 1.6f, 3.4f), vec3(0, 0.6f, 0), 45);
     p.real.push_back(ground_plane(vec3(0.5f)));
@@ -121,6 +121,11 @@ Project lit_corner() {
     rect.size = vec2(0.5f, 0.4f);
     rect.transform.rotation_deg = vec3(0, 0, -25);  // tipped towards the ball
     p.lights.push_back(rect);
+    // A small disk by the wall facing the camera: its face is in view.
+    VirtualLight disk = light(VirtualLight::Kind::Disk, vec3(0.9f, 1.3f, -0.6f), 20.0f, vec3(0.8f, 0.9f, 1));
+    disk.size = vec2(0.25f);
+    disk.transform.rotation_deg = vec3(-90, 0, 0);  // shines along +z
+    p.lights.push_back(disk);
     return p;
 }
 
@@ -220,4 +225,22 @@ TEST(VirtualLights, TheStandardDifferentialRendererAgreesWithThePathTracerOnARec
                 a.mean_sigmas);
     EXPECT_LT(a.excess, 1.3);
     EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
+}
+
+TEST(VirtualLights, TheStandardDifferentialRendererDrawsALightsFaceOverThePhoto) {
+    // Where the camera sees the disk's face the composite is the face, not the photo plus a
+    // change (alpha 1, as the progressive renderer draws it); beside the face, the real wall.
+    const Project p = lit_corner();
+    const auto scene = build(p, Image(kW, kH), dim_sky());
+    StandardDifferentialRenderer r(scene, RenderSettings{}, StandardDifferentialRenderer::Sampling::Correlated, 4);
+    r.render_pass();
+    ProgressiveRenderer pr(scene, settings(1000, 1));
+    pr.render_pass();
+    vec2 px, beside;
+    ASSERT_TRUE(scene->camera().project(p.lights[1].transform.translation, px));
+    ASSERT_TRUE(scene->camera().project(p.lights[1].transform.translation + vec3(0.4f, 0, 0), beside));
+    const auto at = [](const Image& img, vec2 q) { return img.at(int(std::lround(q.x)), int(std::lround(q.y))).x; };
+    EXPECT_EQ(at(r.alpha_layer(), px), 1.0f);
+    EXPECT_EQ(at(pr.alpha_layer(), px), 1.0f);
+    EXPECT_EQ(at(r.alpha_layer(), beside), 0.0f);
 }
