@@ -75,7 +75,8 @@ void expect_closed_form(const VirtualLight& l, double* max_rel, double* mean) {
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) {
             vec3 expected(0);
-            for (int s = 0; s < kSpp; ++s) expected += closed_form(scene, l, reference_camera_ray(scene, o.seed, x, y, uint64_t(s)));
+            for (int s = 0; s < kSpp; ++s)
+                expected += closed_form(scene, l, reference_camera_ray(scene, o.seed, x, y, uint64_t(s)));
             expected /= float(kSpp);
             const vec3 got = img.at(x, y);
             const float scale = std::max(luminance(expected), 1e-6f);
@@ -130,7 +131,8 @@ Project lit_corner() {
 }
 
 Image dim_sky() {
-    return make_sun_sky_probe(128, 64, glm::normalize(vec3(1, 1.3f, 0.4f)), vec3(20.0f), 6.0f, vec3(0.05f, 0.08f, 0.15f),
+    return make_sun_sky_probe(128, 64, glm::normalize(vec3(1, 1.3f, 0.4f)), vec3(20.0f), 6.0f,
+                              vec3(0.05f, 0.08f, 0.15f),
                               vec3(0.1f, 0.1f, 0.12f));
 }
 
@@ -171,12 +173,14 @@ struct Agreement {
 /// side's per-pixel variance is half its pair's mean squared difference. `excess` is
 /// mse(out1, truth1) over the sum of the two variances (about 1 where both estimate the same
 /// image), `mean_sigmas` the difference of the pairs' means over its standard error.
-Agreement agreement(const Image& out1, const Image& out2, const Image& truth1, const Image& truth2, const Image& photo) {
+Agreement agreement(const Image& out1, const Image& out2, const Image& truth1, const Image& truth2,
+                    const Image& photo) {
     Agreement a;
     const double var_out = 0.5 * mse(out1, out2), var_truth = 0.5 * mse(truth1, truth2);
     a.excess = mse(out1, truth1) / (var_out + var_truth);
     const double n = double(out1.size());
-    const double diff = 0.5 * (mean_luminance(out1) + mean_luminance(out2) - mean_luminance(truth1) - mean_luminance(truth2));
+    const double diff = 0.5 * (mean_luminance(out1) + mean_luminance(out2)) -
+                        0.5 * (mean_luminance(truth1) + mean_luminance(truth2));
     a.mean_sigmas = diff / std::sqrt(0.5 * (var_out + var_truth) / n);
     a.change = mean_luminance(truth1) - mean_luminance(photo);
     return a;
