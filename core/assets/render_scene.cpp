@@ -1,6 +1,7 @@
 #include "assets/render_scene.h"
 #include "base/error.h"
 #include "base/euler.h"
+#include "assets/microfacet.h"
 
 #include <algorithm>
 #include <cmath>
@@ -221,6 +222,10 @@ void RenderScene::place_surfaces() {
         Surface s;
         s.index = int(i);
         s.albedo = r.albedo.rgb;
+        if (r.gloss.specular > 0) {
+            s.gloss_f0 = std::min(r.gloss.specular, 1.0f);
+            s.gloss_alpha = ggx_alpha(std::max(r.gloss.roughness, kSpecularRoughness));
+        }
         if (i < assets_->real_textures.size() && !assets_->real_textures[i].empty())
             s.texture = &assets_->real_textures[i];
         const TriangleMesh* loaded = i < assets_->real_meshes.size() ? &assets_->real_meshes[i] : nullptr;

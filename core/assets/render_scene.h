@@ -63,6 +63,8 @@ struct Surface {
     int index = 0;  ///< position in project.real or project.objects
     Material material;      ///< virtual objects (real proxies are diffuse)
     vec3 albedo{0.5f};      ///< constant albedo (real: given or estimated; virtual diffuse)
+    float gloss_f0 = 0;     ///< real: the gloss layer's reflectance at normal incidence (0: matte)
+    float gloss_alpha = 0;  ///< real: the gloss layer's GGX alpha
     const Image* texture = nullptr;
     bool analytic_sphere = false;
     vec3 sphere_center{0};

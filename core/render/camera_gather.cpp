@@ -5,6 +5,7 @@
 
 #include "render/light_estimate.h"
 #include "render/photographed_radiance.h"
+#include "render/real_gloss.h"
 #include "assets/principled_scatter.h"
 #include "assets/scattering.h"
 
@@ -44,6 +45,32 @@ vec3 CameraGather::real_dL(const Hit& hit, const vec3& dir, Rng& rng, const Dire
     const dvec3 rho_over_pi = dvec3(hit.surface->reflectance_at(hit.uv)) * double(kInvPi);
     if (photon) *photon = float(luminance(rho_over_pi * E_photons));
     return vec3(rho_over_pi * (E + E_photons));
+}
+
+vec3 CameraGather::gloss_change(const Hit& hit, const vec3& dir, const vec2& u, Rng& rng) const {
+    const GlossLobe lobe(hit, dir);
+    if (!lobe.valid()) return vec3(0);
+    vec3 dL(0);
+    // The lights' highlights, by next-event estimation alone (the sampled ray skips their faces).
+    if (!scene_.lights().empty())
+        dL += reflected_light(scene_, hit, rng, [&](const vec3& w) { return vec3(lobe.eval_cos(w)); });
+    vec3 wi;
+    float weight = 0;
+    if (!lobe.sample(u, wi, weight)) return dL;
+    const Ray ray{scene_.offset_origin(hit, wi), wi};
+    const Hit hv = scene_.intersect_virtual(ray), hr = scene_.intersect_real(ray);
+    vec3 change(0);
+    if (hv && (!hr || hv.t < hr.t)) {
+        // An object now, where the photo shows what is behind it reflected.
+        const vec3 now = radiance_at(hv, ray, rng, 1, false, kGlassSplits, true);
+        const vec3 before = hr ? photographed_radiance(scene_, hr, wi, rng) : scene_.probe().radiance(wi);
+        change = now - before;
+    } else if (hr) {
+        const DirectSamples direct = DirectSamples::from(rng);
+        change = real_dL(hr, wi, rng, &direct);  // a shadow or caustic on the real surface reflected
+    }
+    if (is_finite(change)) dL += weight * change;
+    return dL;
 }
 
 vec3 CameraGather::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
@@ -200,6 +227,8 @@ SampleResult CameraGather::shade_camera(int x, int y, float px, float py, PixelS
     if (!hit.surface->is_virtual) {
         const DirectSamples direct = DirectSamples::from(sampler, work.direct_weight);
         r.dL = real_dL(hit, ray.dir, rng, work.direct_weight > 0 ? &direct : nullptr, work.gather, &r.photon);
+        if (work.direct_weight > 0 && hit.surface->gloss_f0 > 0)
+            r.dL += gloss_change(hit, ray.dir, sampler.next2d(), rng) * float(work.direct_weight);
         r.pixel_change = r.dL;
         return r;
     }

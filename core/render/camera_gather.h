@@ -81,6 +81,11 @@ public:
     /// `photon`, if given, gets the luminance of the photons' part.
     vec3 real_dL(const Hit& hit, const vec3& dir, Rng& rng, const DirectSamples* direct,
                     bool gather = true, float* photon = nullptr) const;
+    /// The change of what a glossy real surface (a proxy with a Gloss layer) reflects towards
+    /// -dir, 0 for a matte one: the virtual lights' highlights by next-event estimation, and
+    /// along one direction from the lobe (`u`) an object's radiance less what it hides there,
+    /// or the change of the real surface reflected (docs/real-gloss.md).
+    vec3 gloss_change(const Hit& hit, const vec3& dir, const vec2& u, Rng& rng) const;
     /// Radiance leaving a real point towards -dir in the augmented scene: the photo where the
     /// camera sees the point, rho E / pi elsewhere, plus dL.
     vec3 real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const;

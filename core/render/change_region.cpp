@@ -16,6 +16,14 @@ float distance_to_half_line(const vec3& c, const vec3& p, const vec3& dir) {
     return glm::length(c - (p + t * dir));
 }
 
+/// Distance from `c` to the segment from `p` to `q`.
+float distance_to_segment(const vec3& c, const vec3& p, const vec3& q) {
+    const vec3 d = q - p;
+    const float len2 = glm::dot(d, d);
+    const float t = len2 > 0 ? std::clamp(glm::dot(c - p, d) / len2, 0.0f, 1.0f) : 0.0f;
+    return glm::length(c - (p + t * d));
+}
+
 }  // namespace
 
 std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<EditedBounds>& edited,
@@ -30,6 +38,9 @@ std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<E
     const ProbeLights& lights = scene.probe_lights();
     const bool sun = lights.has_sun();
     const vec3 to_sun = sun ? glm::normalize(lights.sample_sun(vec2(0.5f)).dir) : vec3(0, 1, 0);
+    // The virtual lights: an edited object's shadow from one lies between it and the light.
+    std::vector<std::pair<vec3, float>> lamps(scene.lights().size());
+    for (size_t i = 0; i < lamps.size(); ++i) scene.lights().bounds(i, lamps[i].first, lamps[i].second);
     tbb::parallel_for(tbb::blocked_range<int>(0, H), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             for (int x = 0; x < W; ++x) {
@@ -48,6 +59,8 @@ std::vector<uint8_t> change_region(const RenderScene& scene, const std::vector<E
                     for (const EditedBounds& b : edited) {
                         in |= glm::length(hit.p - b.center) <= reach * b.radius;
                         in |= sun && distance_to_half_line(b.center, hit.p, to_sun) <= 1.25f * b.radius;
+                        for (const auto& [centre, radius] : lamps)
+                            in |= distance_to_segment(b.center, hit.p, centre) <= 1.25f * b.radius + radius;
                     }
                 }
                 mask[size_t(y) * W + x] = in;

@@ -23,7 +23,7 @@ inline constexpr float kChangeReach = 3.0f;
 /// when its centre ray passes through an edited sphere (what it saw before, or sees now, even
 /// where the new scene shows a far surface there), sees any virtual mirror or glass (which may
 /// show the edited objects), or meets a surface, real or virtual, within kChangeReach radii of
-/// an edited sphere or in the sun's shadow (or caustic) of one. A viewer that keeps a refined
+/// an edited sphere or in the sun's or a virtual light's shadow (or caustic) of one. A viewer that keeps a refined
 /// picture replaces only these pixels with a preview.
 /// With `step` > 1 one ray is traced per step x step block (through its centre) and the mask
 /// is (W + step - 1) / step by (H + step - 1) / step: a viewer needs the region, not its edge

@@ -7,6 +7,7 @@
 
 #include "image/image_metrics.h"
 #include "render/direct_change.h"
+#include "render/real_gloss.h"
 #include "assets/scattering.h"
 
 namespace dp {
@@ -94,6 +95,16 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std:
             if (!lights.empty() && lights.irradiance_bound(hit.p, n_facing) > 0) {
                 plan.direct_probability[i] = 1;
                 continue;
+            }
+            // A glossy surface that may reflect an object takes the change of its reflection.
+            if (hit.surface->gloss_f0 > 0) {
+                const GlossLobe lobe(hit, ray.dir);
+                bool reflects = false;
+                for (const EmissionCluster& c : s.clusters()) reflects |= gloss_may_reflect(lobe, hit.p, c.center, c.radius);
+                if (reflects) {
+                    plan.direct_probability[i] = 1;
+                    continue;
+                }
             }
             if (!direct_by_rays) continue;
             const double bound = direct.bound(hit.p, n_facing);

@@ -247,7 +247,8 @@ ProgressiveRenderer::PassWork ProgressiveRenderer::plan_pass(int pass, const Pas
             continue;
         // Roulette on the tile's largest probability; its pixels then keep their share of it.
         const float p = plan_.tile_direct_max[t];
-        const bool direct = (split_ || !scene_->lights().empty()) && p > 0 &&
+        // Under the all-photon estimator only lights and gloss give a real pixel a probability.
+        const bool direct = p > 0 &&
                             (p >= 1 || sobol_owen_2d(uint32_t(pass - 1), hash_combine(seed_ ^ 0x74696c65ull, t)).x < p);
         if (plan_.tile_has_object[t] || photon_tile[t] || direct) {
             work.tiles.push_back(t);

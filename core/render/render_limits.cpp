@@ -10,7 +10,9 @@
 
 namespace dp {
 uint64_t pass_memory_bytes(const RenderScene& scene, const RenderSettings& settings) {
-    const double photons = double(std::max<int64_t>(1, settings.photons_per_pass)) * 1.25;
+    // The probe's photons, a quarter more from the surroundings, as many again from the lights.
+    const double per_pass = double(std::max<int64_t>(1, settings.photons_per_pass));
+    const double photons = per_pass * (1.25 + (scene.lights().empty() ? 0.0 : 1.0));
     // A stored photon, its 16-byte grid entry and sort scratch; two stored per emitted at most.
     const double per_photon = 2.0 * (double(sizeof(Photon)) + 32.0);
     const double pixels = double(scene.camera().width()) * double(scene.camera().height());

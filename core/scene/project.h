@@ -91,11 +91,20 @@ struct Material {
     bool operator==(const Material&) const = default;
 };
 
+/// A real surface's gloss: a GGX reflection layered over its diffuse albedo (a polished table, a
+/// tiled or wet floor), so that it reflects what is inserted (docs/real-gloss.md).
+struct Gloss {
+    float specular = 0.0f;   ///< reflectance at normal incidence, [0, 1] (0.04 for varnish, tiles, water); 0: matte
+    float roughness = 0.1f;  ///< [0, 1], perceptual (alpha = roughness^2)
+    bool operator==(const Gloss&) const = default;
+};
+
 struct RealProxy {
     std::string name;
     Shape shape;
     Transform transform;
     Albedo albedo;
+    Gloss gloss;
     bool operator==(const RealProxy&) const = default;
 };
 

@@ -171,7 +171,7 @@ std::string parse_name(const JsonReader& r, const json& j, const std::string& pa
 }
 
 RealProxy parse_real(const JsonReader& r, const json& j, const std::string& path) {
-    r.object(j, path, {"name", "shape", "transform", "albedo"});
+    r.object(j, path, {"name", "shape", "transform", "albedo", "gloss"});
     RealProxy p;
     p.name = parse_name(r, j, path);
     p.shape = parse_shape(r, r.required(j, path, "shape"), json_join(path, "shape"));
@@ -179,6 +179,12 @@ RealProxy parse_real(const JsonReader& r, const json& j, const std::string& path
         p.transform = parse_transform(r, *v, json_join(path, "transform"));
     if (auto* v = r.optional(j, "albedo"))
         p.albedo = parse_albedo(r, *v, json_join(path, "albedo"), true);
+    if (auto* v = r.optional(j, "gloss")) {
+        const std::string g = json_join(path, "gloss");
+        r.object(*v, g, {"specular", "roughness"});
+        if (auto* x = r.optional(*v, "specular")) p.gloss.specular = bounded(r, *x, json_join(g, "specular"), 0.0f, 1.0f);
+        if (auto* x = r.optional(*v, "roughness")) p.gloss.roughness = bounded(r, *x, json_join(g, "roughness"), 0.0f, 1.0f);
+    }
     return p;
 }
 
@@ -228,6 +234,8 @@ VirtualLight parse_light(const JsonReader& r, const json& j, const std::string& 
     if (auto* v = r.optional(j, "size")) {
         const std::string p = json_join(path, "size");
         const size_t n = l.kind == VirtualLight::Kind::Disk ? 1 : 2;
+        r.check(!v->is_array() || v->size() == n, p,
+                n == 1 ? "a disk's size is one number, its diameter: [d]" : "a rect's size is two numbers: [x, z]");
         const std::vector<float> s = r.numbers(*v, p, n);
         for (size_t i = 0; i < n; ++i)
             r.check(s[i] > 0 && s[i] <= 1e6f, json_at(p, i), "must be in (0, 1e6] metres (got " + shortest_decimal(s[i]) + ")");
@@ -483,10 +491,14 @@ J write_project(const Project& p) {
     doc["camera"] = write_camera<J>(p.camera);
     doc["real"] = J::array();
     for (const RealProxy& r : p.real) {
-        doc["real"].push_back(J{{"name", r.name},
-                                {"shape", write_shape<J>(r.shape)},
-                                {"transform", write_transform<J>(r.transform)},
-                                {"albedo", write_albedo<J>(r.albedo)}});
+        J proxy{{"name", r.name},
+                {"shape", write_shape<J>(r.shape)},
+                {"transform", write_transform<J>(r.transform)},
+                {"albedo", write_albedo<J>(r.albedo)}};
+        // Matte is left out: such a file stays readable by builds without gloss.
+        if (r.gloss.specular > 0)
+            proxy["gloss"] = J{{"specular", num(r.gloss.specular)}, {"roughness", num(r.gloss.roughness)}};
+        doc["real"].push_back(proxy);
     }
     doc["objects"] = J::array();
     for (const VirtualObject& o : p.objects) {

@@ -221,6 +221,61 @@ TEST_F(ProjectIo, EditingAPrincipledParameterIsAMaterialChange) {
     EXPECT_EQ(classify(a, a), Change::None);
 }
 
+TEST_F(ProjectIo, EveryLightKindRoundTripsWithItsOwnFieldsOnly) {
+    Project a = load_project(write("rich.json", kRichProject));
+    EXPECT_FALSE(to_json(a).contains("lights"));  // none: the key is left out
+    VirtualLight point, spot, rect, disk;
+    point.name = "bulb";
+    point.transform.translation = vec3(0.5f, 2.25f, -1);
+    point.colour = vec3(1, 0.8f, 0.6f);
+    point.power_w = 60;
+    spot = point;
+    spot.kind = VirtualLight::Kind::Spot;
+    spot.transform.rotation_deg = vec3(-30, 10, 0);
+    spot.spot_angle_deg = 35;
+    spot.spot_blend = 0.4f;
+    rect.kind = VirtualLight::Kind::Rect;
+    rect.size = vec2(1.2f, 0.3f);
+    rect.visible = false;
+    disk.kind = VirtualLight::Kind::Disk;
+    disk.size = vec2(0.25f);
+    a.lights = {point, spot, rect, disk};
+    const nlohmann::json doc = to_json(a);
+    EXPECT_EQ(doc["lights"][0]["type"], "point");
+    EXPECT_FALSE(doc["lights"][0].contains("spot_angle_deg"));
+    EXPECT_FALSE(doc["lights"][0].contains("size"));
+    EXPECT_EQ(doc["lights"][1]["spot_angle_deg"], 35.0);
+    EXPECT_EQ(doc["lights"][2]["size"], nlohmann::json::array({1.2, 0.3}));
+    EXPECT_EQ(doc["lights"][3]["size"], nlohmann::json::array({0.25}));
+    EXPECT_EQ(parse_project(doc, "memory", dir_), a);
+    const std::string path = (dir_ / "saved.json").string();
+    save_project(a, path);
+    EXPECT_EQ(load_project(path), a);
+    // Only the type: a 100 W white point light at the origin.
+    nlohmann::json bare = doc;
+    bare["lights"][0] = {{"type", "point"}};
+    EXPECT_EQ(parse_project(bare, "memory", dir_).lights[0], VirtualLight{});
+    // A light edit is taken like a material edit (no geometry rebuilt); nothing else changes.
+    Project b = a;
+    b.lights[1].power_w = 120;
+    EXPECT_EQ(classify(a, b), Change::Material);
+    std::vector<int> edited;
+    EXPECT_FALSE(edited_objects(a, b, edited));  // the whole picture can change
+}
+
+TEST_F(ProjectIo, AProxysGlossRoundTripsAndIsLeftOutWhenMatte) {
+    Project a = load_project(write("rich.json", kRichProject));
+    EXPECT_FALSE(to_json(a)["real"][0].contains("gloss"));
+    a.real[0].gloss = Gloss{0.04f, 0.15f};
+    const nlohmann::json doc = to_json(a);
+    EXPECT_EQ(doc["real"][0]["gloss"]["specular"], 0.04);
+    EXPECT_EQ(doc["real"][0]["gloss"]["roughness"], 0.15);
+    EXPECT_EQ(parse_project(doc, "memory", dir_), a);
+    nlohmann::json bare = doc;
+    bare["real"][0]["gloss"] = {{"specular", 0.5}};
+    EXPECT_EQ(parse_project(bare, "memory", dir_).real[0].gloss.roughness, Gloss{}.roughness);
+}
+
 TEST_F(ProjectIo, EveryUpAxisAndAUnitScaleRoundTripAndAreWrittenForMeshesOnly) {
     Project a = load_project(write("rich.json", kRichProject));
     for (const auto& [name, axis] : kUpAxes) {
