@@ -1,4 +1,5 @@
 // `diffphoton info`: loads and validates a project and prints what it holds.
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -81,6 +82,52 @@ std::string object_label(const std::string& name, const char* list, size_t i) {
     return name.empty() ? std::string(list) + "[" + std::to_string(i) + "]" : "'" + name + "'";
 }
 
+/// A light's kind with its shape: "point", "spot 50 deg, blend 0.2", "rect 0.5 x 0.3",
+/// "disk diameter 0.4" (the extents before the transform's scale).
+std::string light_shape_text(const VirtualLight& l) {
+    char buf[96];
+    switch (l.kind) {
+        case VirtualLight::Kind::Point: return "point";
+        case VirtualLight::Kind::Spot:
+            std::snprintf(buf, sizeof(buf), "spot %g deg, blend %g", l.spot_angle_deg, l.spot_blend);
+            return buf;
+        case VirtualLight::Kind::Rect: std::snprintf(buf, sizeof(buf), "rect %g x %g", l.size.x, l.size.y); return buf;
+        case VirtualLight::Kind::Disk: std::snprintf(buf, sizeof(buf), "disk diameter %g", l.size.x); return buf;
+    }
+    return "?";
+}
+
+/// A unit direction with float rounding's crumbs (1e-8 after a 90 degree turn) set to 0.
+vec3 clean_direction(vec3 d) {
+    for (int k = 0; k < 3; ++k)
+        if (std::abs(d[k]) < 1e-6f) d[k] = 0;
+    return d;
+}
+
+/// One line per light: what the project says, then what the renderers make of it (where it
+/// shines, its intensity or its face's radiance and area).
+void print_lights(const Project& p, const LightSet& lights) {
+    std::printf("virtual lights: %zu\n", p.lights.size());
+    for (size_t i = 0; i < p.lights.size(); ++i) {
+        const VirtualLight& l = p.lights[i];
+        const PlacedLight& pl = lights.lights()[i];
+        char power[64];
+        std::snprintf(power, sizeof(power), "%g W", l.power_w);
+        std::string emits;
+        if (pl.is_area()) {
+            char buf[96];
+            std::snprintf(buf, sizeof(buf), ", area %g m^2, radiance ", pl.area);
+            emits = buf + vec(pl.radiance) + " W/(m^2 sr)" + (l.visible ? "" : ", hidden from the camera");
+        } else {
+            emits = ", intensity " + vec(pl.intensity) + " W/sr";
+        }
+        std::printf("  %s: %s, %s, colour %s, shining along %s%s%s\n",
+                    object_label(l.name, "lights", i).c_str(), light_shape_text(l).c_str(), power,
+                    vec(l.colour).c_str(), vec(clean_direction(pl.axis)).c_str(), emits.c_str(),
+                    transform_text(l.transform).c_str());
+    }
+}
+
 void print_camera(const Project& p, const Camera& cam) {
     const CameraSpec& c = p.camera;
     if (c.model == CameraSpec::Model::LookAt) {
@@ -105,6 +152,29 @@ void print_render_settings(const RenderSettings& r) {
 
 nlohmann::json xyz(const vec3& v) { return {v.x, v.y, v.z}; }
 
+/// The lights for `info --json`: the project's numbers and the placed light's.
+nlohmann::json lights_json(const Project& p, const LightSet& lights) {
+    nlohmann::json out = nlohmann::json::array();
+    for (size_t i = 0; i < p.lights.size(); ++i) {
+        const VirtualLight& l = p.lights[i];
+        const PlacedLight& pl = lights.lights()[i];
+        nlohmann::json j = {{"name", l.name},
+                            {"type", light_kind_name(l.kind)},
+                            {"power_w", l.power_w},
+                            {"position", xyz(pl.position)},
+                            {"direction", xyz(pl.axis)}};
+        if (pl.is_area()) {
+            j["area"] = pl.area;
+            j["radiance"] = xyz(pl.radiance);
+            j["visible"] = l.visible;
+        } else {
+            j["intensity"] = xyz(pl.intensity);
+        }
+        out.push_back(j);
+    }
+    return out;
+}
+
 /// What `info` prints, for scripts: the project as written (`project`, paths as stored) and what
 /// loading it found (sizes, resolved paths, the camera's intrinsics, triangles, warnings).
 nlohmann::json info_json(const std::string& project_path, const Project& p, const RenderScene& scene) {
@@ -120,6 +190,7 @@ nlohmann::json info_json(const std::string& project_path, const Project& p, cons
                            {"visible", p.objects[i].visible},
                            {"triangles", i < a.object_meshes.size() ? a.object_meshes[i].triangle_count() : 0}});
     nlohmann::json clusters = nlohmann::json::array();
+    const nlohmann::json lights = lights_json(p, scene.lights());
     for (const EmissionCluster& c : scene.clusters())
         clusters.push_back({{"center", xyz(c.center)}, {"radius", c.radius}, {"objects", c.objects}});
     return {{"file", project_path},
@@ -134,6 +205,7 @@ nlohmann::json info_json(const std::string& project_path, const Project& p, cons
                         {"position", xyz(cam.position())}, {"forward", xyz(cam.forward())}}},
             {"real", real},
             {"objects", objects},
+            {"lights", lights},
             {"scene_scale", scene.scale()},
             {"emission_clusters", clusters},
             {"warnings", a.warnings},
@@ -193,6 +265,7 @@ int run_info(const std::string& project_path, bool json) {
                 std::printf("    file material '%s': %s\n", f.name.c_str(),
                             material_text(f.material, f.texture).c_str());
     }
+    print_lights(p, scene->lights());
     print_render_settings(p.render);
     std::printf("scene scale %g\n", scene->scale());
     std::printf("emission clusters: %zu\n", scene->clusters().size());

@@ -294,6 +294,9 @@ def shape_dict(shape, transform, base_dir, where):
 
 
 def scene_dict(project, base_dir, width, height, spp, upsample):
+    if project.get("lights"):
+        # Better refused than compared without them: ours would carry light Mitsuba never saw.
+        raise Unsupported("lights: the virtual lights are not converted for Mitsuba")
     max_depth = int(project.get("render", {}).get("max_depth", 8))
     scene = {
         "type": "scene",

@@ -16,6 +16,8 @@ conventions it maps, and how each was checked, are in docs/cycles.md:
   Blender 4 and later, which dropped SHARP and treats roughness 0 as a perfect reflection);
   principled: Principled BSDF (glTF's material; its inputs by the names of Blender 3.4 or 4+;
   its emission lights the real proxies too, which ours does not);
+- lights: point and spot (radius 0) and area lights (rectangle, disk or ellipse) of the same
+  power in watts, turned from ours' local -Y to Blender's local -Z (LIGHT_FROM_BLENDER);
 - one composite per render: Combined + (1 - Combined.alpha) * photo * ShadowCatcher.
 """
 import array
@@ -149,6 +151,58 @@ def camera_pose(cam, width, height, file):
     r = Matrix(cam["rotation"])
     t = Vector(cam["translation"])
     return r, -(r.transposed() @ t), float(cam["fx"]), float(cam["fy"]), float(cam["cx"]), float(cam["cy"])
+
+
+# Blender's light shines along its local -Z with its face in local XY; ours shines along local
+# -Y with its face in local XZ. LIGHT_FROM_BLENDER takes Blender's light axes to ours: x -> x,
+# y -> -z, z -> y (a rotation: Blender's size_y runs along ours' local -z, the same extent).
+LIGHT_FROM_BLENDER = Matrix(((1, 0, 0), (0, 0, 1), (0, -1, 0)))
+
+
+def light_energy_factor(kind):
+    """Blender's energy for one watt of ours. Ours follows Blender 4 and later (an area light's
+    radiance P / (pi A)); Blender 3.4's area light has radiance P / (4 A): pi / 4 of it, so it
+    gets 4 / pi more energy (measured: a rect and a disk light's change on the floor came out
+    0.786 of ours in 3.4, equal in 5.0; docs/cycles.md)."""
+    return 4.0 / math.pi if kind in ("rect", "disk") and bpy.app.version < (4, 0, 0) else 1.0
+
+
+def light_object(light, frame, index, file):
+    """A project light (point, spot, rect or disk; docs/project-format.md) as a Blender light
+    object. Its transform's translation and rotation place it; its scale x and z stretch an
+    area light's face only, as in ours (core/assets/virtual_lights.cpp)."""
+    kind = light.get("type", "point")
+    if kind not in ("point", "spot", "rect", "disk"):
+        raise ConversionError(file, f"lights[{index}].type", f"unknown light type '{kind}'")
+    transform = light.get("transform") or {}
+    scale = transform.get("scale", [1, 1, 1])
+    name = f"light {index} {light.get('name', '')}"
+    data = bpy.data.lights.new(name, "AREA" if kind in ("rect", "disk") else kind.upper())
+    data.energy = float(light.get("power_w", 100.0)) * light_energy_factor(kind)
+    data.color = light.get("colour", [1, 1, 1])  # in [0, 1], as Blender's
+    if kind in ("point", "spot"):
+        data.shadow_soft_size = 0.0  # ours: a point, hard shadows
+        if hasattr(data, "use_soft_falloff"):  # Blender 4 and later
+            data.use_soft_falloff = False
+    if kind == "spot":
+        data.spot_size = math.radians(min(180.0, max(1.0, float(light.get("spot_angle_deg", 45.0)))))
+        data.spot_blend = float(light.get("spot_blend", 0.15))
+    elif kind in ("rect", "disk"):
+        size = light.get("size", [0.5, 0.5])
+        sx = float(size[0]) * float(scale[0])
+        sy = float(size[1] if kind == "rect" else size[0]) * float(scale[2])
+        if kind == "rect":
+            data.shape = "RECTANGLE"
+        else:
+            data.shape = "DISK" if abs(sx - sy) <= 1e-6 * max(sx, sy) else "ELLIPSE"
+        data.size, data.size_y = sx, sy
+    obj = bpy.data.objects.new(name, data)
+    m = (euler_xyz_deg(transform.get("rotation_deg", [0, 0, 0])) @ LIGHT_FROM_BLENDER).to_4x4()
+    m.translation = Vector(transform.get("translation", [0, 0, 0]))
+    obj.matrix_world = blender_matrix(frame, m)
+    # Ours: a hidden area light's face is not seen by the camera; it lights everything alike.
+    obj.visible_camera = bool(light.get("visible", True)) or kind in ("point", "spot")
+    return obj
 
 
 # ---------------------------------------------------------------------------------------------
@@ -737,6 +791,7 @@ class CyclesScene:
         setup_camera(scene, p["camera"], self.width, self.height, frame, project_path)
         setup_world(scene, p["probe"], base_dir, project_path)
         self.mode = mode
+        self.proxies, self.lamp_layer = [], None
         for i, r in enumerate(p.get("real", [])):
             field = f"real[{i}]"
             sphere_frame = frame if is_exact_sphere(r["shape"], r.get("transform")) else None
@@ -746,6 +801,7 @@ class CyclesScene:
                                    f"real {i} {r.get('name', '')}"):
                 o.data.materials.append(mat)
                 o.is_shadow_catcher = mode == "catcher"
+                self.proxies.append(o)
                 if artist:  # MNEE: caustics cast by the glass objects land on the proxies
                     o.cycles.is_caustics_receiver = True
                 scene.collection.objects.link(o)
@@ -767,12 +823,55 @@ class CyclesScene:
                     if artist and ob.get("material", {}).get("type") == "glass":
                         o.cycles.is_caustics_caster = True
                     scene.collection.objects.link(o)
+            # The lights are virtual, as the objects: a render of the real proxies has none.
+            lamps = [light_object(light, frame, i, project_path) for i, light in enumerate(p.get("lights", []))]
+            if lamps:
+                self.setup_lamp_layer(lamps)
         self.setup_render(int(p.get("render", {}).get("max_depth", 8)), threads)
         self.artist = artist
         if artist:
             self.artist_settings()
         if mode == "catcher":
             self.setup_composite()
+
+    def setup_lamp_layer(self, lamps):
+        """A shadow catcher keeps only what the objects take from the light on it: a lamp lights
+        it with and without them alike, so the lamps' light on the real proxies never reaches
+        the composite. A second view layer renders it: the proxies as plain diffuse copies
+        (each layer sees its own set), the lamps in a light group whose pass is that light
+        alone, added to the backplate (setup_composite). An area light's face, where the
+        camera sees it, comes from that pass too: the main layer's lamps (copies of the same
+        lights) are hidden from the camera, or the face would be counted twice."""
+        scene = self.scene
+        main = scene.view_layers[0]
+        layer = scene.view_layers.new("lamps on the real proxies")
+        layer.lightgroups.add(name="lamps")
+
+        def collection(name, excluded_from):
+            c = bpy.data.collections.new(name)
+            scene.collection.children.link(c)
+            excluded_from.layer_collection.children[c.name].exclude = True
+            return c
+
+        catchers = collection("real proxies (shadow catchers)", layer)
+        plain = collection("real proxies (lit by the lamps)", main)
+        lighting = collection("lamps (lighting the objects)", layer)
+        seen = collection("lamps (on the real proxies, and seen)", main)
+        for o in self.proxies:
+            scene.collection.objects.unlink(o)
+            catchers.objects.link(o)
+            copy = o.copy()  # the same mesh and material
+            copy.name = o.name + " (lit)"
+            copy.is_shadow_catcher = False
+            plain.objects.link(copy)
+        for lamp in lamps:
+            copy = lamp.copy()  # the same light
+            copy.name = lamp.name + " (seen)"
+            copy.lightgroup = "lamps"
+            seen.objects.link(copy)
+            lamp.visible_camera = False
+            lighting.objects.link(lamp)
+        self.lamp_layer = layer
 
     def setup_render(self, max_depth, threads):
         scene, c = self.scene, self.scene.cycles
@@ -842,7 +941,8 @@ class CyclesScene:
 
     def setup_composite(self):
         """Compositor: Combined + (1 - Combined.alpha) * photo * ShadowCatcher (Cycles' own
-        recipe: multiply the backplate by the Shadow Catcher pass, then alpha-over Combined)."""
+        recipe: multiply the backplate by the Shadow Catcher pass, then alpha-over Combined),
+        with lamps + (1 - Combined.alpha) * their light on the proxies (setup_lamp_layer)."""
         if hasattr(self.scene, "compositing_node_group"):
             self.setup_composite_group()
             return
@@ -871,7 +971,18 @@ class CyclesScene:
         tree.links.new(photo.outputs["Image"], exposure.inputs[1])
         tree.links.new(exposure.outputs["Image"], mul.inputs[1])
         tree.links.new(layers.outputs["Shadow Catcher"], mul.inputs[2])
-        tree.links.new(mul.outputs["Image"], over.inputs[1])
+        backplate = mul.outputs["Image"]
+        if self.lamp_layer is not None:  # + the lamps' light on the real proxies
+            lamps = tree.nodes.new("CompositorNodeRLayers")
+            lamps.layer = self.lamp_layer.name
+            add = tree.nodes.new("CompositorNodeMixRGB")
+            add.blend_type = "ADD"
+            add.use_alpha = False
+            add.inputs["Fac"].default_value = 1.0
+            tree.links.new(backplate, add.inputs[1])
+            tree.links.new(lamps.outputs["Combined_lamps"], add.inputs[2])
+            backplate = add.outputs["Image"]
+        tree.links.new(backplate, over.inputs[1])
         tree.links.new(layers.outputs["Image"], over.inputs[2])
         tree.links.new(over.outputs["Image"], comp.inputs["Image"])
 
@@ -888,10 +999,10 @@ class CyclesScene:
         photo = tree.nodes.new("CompositorNodeImage")
         photo.image = self.photo
 
-        def multiply(a, b):
+        def multiply(a, b, blend="MULTIPLY"):
             mix = tree.nodes.new("ShaderNodeMix")
             mix.data_type = "RGBA"
-            mix.blend_type = "MULTIPLY"
+            mix.blend_type = blend
             mix.clamp_result = False
             mix.clamp_factor = True
             mix.inputs["Factor"].default_value = 1.0
@@ -905,6 +1016,11 @@ class CyclesScene:
 
         exposed = multiply(photo.outputs["Image"], (self.photo_scale,) * 3 + (1.0,))  # 2^stops
         backplate = multiply(exposed, layers.outputs["Shadow Catcher"])
+        if self.lamp_layer is not None:  # + the lamps' light on the real proxies
+            lamps = tree.nodes.new("CompositorNodeRLayers")
+            lamps.scene = scene
+            lamps.layer = self.lamp_layer.name
+            backplate = multiply(backplate, lamps.outputs["Combined_lamps"], "ADD")
         over = tree.nodes.new("CompositorNodeAlphaOver")
         over.inputs["Factor"].default_value = 1.0
         over.inputs["Straight Alpha"].default_value = False  # Combined is premultiplied

@@ -8,6 +8,7 @@
 
 #include "base/rng.h"
 #include "base/sampling.h"
+#include "render/light_estimate.h"
 #include "assets/principled_scatter.h"
 #include "assets/scattering.h"
 
@@ -25,6 +26,8 @@ struct PathTracer {
     bool occluded(const Ray& r) const {
         return opt.include_virtual ? scene.occluded(r) : scene.occluded_real(r);
     }
+    /// The virtual lights belong to the virtual scene: a render of the real proxies has none.
+    bool lights() const { return opt.include_virtual && !scene.lights().empty(); }
 
     /// At a principled surface: the probe by next-event estimation (eval, MIS against the BSDF)
     /// added to L, then the path continued by sampling the BSDF. False when the path ends.
@@ -39,6 +42,12 @@ struct PathTracer {
                 L += beta * f * ls.radiance * (w / ls.pdf);
             }
         }
+        // The virtual lights by next-event estimation alone: a bounce off this surface never
+        // counts their faces (as in the progressive renderer).
+        if (lights())
+            L += beta * reflected_light(scene, hit, rng, [&](const vec3& w) {
+                return eval_principled(bsdf, hit, ray.dir, w, Transport::Radiance);
+            });
         if (last) return false;
         const vec3 u(rng.uniform(), rng.uniform(), rng.uniform());
         const PrincipledEvent e = sample_principled(bsdf, hit, ray.dir, u, Transport::Radiance);
@@ -56,6 +65,16 @@ struct PathTracer {
         const Probe& probe = scene.probe();
         for (int depth = 0; depth < opt.max_depth; ++depth) {
             Hit hit = intersect(ray);
+            // An area light's face seen by the camera or through mirrors and glass ends the path
+            // there, as in the progressive renderer. After diffuse and principled vertices its
+            // light was sampled by next-event estimation: counting the face too would double it.
+            if (specular_bounce && lights()) {
+                const vec3 Le = scene.lights().emitted(ray, hit ? hit.t : INFINITY);
+                if (Le != vec3(0)) {
+                    L += beta * Le;
+                    break;
+                }
+            }
             if (!hit) {
                 if (depth == 0) return opt.show_probe ? probe.radiance(ray.dir) : vec3(0);
                 vec3 Le = probe.radiance(ray.dir);
@@ -91,10 +110,16 @@ struct PathTracer {
                         L += beta * rho * kInvPi * ls.radiance * (cos_l / ls.pdf) *
                              (last ? 1.0f : power_heuristic(ls.pdf, cos_l * kInvPi));
                 }
-                if (last) break;
                 Hit h = hit;
                 h.ng = ng;
                 h.ns = n;
+                // Real surfaces too: their change by a light is rho/pi * E of its light.
+                if (lights())
+                    L += beta * rho * reflected_light(scene, h, rng, [&](const vec3& w) {
+                        const float c = glm::dot(n, w);
+                        return c > 0 && glm::dot(ng, w) > 0 ? vec3(c * kInvPi) : vec3(0);
+                    });
+                if (last) break;
                 vec3 d = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
                 last_bsdf_pdf = std::max(0.0f, glm::dot(n, d)) * kInvPi;
                 beta *= rho;  // rho/pi * cos / pdf

@@ -13,7 +13,8 @@ struct ReferenceOptions {
     int samples_per_pixel = 64;
     int max_depth = 8;
     uint64_t seed = 1;
-    /// false: real proxies only (a synthetic photograph); true: with the virtual objects.
+    /// false: real proxies only (a synthetic photograph); true: with the virtual objects and
+    /// the virtual lights.
     bool include_virtual = true;
     /// Camera rays that miss everything see the probe (true) or black (false).
     bool show_probe = true;
@@ -21,8 +22,10 @@ struct ReferenceOptions {
 
 /// Unbiased path tracing of the whole scene: real proxies with their albedo lit by the probe,
 /// and the virtual objects with their materials. Next-event estimation of the probe with
-/// multiple importance sampling on diffuse surfaces. Makes synthetic photographs and ground
-/// truth. The image depends only on the options, not on the thread count.
+/// multiple importance sampling on diffuse surfaces. The virtual lights by next-event
+/// estimation alone at diffuse and principled vertices; an area light's face is seen only by
+/// the camera and through mirrors and glass (as in the progressive renderer, whose conventions
+/// these are: the face ends the path). Makes synthetic photographs and ground truth. The image depends only on the options, not on the thread count.
 /// `progress(done_rows, total_rows)` is called from worker threads.
 Image render_reference(const RenderScene& scene, const ReferenceOptions& options,
                        const std::atomic<bool>* cancel = nullptr,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "base/rng.h"
 #include "image/image_metrics.h"
@@ -82,7 +83,10 @@ bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) 
                 const Ray ray = reference_camera_ray(s, with_virtual_.seed, x, y, smp);
                 Hit first_hit = s.intersect(ray);
                 vec3 L_new = reference_radiance(s, with_virtual_, ray, pixel, int(smp));
-                if (first_hit && first_hit.surface->is_virtual) {
+                // An area light's face in front counts as a virtual object: it replaces the photo.
+                const bool sees_light = !s.lights().empty() &&
+                                        s.lights().emitted(ray, first_hit ? first_hit.t : INFINITY) != vec3(0);
+                if (sees_light || (first_hit && first_hit.surface->is_virtual)) {
                     if (!is_finite(L_new)) { ++local_bad; continue; }
                     virt[k] += dvec3(L_new);
                     ++vcount[k];

@@ -11,7 +11,7 @@ namespace dp {
 /// differential photon mapper is measured against: two full path-traced simulations of the
 /// whole scene, L_old (real proxies only) and L_new (with the virtual objects), composited per
 /// camera sample as photo + (L_new - L_old) where the sample sees real geometry or the probe,
-/// and L_new where it sees a virtual object. Each pass adds `samples_per_pass` samples per
+/// and L_new where it sees a virtual object or a virtual light's face. Each pass adds `samples_per_pass` samples per
 /// pixel; the image depends only on the seed, not on threads.
 ///
 /// Two variants: `Independent`, the paper's two separate renders (each simulation has its own

@@ -8,7 +8,6 @@
 
 #include "base/rng.h"
 #include "base/sampling.h"
-#include "render/light_estimate.h"
 #include "render/photographed_radiance.h"
 #include "assets/principled_scatter.h"
 #include "assets/scattering.h"
@@ -155,7 +154,8 @@ struct Tracer {
             out.stats.rays += 4;  // about: the samples that reach a cone cost one or two rays
         }
         if (!probe_map.empty()) E += probe_map.gather(x.p, n) * inv_area;
-        E += dvec3(light_irradiance(scene, x, n, rng));
+        // Not the virtual lights' light: their photons go on from real surfaces to the objects
+        // themselves, so an emitter that sent it as well would count it twice.
         if (E == dvec3(0)) return vec3(0);
         return vec3(dvec3(x.surface->reflectance_at(x.uv)) * double(kInvPi) * E);
     }
@@ -310,9 +310,10 @@ PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass,
     };
     run(0, probe_blocks + light_blocks);
     if (surround > 0 && options.emitter_radius > 0) {
-        // The probe's and lights' photons first: the surroundings' emitters see their change.
+        // The probe photons first: the surroundings' emitters see the change they make (the
+        // lights' photons carry their own light on, see emitter_change).
         std::vector<Photon> first_real;
-        for (int64_t b = 0; b < probe_blocks + light_blocks; ++b)
+        for (int64_t b = 0; b < probe_blocks; ++b)
             first_real.insert(first_real.end(), out[b].real.begin(), out[b].real.end());
         tracer.probe_map.build(std::move(first_real), options.emitter_radius);
         tracer.inv_area = 1.0 / (double(kPi) * options.emitter_radius * options.emitter_radius);

@@ -57,6 +57,15 @@ ProgressiveRenderer::ProgressiveRenderer(std::shared_ptr<const RenderScene> scen
         // About a hundred photons of a sunlit shadow inside the first gather disk.
         float rmax = 0;
         for (const EmissionCluster& c : scene_->clusters()) rmax = std::max(rmax, c.radius);
+        // Lights alone: what they light lies about as far from the camera as they do. The scene's
+        // scale here comes from the real proxies (a 40 m floor gave 1.1 m disks after 24 passes,
+        // and the bounce light on a wall came out 10% short against the path tracer).
+        if (rmax <= 0 && !scene_->lights().empty()) {
+            const vec3 eye = scene_->camera().position();
+            for (const PlacedLight& l : scene_->lights().lights())
+                rmax = std::max(rmax, glm::length(l.position - eye));
+            rmax = std::min(rmax, scene_->scale());
+        }
         if (rmax <= 0) rmax = scene_->scale();
         r1_ = rmax * std::clamp(std::sqrt(100.0f / float(photons_per_pass_)), 0.004f, 0.2f);
     }

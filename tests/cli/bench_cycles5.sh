@@ -116,3 +116,27 @@ for m in ("cycles5", "cycles5-artist"):
     assert rows[-1]["rel_rmse_changed"] < rows[0]["rel_rmse_changed"], (rows[0], rows[-1])
 assert [r["method"] for r in doc["runs"]] == ["cycles5", "cycles5-artist"], doc["runs"]
 PY
+
+# Lamps: a point and a rect light over the ball and the floor (as bench_cycles.sh for Blender
+# 3.4): Cycles 5's composite converges to the truth, the lamps' light on the floor included.
+mkdir -p scenes/lamps
+cp photo.exr probe.exr scenes/lamps/
+write_project scenes/lamps/scene.json "$BALL" "$FLOOR"
+sed -i 's|^  "render"|  "lights": [{"name": "bulb", "type": "point", "transform": {"translation": [1, 1.5, 0.8]}, "power_w": 60},\
+             {"name": "panel", "type": "rect", "transform": {"translation": [-1, 1.8, 0.5], "rotation_deg": [0, 0, -30]},\
+              "power_w": 100, "size": [0.5, 0.4], "visible": false}],\
+  "render"|' scenes/lamps/scene.json
+for half in a:11 b:22; do
+    run render scenes/lamps/scene.json -o "scenes/lamps/truth-${half%%:*}.exr" --layers \
+        --method standard-correlated --passes 64 --seed "${half##*:}"
+    expect_rc 0 "lamps: truth half ${half%%:*}"
+done
+DP_BPY5_PYTHON=$python run bench scenes/lamps -o lamps.json --methods cycles5 --max-seconds-standard 2 --threads 2
+expect_rc 0 "bench --methods cycles5 on a scene with lamps"
+python3 - lamps.json <<'PY' || fail "Cycles 5 on the scene with lamps"
+import json, sys
+rows = [r for r in json.load(open(sys.argv[1]))["rows"] if r["method"] == "cycles5"]
+print("lamps: cycles5 relative RMSE over the changed pixels:", [round(r["rel_rmse_changed"], 3) for r in rows])
+assert rows[-1]["rel_rmse_changed"] < 0.15, rows[-1]
+assert rows[-1]["rel_rmse_changed"] < 0.5 * rows[0]["rel_rmse_changed"], (rows[0], rows[-1])
+PY

@@ -94,6 +94,27 @@ else
     echo "note: $sample_probe is missing (it comes with Blender); the bundled sample was not exported"
 fi
 
+# Lights of every kind travel in the script's project (placed by the converter when it runs).
+sed 's|^  "render"|  "lights": [{"name": "bulb", "type": "point", "transform": {"translation": [1, 2, 0.5]}, "colour": [1, 0.5, 0.25], "power_w": 60},\
+             {"name": "cone", "type": "spot", "transform": {"translation": [-1, 2, 0], "rotation_deg": [30, 0, 0]},\
+              "power_w": 200, "spot_angle_deg": 50, "spot_blend": 0.2},\
+             {"name": "panel", "type": "rect", "power_w": 300, "colour": [1, 0.5, 0.5], "size": [0.5, 0.3], "visible": false,\
+              "transform": {"translation": [0, 2.5, -1], "rotation_deg": [10, 20, 90], "scale": [2, 1, 1]}},\
+             {"name": "round", "type": "disk", "transform": {"translation": [0, 3, 0]}, "size": [0.4]},\
+             {"name": "oval", "type": "disk", "transform": {"translation": [0.5, 3, 0], "scale": [1, 1, 2]}, "size": [0.4]}],\
+  "render"|' proj/scene.json >proj/lights.json
+run export blender proj/lights.json -o lights.py --blend "$PWD/lights.blend"
+expect_rc 0 "export blender of a project with lights"
+check_script lights.py "$PWD/lights.blend" >/dev/null
+python3 - lights.py <<'PY' || fail "the script's project lacks the lights"
+import ast, json, re, sys
+src = open(sys.argv[1]).read()
+m = re.search(r"^PROJECT = json\.loads\((b'''.*?''')\.decode\(\)\)$", src, re.S | re.M)
+lights = json.loads(ast.literal_eval(m.group(1)).decode())["lights"]
+assert [l["type"] for l in lights] == ["point", "spot", "rect", "disk", "disk"], lights
+assert lights[2]["visible"] is False and lights[1]["spot_angle_deg"] == 50, lights
+PY
+
 # Bad input: exit 2 naming the file and the field.
 echo '{"schema_version": 1, "photo": ' >broken.json
 expect_refused "invalid JSON" "broken.json" export blender broken.json -o x.py
@@ -139,6 +160,23 @@ run_blender() {  # run_blender ARGS...: Blender headless; output in blender.txt
         fail "Blender failed: $*"
     }
 }
+# The lights arrive as Blender lights of their kind, power, colour, place and direction, in
+# Blender 3.4 and, where .deps/bpy5 (or $DP_BPY5_PYTHON) holds it, in Blender 5.
+run_blender --python lights.py
+grep -q "saved $PWD/lights.blend" blender.txt || fail "lights.py did not save lights.blend"
+run_blender --factory-startup --python "$SRC/tests/cli/export_blender_lights.py" -- lights.blend proj/lights.json
+grep -qx "lights_ok 5" blender.txt || fail "the lights in Blender 3.4: $(tail -3 blender.txt)"
+bpy5=${DP_BPY5_PYTHON:-$SRC/.deps/bpy5/bin/python}
+if [ -x "$bpy5" ]; then
+    rm -f lights.blend
+    "$bpy5" lights.py >blender.txt 2>&1 || { cat blender.txt >&2; fail "lights.py in Blender 5"; }
+    "$bpy5" "$SRC/tests/cli/export_blender_lights.py" -- lights.blend proj/lights.json >blender.txt 2>&1 ||
+        { cat blender.txt >&2; fail "the lights in Blender 5"; }
+    grep -qx "lights_ok 5" blender.txt || fail "the lights in Blender 5: $(tail -3 blender.txt)"
+else
+    echo "note: no Blender 5 at $bpy5; the lights were checked in Blender 3.4 only"
+fi
+
 run_blender --python small.py -- --render cycles.exr --threads 2
 [ -s small.blend ] || fail "the script did not save small.blend (exported with --blend)"
 [ -s cycles.exr ] || fail "the script did not write cycles.exr (--render)"

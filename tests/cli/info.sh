@@ -52,6 +52,43 @@ run info principled.json
 expect_rc 0 "info on a principled material"
 expect_stdout "'copper': sphere radius 0.3, principled, base colour (0.95, 0.64, 0.54), metallic 1, roughness 0.3, ior 1.5, specular 1, transmission 0" "the principled material"
 
+# Lights: each kind with its shape, power and where it shines, and what the renderers make of
+# it (a point's intensity P/(4 pi) W/sr, a rect's face of 0.5 x 0.4 m = 0.2 m^2, radiance
+# P/(pi A) = 100/(0.2 pi) = 159.155 W/(m^2 sr)).
+write_project lights.json "$BALL" "$ESTIMATED"
+sed -i 's|^  "render"|  "lights": [{"name": "bulb", "type": "point", "transform": {"translation": [1, 2, 0.5]}, "power_w": 62.8319},\
+             {"name": "cone", "type": "spot", "transform": {"translation": [0, 2, 0], "rotation_deg": [90, 0, 0]},\
+              "power_w": 200, "spot_angle_deg": 50, "spot_blend": 0.2},\
+             {"name": "panel", "type": "rect", "power_w": 100, "size": [0.5, 0.4], "visible": false,\
+              "transform": {"translation": [0, 2.5, -1]}},\
+             {"type": "disk", "transform": {"translation": [0, 3, 0]}, "size": [0.4]}],\
+  "render"|' lights.json
+run info lights.json
+expect_rc 0 "info with lights"
+expect_stdout "virtual lights: 4" "the light count"
+expect_stdout "'bulb': point, 62.8319 W, colour (1, 1, 1), shining along (0, -1, 0), intensity (5, 5, 5) W/sr  at (1, 2, 0.5)" "the point light"
+expect_stdout "'cone': spot 50 deg, blend 0.2, 200 W, colour (1, 1, 1), shining along (0, 0, -1)" "the spot, turned by its rotation"
+expect_stdout "'panel': rect 0.5 x 0.4, 100 W, colour (1, 1, 1), shining along (0, -1, 0), area 0.2 m^2, radiance (159.155, 159.155, 159.155) W/(m^2 sr), hidden from the camera" "the rect light"
+expect_stdout "lights[3]: disk diameter 0.4, 100 W" "an unnamed disk light"
+run info lights.json --json
+expect_rc 0 "info --json with lights"
+/usr/bin/python3 - stdout.txt <<'PY' || fail "info --json: the lights"
+import json, sys
+d = json.load(open(sys.argv[1]))
+lights = d["lights"]
+assert [l["type"] for l in lights] == ["point", "spot", "rect", "disk"], lights
+assert [l["name"] for l in lights] == ["bulb", "cone", "panel", ""], lights
+near = lambda a, b: all(abs(x - y) < 1e-4 * max(1, abs(y)) for x, y in zip(a, b))
+assert near(lights[0]["position"], [1, 2, 0.5]) and near(lights[0]["intensity"], [5, 5, 5]), lights[0]
+assert near(lights[1]["direction"], [0, 0, -1]) and lights[1]["power_w"] == 200, lights[1]
+assert near([lights[2]["area"]], [0.2]) and near(lights[2]["radiance"], [159.155] * 3), lights[2]
+assert lights[2]["visible"] is False and lights[3]["visible"] is True, lights
+assert len(d["project"]["lights"]) == 4, d["project"]
+PY
+# A project without lights says so.
+run info principled.json
+expect_stdout "virtual lights: 0" "no lights"
+
 run info
 expect_rc 2 "info without a project"
 echo "PASS"
