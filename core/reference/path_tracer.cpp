@@ -84,7 +84,9 @@ struct PathTracer {
             }
             const Surface& s = *hit.surface;
             bool diffuse = !s.is_virtual || s.material.kind == Material::Kind::Diffuse;
-            L += beta * emitted_radiance(s);  // no light sampling reaches it: weight 1
+            // An emissive object is one of the lights: after a diffuse or principled vertex its
+            // light was sampled there, so only the camera and mirrors and glass see it here.
+            if (specular_bounce || !lights()) L += beta * emitted_radiance(s);
             if (s.is_virtual && s.material.kind == Material::Kind::Principled) {
                 const bool last = depth + 1 >= opt.max_depth;
                 if (!principled(hit, ray, beta, L, last, rng, last_bsdf_pdf)) break;
