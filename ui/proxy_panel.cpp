@@ -1,6 +1,7 @@
 #include "proxy_panel.h"
 
 #include <QApplication>
+#include <QComboBox>
 #include <QPointer>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -45,6 +46,26 @@ NumberField* metres(double value, const char* name, const QString& tip) {
     return s;
 }
 
+/// Gloss presets: reflectance at normal incidence and roughness of common real surfaces.
+struct GlossPreset {
+    const char* name;
+    float specular, roughness;
+};
+constexpr GlossPreset kGlossPresets[] = {{"Matte", 0.0f, 0.1f},           {"Satin paint", 0.04f, 0.35f},
+                                         {"Varnished wood", 0.04f, 0.15f}, {"Polished stone", 0.05f, 0.05f},
+                                         {"Glazed tiles", 0.04f, 0.03f},   {"Wet street", 0.03f, 0.08f}};
+
+NumberField* unit_field(const char* name, const QString& tip) {
+    auto* s = new NumberField;
+    s->setRange(0, 1);
+    s->setDecimals(3);
+    s->setSingleStep(0.01);
+    s->setObjectName(name);
+    s->setToolTip(tip);
+    s->setKeyboardTracking(false);
+    return s;
+}
+
 QPushButton* button(const char* name, const QString& text, const QString& tip) {
     auto* b = new QPushButton(text);
     b->setObjectName(name);
@@ -80,6 +101,26 @@ ProxyPanel::ProxyPanel(Document* doc, Viewport* viewport, ErrorReporter* reporte
     }
     layout->addWidget(size);
     connect(list_, &QListWidget::currentRowChanged, this, [this] { showSize(); });
+
+    // The selected proxy's gloss: what a polished table or a wet street reflects of the objects.
+    auto* gloss = new QGroupBox(tr("Gloss"));
+    auto* glossForm = new QFormLayout(gloss);
+    glossPreset_ = new QComboBox;
+    glossPreset_->setObjectName("proxyGlossPreset");
+    glossPreset_->setToolTip(tr("A typical surface: fills in the reflectance and roughness"));
+    glossPreset_->addItem(tr("Custom"));
+    for (const GlossPreset& g : kGlossPresets) glossPreset_->addItem(tr(g.name));
+    connect(glossPreset_, &QComboBox::activated, this, [this](int i) { applyGlossPreset(i); });
+    glossSpecular_ = unit_field("proxyGlossSpecular",
+                                tr("Reflectance at normal incidence: 0 matte, 0.04 varnish, tiles or water"));
+    glossRoughness_ = unit_field("proxyGlossRoughness", tr("0 a mirror-like polish, 1 a dull sheen"));
+    connect(glossSpecular_, &QDoubleSpinBox::valueChanged, this, [this] { applyGloss(); });
+    connect(glossRoughness_, &QDoubleSpinBox::valueChanged, this, [this] { applyGloss(); });
+    glossForm->addRow(tr("Preset"), glossPreset_);
+    glossForm->addRow(tr("Reflectance"), glossSpecular_);
+    glossForm->addRow(tr("Roughness"), glossRoughness_);
+    layout->addWidget(gloss);
+    connect(list_, &QListWidget::currentRowChanged, this, [this] { showGloss(); });
 
     auto* box = new QGroupBox(tr("Box"));
     auto* boxForm = new QFormLayout(box);
@@ -164,6 +205,48 @@ void ProxyPanel::refresh() {
     }
     list_->setCurrentRow(std::min(row, list_->count() - 1));
     showSize();
+    showGloss();
+}
+
+void ProxyPanel::showGloss() {
+    const int row = list_->currentRow();
+    const auto& real = doc_->project().real;
+    const RealProxy* r = row >= 0 && size_t(row) < real.size() ? &real[size_t(row)] : nullptr;
+    showingSize_ = true;
+    for (QWidget* w : {static_cast<QWidget*>(glossPreset_), static_cast<QWidget*>(glossSpecular_),
+                       static_cast<QWidget*>(glossRoughness_)})
+        w->setEnabled(r != nullptr);
+    const Gloss g = r ? r->gloss : Gloss{};
+    glossSpecular_->setValue(g.specular);
+    glossRoughness_->setValue(g.roughness);
+    int preset = 0;
+    for (size_t k = 0; k < std::size(kGlossPresets); ++k)
+        if (kGlossPresets[k].specular == g.specular && (g.specular == 0 || kGlossPresets[k].roughness == g.roughness))
+            preset = int(k) + 1;
+    glossPreset_->setCurrentIndex(preset);
+    showingSize_ = false;
+}
+
+void ProxyPanel::applyGloss() {
+    const int row = list_->currentRow();
+    Project p = doc_->project();
+    if (showingSize_ || row < 0 || size_t(row) >= p.real.size()) return;
+    RealProxy& r = p.real[size_t(row)];
+    r.gloss.specular = float(glossSpecular_->value());
+    r.gloss.roughness = float(glossRoughness_->value());
+    if (p.real == doc_->project().real) return;
+    doc_->tryEdit(tr("Gloss of %1").arg(QString::fromStdString(r.name)), p);
+}
+
+void ProxyPanel::applyGlossPreset(int index) {
+    const int row = list_->currentRow();
+    Project p = doc_->project();
+    if (index < 1 || size_t(index) > std::size(kGlossPresets) || row < 0 || size_t(row) >= p.real.size()) return;
+    const GlossPreset& g = kGlossPresets[size_t(index - 1)];
+    RealProxy& r = p.real[size_t(row)];
+    r.gloss = Gloss{g.specular, g.roughness};
+    if (p.real == doc_->project().real) return;
+    doc_->tryEdit(tr("%1 gloss on %2").arg(tr(g.name), QString::fromStdString(r.name)), p);
 }
 
 void ProxyPanel::showSize() {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <thread>
 
+class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
@@ -20,7 +21,8 @@ class Viewport;
 /// The real proxies that stand in for the photo's surfaces: a list (select, remove), boxes
 /// from their clicked footprint (four corners on the ground, in order) and a height, walls from
 /// two clicked points at their base, and the albedo texture of the selected proxy estimated
-/// from the photo and the probe on demand (written next to the project file). Every change is
+/// from the photo and the probe on demand (written next to the project file), and its gloss
+/// (reflectance and roughness, or a preset: a polished table, a wet street). Every change is
 /// one undo step; bad input is reported and changes nothing.
 class ProxyPanel : public QWidget {
     Q_OBJECT
@@ -44,6 +46,10 @@ private:
     void showSize();
     /// Applies the size fields to the selected proxy (a box keeps its base where it was).
     void applySize();
+    /// The gloss fields show / set the selected proxy's gloss (a preset fills both fields).
+    void showGloss();
+    void applyGloss();
+    void applyGlossPreset(int index);
     void startPicking(Target target);
     void removeSelected();
     bool guarded(const QString& title, const std::function<void()>& f);
@@ -55,6 +61,8 @@ private:
     QDoubleSpinBox *boxHeight_, *wallHeight_, *wallThickness_;
     QDoubleSpinBox* size_[3] = {};  ///< the selected proxy's size along its x, y, z
     bool showingSize_ = false;
+    QComboBox* glossPreset_ = nullptr;
+    QDoubleSpinBox *glossSpecular_ = nullptr, *glossRoughness_ = nullptr;
     QSpinBox *resolution_, *samples_;
     QLabel* status_;
     QPushButton* estimate_;  ///< disabled while an estimate runs
