@@ -9,6 +9,7 @@
 #include "base/rng.h"
 #include "base/sampling.h"
 #include "render/light_estimate.h"
+#include "assets/real_gloss.h"
 #include "assets/principled_scatter.h"
 #include "assets/scattering.h"
 
@@ -58,6 +59,48 @@ struct PathTracer {
         return true;
     }
 
+    /// At a real surface with a gloss layer: its albedo's Lambert lobe plus the gloss lobe, the
+    /// probe by next-event estimation MIS-weighted against the mixture both are sampled from
+    /// (half and half), the lights by next-event estimation alone, then the path continued
+    /// from the mixture. False when the path ends.
+    bool glossy_real(const Hit& hit, Ray& ray, vec3& beta, vec3& L, bool last, Rng& rng, float& bsdf_pdf) const {
+        const GlossLobe lobe(hit, ray.dir);
+        const vec3 rho = hit.surface->reflectance_at(hit.uv);
+        const vec3 n = facing_normal(hit.ns, ray.dir), ng = facing_normal(hit.ng, ray.dir);
+        auto f_cos = [&](const vec3& w) {
+            const float c = glm::dot(n, w);
+            if (c <= 0 || glm::dot(ng, w) <= 0) return vec3(0);
+            return rho * (c * kInvPi) + vec3(lobe.eval_cos(w));
+        };
+        auto mixture_pdf = [&](const vec3& w) {
+            return 0.5f * std::max(0.0f, glm::dot(n, w)) * kInvPi + 0.5f * lobe.pdf(w);
+        };
+        Hit h = hit;
+        h.ng = ng;
+        h.ns = n;
+        const ProbeSample ls = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
+        if (ls.pdf > 0) {
+            const vec3 f = f_cos(ls.dir);
+            if (f != vec3(0) && !occluded(Ray{scene.offset_origin(h, ls.dir), ls.dir}))
+                L += beta * f * ls.radiance * ((last ? 1.0f : power_heuristic(ls.pdf, mixture_pdf(ls.dir))) / ls.pdf);
+        }
+        if (lights()) L += beta * reflected_light(scene, h, rng, f_cos);
+        if (last) return false;
+        vec3 wi;
+        float unused = 0;
+        if (rng.uniform() < 0.5f) {
+            if (!lobe.sample(vec2(rng.uniform(), rng.uniform()), wi, unused)) return false;
+        } else {
+            wi = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
+        }
+        bsdf_pdf = mixture_pdf(wi);
+        const vec3 f = f_cos(wi);
+        if (!(bsdf_pdf > 0) || f == vec3(0)) return false;
+        beta *= f / bsdf_pdf;
+        ray = Ray{scene.offset_origin(h, wi), wi};
+        return true;
+    }
+
     vec3 radiance(Ray ray, Rng& rng) const {
         vec3 L(0), beta(1);
         bool specular_bounce = true;  // the camera ray counts as specular for MIS
@@ -87,7 +130,10 @@ struct PathTracer {
             // An emissive object is one of the lights: after a diffuse or principled vertex its
             // light was sampled there, so only the camera and mirrors and glass see it here.
             if (specular_bounce || !lights()) L += beta * emitted_radiance(s);
-            if (s.is_virtual && s.material.kind == Material::Kind::Principled) {
+            if (!s.is_virtual && s.gloss_f0 > 0) {
+                if (!glossy_real(hit, ray, beta, L, depth + 1 >= opt.max_depth, rng, last_bsdf_pdf)) break;
+                specular_bounce = false;
+            } else if (s.is_virtual && s.material.kind == Material::Kind::Principled) {
                 const bool last = depth + 1 >= opt.max_depth;
                 if (!principled(hit, ray, beta, L, last, rng, last_bsdf_pdf)) break;
                 specular_bounce = false;

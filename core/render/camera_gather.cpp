@@ -5,7 +5,7 @@
 
 #include "render/light_estimate.h"
 #include "render/photographed_radiance.h"
-#include "render/real_gloss.h"
+#include "assets/real_gloss.h"
 #include "assets/principled_scatter.h"
 #include "assets/scattering.h"
 

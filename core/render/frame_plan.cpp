@@ -7,7 +7,7 @@
 
 #include "image/image_metrics.h"
 #include "render/direct_change.h"
-#include "render/real_gloss.h"
+#include "assets/real_gloss.h"
 #include "assets/scattering.h"
 
 namespace dp {

@@ -9,6 +9,7 @@
 #include "base/rng.h"
 #include "base/sampling.h"
 #include "render/photographed_radiance.h"
+#include "assets/real_gloss.h"
 #include "assets/principled_scatter.h"
 #include "assets/scattering.h"
 
@@ -79,7 +80,12 @@ struct Tracer {
                 ++out.stats.stored_caustic;
             }
             vec3 next;
-            if (diffuse) {
+            if (!s.is_virtual && s.gloss_f0 > 0) {
+                // A glossy real surface reflects photons by its albedo and its gloss: the lamp a
+                // varnished floor throws onto the wall, the sky an object no longer lets it.
+                if (!glossy_bounce(hit, dir, flux, flux0_max, rng, next)) return;
+                specular_only = false;
+            } else if (diffuse) {
                 vec3 rho = s.reflectance_at(hit.uv);
                 float q = std::min(0.98f, std::max({rho.x, rho.y, rho.z}));
                 if (q <= 0 || rng.uniform() >= q) return;
@@ -102,6 +108,33 @@ struct Tracer {
             hit.p = scene.offset_origin(hit, next);
             dir = next;
         }
+    }
+
+    /// The next direction of a photon at a real surface with a gloss layer, from the mixture
+    /// of its Lambert and gloss lobes (half and half), with roulette on |flux| against the
+    /// photon's first flux. False when it is absorbed.
+    bool glossy_bounce(const Hit& hit, const vec3& dir, vec3& flux, float flux0_max, Rng& rng, vec3& next) const {
+        const GlossLobe lobe(hit, dir);
+        const vec3 rho = hit.surface->reflectance_at(hit.uv);
+        const vec3 n = facing_normal(hit.ns, dir), ng = facing_normal(hit.ng, dir);
+        float unused = 0;
+        if (rng.uniform() < 0.5f) {
+            if (!lobe.sample(vec2(rng.uniform(), rng.uniform()), next, unused)) return false;
+        } else {
+            Hit h = hit;
+            h.ng = ng;
+            next = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
+        }
+        const float c = glm::dot(n, next);
+        if (c <= 0 || glm::dot(ng, next) <= 0) return false;
+        const float pdf = 0.5f * c * kInvPi + 0.5f * lobe.pdf(next);
+        if (!(pdf > 0)) return false;
+        flux *= (rho * (c * kInvPi) + vec3(lobe.eval_cos(next))) / pdf;
+        const vec3 a = glm::abs(flux);
+        const float q = std::min(0.98f, std::max({a.x, a.y, a.z}) / std::max(flux0_max, 1e-30f));
+        if (q <= 0 || rng.uniform() >= q) return false;
+        flux /= q;
+        return is_finite(flux);
     }
 
     void trace_one(Rng& rng, Block& out) const {

@@ -254,6 +254,20 @@ TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerOnAGlowingBallL
     EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
 }
 
+TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerOnAGlossyFloor) {
+    // The corner's floor varnished: it reflects the ball and the lamp's face, and stops
+    // reflecting the wall and sky the ball hides.
+    Project p = lit_corner();
+    p.real[0].gloss = Gloss{0.1f, 0.15f};
+    const Truth t(p);
+    const Agreement a = agreement(progressive(t, 3), progressive(t, 4), t.t1, t.t2, t.photo);
+    std::printf("glossy floor: error over the noise %.3f, mean difference %.2f sigma, change %.4f\n", a.excess,
+                a.mean_sigmas, a.change);
+    EXPECT_GT(a.change, 0.2);
+    EXPECT_LT(a.excess, 1.3);
+    EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
+}
+
 TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerWithLightsAlone) {
     // No object: the first gather radius cannot come from the objects' size (from the scene's
     // scale, set by the 40 m floor, the bounce light on the wall came out 10% short).

@@ -1,4 +1,4 @@
-#include "render/real_gloss.h"
+#include "assets/real_gloss.h"
 
 #include <algorithm>
 #include <cmath>
