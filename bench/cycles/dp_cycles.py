@@ -11,11 +11,12 @@ conventions it maps, and how each was checked, are in docs/cycles.md:
   lens shift for the principal point and pixel aspect for fx != fy (no lens distortion);
 - probe: the lat-long map as an Environment Texture with closest-texel lookups (ours is
   piecewise constant) and an importance map of one cell per texel;
-- real proxies: diffuse surfaces marked as shadow catchers; virtual objects: diffuse, sharp
+- real proxies: diffuse surfaces (with a GGX Glossy added for a gloss layer) marked as shadow
+  catchers; virtual objects: diffuse, sharp
   glossy (mirror) or sharp glass (Blender 3.4's SHARP distribution, GGX at roughness 0 in
   Blender 4 and later, which dropped SHARP and treats roughness 0 as a perfect reflection);
   principled: Principled BSDF (glTF's material; its inputs by the names of Blender 3.4 or 4+;
-  its emission lights the real proxies too, which ours does not);
+  its emission lights the real proxies, as ours does);
 - lights: point and spot (radius 0) and area lights (rectangle, disk or ellipse) of the same
   power in watts, turned from ours' local -Y to Blender's local -Z (LIGHT_FROM_BLENDER);
 - one composite per render: Combined + (1 - Combined.alpha) * photo * ShadowCatcher.
@@ -658,6 +659,36 @@ def diffuse_material(name, albedo, base_dir, sphere_frame, file, field, file_uvs
     return mat
 
 
+def add_gloss(mat, gloss):
+    """A real proxy's gloss layer (docs/real-gloss.md) added over its diffuse BSDF: a GGX Glossy
+    of roughness `roughness` (Cycles' alpha is roughness squared, as ours) whose colour is
+    Schlick's Fresnel from `specular`, F0 + (1 - F0) (1 - cos)^5, with the cosine against the
+    shading normal (ours takes the microfacet normal: the same for a polished surface)."""
+    f0 = min(max(float(gloss.get("specular", 0.0)), 0.0), 1.0)
+    if f0 <= 0:
+        return
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    out = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
+    diffuse = out.inputs["Surface"].links[0].from_node
+    glossy = nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = "GGX"
+    glossy.inputs["Roughness"].default_value = max(float(gloss.get("roughness", 0.1)), 0.03)
+    facing = nodes.new("ShaderNodeLayerWeight")  # Facing: 1 - |cos|
+    power = nodes.new("ShaderNodeMath")
+    power.operation = "POWER"
+    power.inputs[1].default_value = 5.0
+    links.new(facing.outputs["Facing"], power.inputs[0])
+    fresnel = nodes.new("ShaderNodeMapRange")  # F0 + (1 - F0) w
+    fresnel.inputs["To Min"].default_value = f0
+    fresnel.inputs["To Max"].default_value = 1.0
+    links.new(power.outputs["Value"], fresnel.inputs["Value"])
+    links.new(fresnel.outputs["Result"], glossy.inputs["Color"])
+    add = nodes.new("ShaderNodeAddShader")
+    links.new(diffuse.outputs["BSDF"], add.inputs[0])
+    links.new(glossy.outputs["BSDF"], add.inputs[1])
+    links.new(add.outputs["Shader"], out.inputs["Surface"])
+
+
 def first_input(bsdf, *names):
     """The first of `names` the node has: Blender 4 renamed the Principled BSDF's inputs."""
     for n in names:
@@ -797,6 +828,7 @@ class CyclesScene:
             sphere_frame = frame if is_exact_sphere(r["shape"], r.get("transform")) else None
             mat = diffuse_material(f"real {i}", r.get("albedo", [0.5, 0.5, 0.5]), base_dir, sphere_frame,
                                    project_path, field + ".albedo", r["shape"].get("type") == "mesh")
+            add_gloss(mat, r.get("gloss", {}))
             for o in shape_objects(r["shape"], r.get("transform"), frame, base_dir, project_path, field + ".shape",
                                    f"real {i} {r.get('name', '')}"):
                 o.data.materials.append(mat)

@@ -20,7 +20,8 @@ cat >proj/scene.json <<'JSON'
   "camera": {"model": "lookat", "eye": [0, 1.5, 4], "target": [0, 0.4, 0], "vfov_deg": 40},
   "real": [{"name": "floor", "shape": {"type": "plane", "size": [10, 10]}, "albedo": "estimate"},
            {"name": "mat", "shape": {"type": "plane", "size": [1, 1]},
-            "transform": {"translation": [1, 0.001, 0]}, "albedo": {"texture": "tex.png"}}],
+            "transform": {"translation": [1, 0.001, 0]}, "albedo": {"texture": "tex.png"},
+            "gloss": {"specular": 0.05, "roughness": 0.2}}],
   "objects": [{"name": "tet", "shape": {"type": "mesh", "path": "meshes/tet.obj"},
                "transform": {"translation": [-1, 0, 0]}}],
   "render": {"photons_per_pass": 20000, "passes": 3, "seed": 7}

@@ -80,6 +80,17 @@ def main():
         shape = "RECTANGLE" if kind == "rect" else ("DISK" if abs(size[0] * s[0] - want_y) < 1e-6 else "ELLIPSE")
         assert d.shape == shape, (name, d.shape, shape)
         assert o.visible_camera == light.get("visible", True), (name, o.visible_camera)
+    # A proxy's gloss layer: a GGX Glossy of its roughness, Schlick's Fresnel from its specular.
+    for i, r in enumerate(project.get("real", [])):
+        mats = [m for m in bpy.data.materials if m.name.startswith(f"real {i}")]
+        assert mats, f"no material of real[{i}]"
+        glossy = [n for n in mats[0].node_tree.nodes if n.type == "BSDF_GLOSSY"]
+        gloss = r.get("gloss", {})
+        assert bool(glossy) == (gloss.get("specular", 0) > 0), (i, [n.type for n in mats[0].node_tree.nodes])
+        if glossy:
+            near(f"real[{i}] roughness", [glossy[0].inputs["Roughness"].default_value], [gloss.get("roughness", 0.1)])
+            f0 = [n for n in mats[0].node_tree.nodes if n.type == "MAP_RANGE"][0].inputs["To Min"].default_value
+            near(f"real[{i}] F0", [f0], [gloss["specular"]])
     print("lights_ok", len(lights), flush=True)
 
 
