@@ -606,7 +606,11 @@ def crosscheck(args):
     print(f"{args.project}: {w}x{h}, {2 * half} spp as two halves of {half}", flush=True)
     ours, mits, t_ours, t_mits = [], [], 0.0, 0.0
     for k, seed in enumerate((1, 2)):
-        img, dt = render_ours(args.diffphoton, project_path, os.path.join(args.out, f"ours_{k}.exr"), half, seed)
+        ours_path = os.path.join(args.out, f"ours_{k}.exr")
+        if args.reuse_ours and os.path.exists(ours_path):
+            img, dt = read_rgb(ours_path), 0.0  # same project, spp and seed: the same image
+        else:
+            img, dt = render_ours(args.diffphoton, project_path, ours_path, half, seed)
         ours.append(img)
         t_ours += dt
         print(f"  diffphoton half {k + 1}: {dt:.1f} s", flush=True)
@@ -696,6 +700,8 @@ def main():
     ap.add_argument("--check-orientation", action="store_true", help="verify the probe/camera conventions")
     ap.add_argument("--plastic-raw", action="store_true",
                     help="opaque principled: roughplastic without the energy scale (see roughplastic_energy_scale)")
+    ap.add_argument("--reuse-ours", action="store_true",
+                    help="keep diffphoton halves already in --out (from a run of the same project and spp)")
     ap.add_argument("--reanalyse", action="store_true",
                     help="only recompute the figures from the half images of an earlier run in --out")
     args = ap.parse_args()
