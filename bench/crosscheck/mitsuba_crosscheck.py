@@ -363,6 +363,10 @@ def principled_bsdf(m, where):
     dielectric = None
     if metallic < 1:
         scale = 1.0 if PLASTIC_RAW else roughplastic_energy_scale(alpha, ior)
+        if transmission < 1 and scale * max(base) > 1:
+            # Mitsuba refuses RGB reflectances above 1.
+            raise Unsupported(f"{where}.base_colour: {max(base)} times roughplastic's energy scale "
+                              f"{scale:.3f} exceeds 1 (use --plastic-raw)")
         plastic = {"type": "twosided", "material": {
             "type": "roughplastic", "distribution": "ggx", "alpha": alpha, "int_ior": ior, "ext_ior": 1.0,
             "nonlinear": False, "diffuse_reflectance": rgb([scale * c for c in base])}}
