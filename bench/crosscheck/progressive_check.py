@@ -12,7 +12,8 @@ the crosscheck scenes' own photos are black placeholders), renders the project w
 - the same after a 9x9 box filter over the image (noise falls about ninefold, a bias does
   not), with the truth's and the photo's filtered noise: a smoothed error that keeps falling
   with passes is no bias at that level;
-- the mean luminance ratio render / truth over the pixels that see a virtual sphere.
+- the mean luminance ratio render / truth over the pixels that see a virtual sphere, and over
+  the real surfaces the objects darken by more than 5% in the truth (their shadows).
 
 Developer tool, like mitsuba_crosscheck.py (docs/crosscheck.md):
 
@@ -107,6 +108,17 @@ def main():
             "photo_noise": 0.5 * rmse(photo_halves[0], photo_halves[1]) / norm,
             "photo_noise_smoothed": 0.5 * rmse(box(photo_halves[0], k), box(photo_halves[1], k)) / norm,
         }
+    for name, t in truths.items():
+        # The real surfaces the objects darken by more than 5% (their shadows), in this truth.
+        shade = ~mask & (xc.luminance(t - photo) < -0.05 * xc.luminance(t))
+        result["truths"][name]["shadow_pixels"] = int(shade.sum())
+        if shade.any():  # how far the truth's own halves are from their mean there
+            hv = halves[name]
+            lum = [float(np.mean(xc.luminance(x)[shade])) for x in hv]
+            result["truths"][name]["shadow_noise"] = abs(lum[0] - lum[1]) / (lum[0] + lum[1])
+        hv = halves[name]
+        lum = [float(np.mean(xc.luminance(x)[mask])) for x in hv]
+        result["truths"][name]["object_noise"] = abs(lum[0] - lum[1]) / (lum[0] + lum[1])
     for n in args.passes:
         path = os.path.join(args.out, f"render_{n}.exr")
         if not os.path.exists(path):
@@ -116,9 +128,18 @@ def main():
         row = {"passes": n}
         for name, t in truths.items():
             norm = result["truths"][name]["mean_luminance"]
+            tn = result["truths"][name]
+            smoothed = rmse(box(r, k), box(t, k)) / norm
+            shade = ~mask & (xc.luminance(t - photo) < -0.05 * xc.luminance(t))
             row[name] = {
                 "relative_rmse": rmse(r, t) / norm,
-                "relative_rmse_smoothed": rmse(box(r, k), box(t, k)) / norm,
+                "relative_rmse_smoothed": smoothed,
+                # What the truth's and the photo's smoothed noise do not explain (the render's
+                # own noise is left in).
+                "smoothed_excess": math.sqrt(max(0.0, smoothed ** 2 - tn["noise_smoothed"] ** 2 -
+                                                 tn["photo_noise_smoothed"] ** 2)),
+                "shadow_mean_ratio": float(np.mean(xc.luminance(r)[shade]) / np.mean(xc.luminance(t)[shade]))
+                if shade.any() else None,
                 "mean_ratio": float(np.mean(xc.luminance(r)) / np.mean(xc.luminance(t))),
                 "object_mean_ratio": float(np.mean(xc.luminance(r)[mask]) / np.mean(xc.luminance(t)[mask])),
                 "outside_mean_ratio": float(np.mean(xc.luminance(r)[~mask]) / np.mean(xc.luminance(t)[~mask])),
