@@ -3,7 +3,7 @@
 
 Reads a diffphoton project (docs/project-format.md), builds the same scene for Mitsuba 3
 (perspective sensor, envmap emitter, rectangle/cube/sphere/obj/ply shapes, diffuse/conductor/
-dielectric BSDFs), renders it with Mitsuba's path tracer and with `diffphoton reference` (the
+dielectric BSDFs, the principled material as principled/roughplastic/roughdielectric blends), renders it with Mitsuba's path tracer and with `diffphoton reference` (the
 virtual objects included, full global illumination), each as two independent half-spp images,
 and reports the relative RMSE between the two truths next to each one's own noise.
 
@@ -264,7 +264,129 @@ def material_bsdf(m, where):
         tint = [math.sqrt(float(t)) for t in m.get("tint", [1, 1, 1])]
         return {"type": "dielectric", "int_ior": float(m.get("ior", 1.5)), "ext_ior": 1.0,
                 "specular_transmittance": rgb(tint)}
+    if kind == "principled":
+        return principled_bsdf(m, where)
     raise Unsupported(f"{where}.type: {kind}")
+
+
+# principled_at (core/assets/principled_scatter.cpp) raises every roughness to this.
+SPECULAR_ROUGHNESS = 0.03
+
+
+_PLASTIC_SCALE = {}
+# Set by --plastic-raw: leave roughplastic's own normalisation (energy lost with roughness).
+PLASTIC_RAW = False
+
+
+def roughplastic_energy_scale(alpha, ior):
+    """The factor on roughplastic's diffuse_reflectance that makes a white plastic return all
+    the light at normal incidence, as ours does (docs/crosscheck.md).
+
+    Mitsuba normalises the base by 1 / (eta^2 (1 - R_int)), R_int its single-scattering rough
+    internal reflectance: a white roughplastic keeps 0.98 at alpha 0.0009 but 0.84 at 0.16
+    and 0.34 at 1 (mitsuba3 issue #1155 met the same in a furnace). Ours weights the base by
+    (1 - E(mu_o)) (1 - E(mu_i)) / (1 - E_avg), white returning exactly what the layer does not
+    reflect. Mitsuba's base term is t(mu_o) t(mu_i) times a constant, so one factor makes the
+    same form: (1 - glossy albedo) / diffuse albedo of a white base, both at normal incidence,
+    integrated here from Mitsuba's own BSDF (the diffuse in mu by the midpoint rule, the
+    glossy by 20,000 stratified visible-normal samples)."""
+    key = (round(alpha, 8), round(ior, 8))
+    if key in _PLASTIC_SCALE:
+        return _PLASTIC_SCALE[key]
+    b = mi.load_dict({"type": "roughplastic", "distribution": "ggx", "alpha": alpha, "int_ior": ior,
+                      "ext_ior": 1.0, "nonlinear": False, "diffuse_reflectance": rgb([1, 1, 1])})
+    si = mi.SurfaceInteraction3f()
+    si.n = mi.Normal3f(0, 0, 1)
+    si.sh_frame = mi.Frame3f(si.n)
+    si.wi = mi.Vector3f(0, 0, 1)
+    diffuse = mi.BSDFContext(mi.TransportMode.Radiance, mi.BSDFFlags.DiffuseReflection)
+    glossy = mi.BSDFContext(mi.TransportMode.Radiance, mi.BSDFFlags.GlossyReflection)
+    n, m = 2000, 20000
+    d = sum(b.eval(diffuse, si, mi.Vector3f(math.sqrt(1 - mu * mu), 0, mu))[0]
+            for mu in ((k + 0.5) / n for k in range(n))) * 2 * math.pi / n
+    g = sum(b.sample(glossy, si, 0.5, mi.Point2f((k + 0.5) / m, (k * 0.6180339887) % 1.0))[1][0]
+            for k in range(m)) / m
+    _PLASTIC_SCALE[key] = (1 - g) / d
+    return _PLASTIC_SCALE[key]
+
+
+def principled_bsdf(m, where):
+    """diffphoton's principled material (docs/materials.md) as a blend of Mitsuba BSDFs.
+
+    Ours is mix(dielectric, conductor, metallic), the dielectric a GGX reflection layer with
+    the exact Fresnel over mix(Lambert, rough transmission, transmission). In Mitsuba:
+
+    - conductor: `principled` with metallic 1 (its metallic Fresnel is Schlick's with
+      F0 = base_color, ours too; GGX with alpha = roughness^2, as ours). `roughconductor` has
+      the exact conductor Fresnel of a complex index instead, a different curve.
+    - dielectric, opaque: `roughplastic` (GGX reflection with the exact Fresnel; a Lambert
+      base weighted by the layer's rough transmittance at both ends and normalised by its
+      internal reflectance: the same form as ours, (1 - E(mu_o)) (1 - E(mu_i)) / (1 - E_avg)).
+      Mitsuba's `principled` has a Disney diffuse (retro-reflection) instead.
+    - dielectric, transmissive: `roughdielectric` with specular_transmittance = base colour
+      at every crossing, as ours.
+    - 0 < transmission < 1: blendbsdf(roughplastic, roughdielectric, transmission): both
+      share the same reflection layer, so the blend is ours' structure.
+    - 0 < metallic < 1: blendbsdf(dielectric, conductor, metallic), exactly ours' mix.
+
+    What differs (docs/crosscheck.md): Mitsuba's Smith masking-shadowing is separable
+    (G1 G1), ours height-correlated; ours adds Kulla-Conty multiple scattering to the metal,
+    Mitsuba does not; the plastic's base normalisation differs in detail. The base colour is
+    clamped to [0, 0.98] and the roughness raised to 0.03, as principled_at does."""
+    base = m.get("base_colour", [0.5, 0.5, 0.5])
+    if not isinstance(base, list):
+        raise Unsupported(f"{where}.base_colour: only constant [r, g, b] base colours (not textures)")
+    base = [min(max(float(c), 0.0), 0.98) for c in base]
+    metallic = min(max(float(m.get("metallic", 0.0)), 0.0), 1.0)
+    roughness = max(min(max(float(m.get("roughness", 0.5)), 0.0), 1.0), SPECULAR_ROUGHNESS)
+    ior = min(max(float(m.get("ior", 1.5)), 1.01), 5.0)
+    transmission = min(max(float(m.get("transmission", 0.0)), 0.0), 1.0)
+    alpha = roughness * roughness
+    if metallic < 1 and (abs(float(m.get("specular", 1.0)) - 1) > 1e-6 or
+                         any(abs(float(c) - 1) > 1e-6 for c in m.get("specular_colour", [1, 1, 1]))):
+        raise Unsupported(f"{where}.specular: only the default specular 1 (KHR_materials_specular "
+                          "has no counterpart in roughplastic/roughdielectric)")
+
+    def blend(a, b, w):  # (1 - w) a + w b
+        if w <= 0:
+            return a
+        if w >= 1:
+            return b
+        return {"type": "blendbsdf", "weight": {"type": "rgb", "value": [w, w, w]}, "bsdf_0": a, "bsdf_1": b}
+
+    conductor = None
+    if metallic > 0:
+        # Front side only (the metal's lobe is), so two-sided as ours.
+        conductor = {"type": "twosided", "material": {
+            "type": "principled", "base_color": rgb(base), "metallic": 1.0, "roughness": roughness,
+            "eta": ior, "spec_tint": 0.0}}
+    dielectric = None
+    if metallic < 1:
+        scale = 1.0 if PLASTIC_RAW else roughplastic_energy_scale(alpha, ior)
+        if transmission < 1 and scale * max(base) > 1:
+            # Mitsuba refuses RGB reflectances above 1.
+            raise Unsupported(f"{where}.base_colour: {max(base)} times roughplastic's energy scale "
+                              f"{scale:.3f} exceeds 1 (use --plastic-raw)")
+        plastic = {"type": "twosided", "material": {
+            "type": "roughplastic", "distribution": "ggx", "alpha": alpha, "int_ior": ior, "ext_ior": 1.0,
+            "nonlinear": False, "diffuse_reflectance": rgb([scale * c for c in base])}}
+        glass = {"type": "roughdielectric", "distribution": "ggx", "alpha": alpha, "int_ior": ior,
+                 "ext_ior": 1.0, "specular_transmittance": rgb(base)}
+        dielectric = blend(plastic, glass, transmission)
+        if 0 < transmission and metallic > 0:
+            raise Unsupported(f"{where}: metallic and transmission both in (0, 1)")
+    if conductor is None:
+        return dielectric
+    if dielectric is None:
+        return conductor
+    return blend(dielectric, conductor, metallic)
+
+
+def emission_dict(m):
+    e = m.get("emission", [0, 0, 0]) if m.get("type") == "principled" else [0, 0, 0]
+    if not any(float(x) > 0 for x in e):
+        return None
+    return {"type": "area", "radiance": rgb(e)}
 
 
 def shape_dict(shape, transform, base_dir, where):
@@ -315,6 +437,9 @@ def scene_dict(project, base_dir, width, height, spp, upsample):
             continue
         s = shape_dict(o["shape"], o.get("transform"), base_dir, f"objects[{i}].shape")
         s["bsdf"] = material_bsdf(o.get("material", {}), f"objects[{i}].material")
+        emitter = emission_dict(o.get("material", {}))
+        if emitter:
+            s["emitter"] = emitter
         scene[f"object_{i}"] = s
     return scene
 
@@ -422,6 +547,64 @@ def compare(ours, mitsuba):
     }, o, m
 
 
+def object_mask(project, w, h):
+    """Pixels whose centre ray hits a virtual sphere (the other shapes are not masked)."""
+    r, centre, fx, fy, cx, cy = camera_pose(project["camera"], w, h)
+    ys, xs = np.mgrid[0:h, 0:w].astype(np.float64)
+    d = np.stack([(xs - cx) / fx, (ys - cy) / fy, np.ones_like(xs)], axis=-1) @ r
+    d /= np.linalg.norm(d, axis=-1, keepdims=True)
+    mask = np.zeros((h, w), bool)
+    for o in project.get("objects", []):
+        if not o.get("visible", True) or o["shape"]["type"] != "sphere":
+            continue
+        tr = o.get("transform") or {}
+        c = np.array(tr.get("translation", [0, 0, 0]), dtype=np.float64)
+        rad = float(o["shape"]["radius"]) * float(tr.get("scale", [1, 1, 1])[0])
+        oc = centre - c
+        b = d @ oc
+        mask |= (b * b - (oc @ oc - rad * rad) > 0) & (b < 0)
+    return mask
+
+
+def region_figures(ours, mitsuba, mask, norm):
+    """Mean luminance ratio, relative RMSE and its expected value from noise over a pixel set."""
+    o = 0.5 * (ours[0] + ours[1])
+    m = 0.5 * (mitsuba[0] + mitsuba[1])
+    if not mask.any():
+        return None
+    sel = lambda x: x[mask]
+    rel = rmse(sel(o), sel(m)) / norm
+    expected = math.hypot(0.5 * rmse(sel(ours[0]), sel(ours[1])) / norm,
+                          0.5 * rmse(sel(mitsuba[0]), sel(mitsuba[1])) / norm)
+    lo, lm = luminance(o)[mask], luminance(m)[mask]
+    chan = [float(np.mean(o[..., c][mask]) / np.mean(m[..., c][mask])) for c in range(3)]
+    return {"pixels": int(mask.sum()), "relative_rmse": rel, "noise_expected": expected,
+            "excess_over_noise": math.sqrt(max(0.0, rel ** 2 - expected ** 2)),
+            "mean_ratio_ours_over_mitsuba": float(np.mean(lo) / np.mean(lm)),
+            "mean_ratio_rgb": chan}
+
+
+def with_regions(result, project, ours, mits):
+    h, w = ours[0].shape[:2]
+    mask = object_mask(project, w, h)
+    norm = 0.5 * (result["mean_luminance_ours"] + result["mean_luminance_mitsuba"])
+    result["object_region"] = region_figures(ours, mits, mask, norm)
+    result["outside_objects"] = region_figures(ours, mits, ~mask, norm)
+    return result
+
+
+def reanalyse(args):
+    """The figures again from the half images a previous run left in --out."""
+    with open(os.path.join(args.out, "project.json")) as f:
+        project = json.load(f)
+    ours = [read_rgb(os.path.join(args.out, f"ours_{k}.exr")) for k in (0, 1)]
+    mits = [read_rgb(os.path.join(args.out, f"mitsuba_{k}.exr")) for k in (0, 1)]
+    result, _, _ = compare(ours, mits)
+    with_regions(result, project, ours, mits)
+    print(json.dumps(result, indent=2))
+    return 0
+
+
 def crosscheck(args):
     os.makedirs(args.out, exist_ok=True)
     project, project_path, w, h = prepared_project(args.project, args.width, args.out)
@@ -430,7 +613,11 @@ def crosscheck(args):
     print(f"{args.project}: {w}x{h}, {2 * half} spp as two halves of {half}", flush=True)
     ours, mits, t_ours, t_mits = [], [], 0.0, 0.0
     for k, seed in enumerate((1, 2)):
-        img, dt = render_ours(args.diffphoton, project_path, os.path.join(args.out, f"ours_{k}.exr"), half, seed)
+        ours_path = os.path.join(args.out, f"ours_{k}.exr")
+        if args.reuse_ours and os.path.exists(ours_path):
+            img, dt = read_rgb(ours_path), 0.0  # same project, spp and seed: the same image
+        else:
+            img, dt = render_ours(args.diffphoton, project_path, ours_path, half, seed)
         ours.append(img)
         t_ours += dt
         print(f"  diffphoton half {k + 1}: {dt:.1f} s", flush=True)
@@ -445,7 +632,8 @@ def crosscheck(args):
     write_rgb(os.path.join(args.out, "difference.exr"), o - m)
     result.update({"project": args.project, "width": w, "height": h, "spp": 2 * half,
                    "seconds_ours": t_ours, "seconds_mitsuba": t_mits, "mitsuba": mi.__version__,
-                   "variant": mi.variant()})
+                   "variant": mi.variant(), "plastic_raw": PLASTIC_RAW})
+    with_regions(result, project, ours, mits)
     with open(os.path.join(args.out, "crosscheck.json"), "w") as f:
         json.dump(result, f, indent=2)
     print(json.dumps(result, indent=2))
@@ -517,13 +705,23 @@ def main():
                     help="probe rows and columns per diffphoton pixel for Mitsuba (0: about 2048 rows)")
     ap.add_argument("--variant", default="scalar_rgb", help="Mitsuba variant")
     ap.add_argument("--check-orientation", action="store_true", help="verify the probe/camera conventions")
+    ap.add_argument("--plastic-raw", action="store_true",
+                    help="opaque principled: roughplastic without the energy scale (see roughplastic_energy_scale)")
+    ap.add_argument("--reuse-ours", action="store_true",
+                    help="keep diffphoton halves already in --out (from a run of the same project and spp)")
+    ap.add_argument("--reanalyse", action="store_true",
+                    help="only recompute the figures from the half images of an earlier run in --out")
     args = ap.parse_args()
     if not args.diffphoton:
         ap.error("--diffphoton: the diffphoton executable is needed")
     mi.set_variant(args.variant)
+    global PLASTIC_RAW
+    PLASTIC_RAW = args.plastic_raw
     try:
         if args.check_orientation:
             return check_orientation(args)
+        if args.reanalyse:
+            return reanalyse(args)
         if not args.project:
             ap.error("a project file is needed (or --check-orientation)")
         return crosscheck(args)
