@@ -401,7 +401,9 @@ void ProgressiveRenderer::update_convergence() {
         for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) {
             const dvec3 d = sums_.mean_pixel_change(i);
             const double before = luminance(photo[i]);
-            const double value = std::max(before + luminance(d), double(floor));
+            // Clamped as error2 clamps each half: a rare photon of huge flux that lit a tile
+            // must not make its error look small against its own brightness and stop it there.
+            const double value = std::min(std::max(before + luminance(d), double(floor)), std::max(double(ceiling_), double(floor)));
             const double e2 = passes >= 2 ? sums_.error2(i, before, ceiling_) : 0.0;
             tile_e2 += e2;
             tile_value += value;
