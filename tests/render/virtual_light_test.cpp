@@ -212,16 +212,22 @@ Image standard(const Truth& t, uint64_t seed) {
     return r.image();
 }
 
+/// Two progressive renders of `t` (seeds 3 and 4) against its truths: the picture changes by
+/// more than `min_change`, the error is what the two sides' noise explains, the means agree.
+void expect_progressive_agrees(const char* what, const Truth& t, double min_change) {
+    const Agreement a = agreement(progressive(t, 3), progressive(t, 4), t.t1, t.t2, t.photo);
+    std::printf("%s: error over the noise %.3f, mean difference %.2f sigma, change %.4f\n", what, a.excess,
+                a.mean_sigmas, a.change);
+    EXPECT_GT(a.change, min_change);
+    EXPECT_LT(a.excess, 1.3);
+    EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
+}
+
 }  // namespace
 
 TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerOnARectLitCorner) {
     const Truth t;
-    const Agreement a = agreement(progressive(t, 3), progressive(t, 4), t.t1, t.t2, t.photo);
-    std::printf("progressive: error over the noise %.3f, mean difference %.2f sigma, change %.4f\n", a.excess,
-                a.mean_sigmas, a.change);
-    EXPECT_GT(a.change, 0.2);
-    EXPECT_LT(a.excess, 1.3);
-    EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
+    expect_progressive_agrees("progressive", t, 0.2);
 }
 
 /// The corner with no lamp: a glowing ball lights it, beside a rough gold ball that reflects it
@@ -246,12 +252,7 @@ Project glowing_corner() {
 
 TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerOnAGlowingBallLightingTheCorner) {
     const Truth t(glowing_corner());
-    const Agreement a = agreement(progressive(t, 3), progressive(t, 4), t.t1, t.t2, t.photo);
-    std::printf("glowing ball: error over the noise %.3f, mean difference %.2f sigma, change %.4f\n", a.excess,
-                a.mean_sigmas, a.change);
-    EXPECT_GT(a.change, 0.05);
-    EXPECT_LT(a.excess, 1.3);
-    EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
+    expect_progressive_agrees("glowing ball", t, 0.05);
 }
 
 TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerOnAGlossyFloor) {
@@ -260,24 +261,14 @@ TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerOnAGlossyFloor)
     Project p = lit_corner();
     p.real[0].gloss = Gloss{0.1f, 0.15f};
     const Truth t(p);
-    const Agreement a = agreement(progressive(t, 3), progressive(t, 4), t.t1, t.t2, t.photo);
-    std::printf("glossy floor: error over the noise %.3f, mean difference %.2f sigma, change %.4f\n", a.excess,
-                a.mean_sigmas, a.change);
-    EXPECT_GT(a.change, 0.2);
-    EXPECT_LT(a.excess, 1.3);
-    EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
+    expect_progressive_agrees("glossy floor", t, 0.2);
 }
 
 TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerWithLightsAlone) {
     // No object: the first gather radius cannot come from the objects' size (from the scene's
     // scale, set by the 40 m floor, the bounce light on the wall came out 10% short).
     const Truth t(false);
-    const Agreement a = agreement(progressive(t, 3), progressive(t, 4), t.t1, t.t2, t.photo);
-    std::printf("lights alone: error over the noise %.3f, mean difference %.2f sigma, change %.4f\n", a.excess,
-                a.mean_sigmas, a.change);
-    EXPECT_GT(a.change, 0.2);
-    EXPECT_LT(a.excess, 1.3);
-    EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
+    expect_progressive_agrees("lights alone", t, 0.2);
 }
 
 TEST(VirtualLights, TheStandardDifferentialRendererAgreesWithThePathTracerOnARectLitCorner) {
