@@ -384,6 +384,10 @@ void ProgressiveRenderer::balance_photons(const PassWork& work, const std::vecto
     });
 }
 
+double judged_value(double before, double change, double floor, double ceiling) {
+    return std::min(std::max(before + change, floor), std::max(ceiling, floor));
+}
+
 void ProgressiveRenderer::update_convergence() {
     const RenderSettings& rs = settings_;
     const Image& photo = scene_->photo();
@@ -401,9 +405,7 @@ void ProgressiveRenderer::update_convergence() {
         for_tile_pixels(plan_, t, [&](size_t i, int, int, size_t) {
             const dvec3 d = sums_.mean_pixel_change(i);
             const double before = luminance(photo[i]);
-            // Clamped as error2 clamps each half: a rare photon of huge flux that lit a tile
-            // must not make its error look small against its own brightness and stop it there.
-            const double value = std::min(std::max(before + luminance(d), double(floor)), std::max(double(ceiling_), double(floor)));
+            const double value = judged_value(before, luminance(d), floor, ceiling_);
             const double e2 = passes >= 2 ? sums_.error2(i, before, ceiling_) : 0.0;
             tile_e2 += e2;
             tile_value += value;

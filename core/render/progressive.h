@@ -21,6 +21,12 @@ namespace dp {
 /// percentile: a display of the photo shows nothing brighter (the benchmarks measure alike).
 inline constexpr float kErrorCeilingFactor = 8.0f;
 
+/// The luminance a pixel's error is judged against by adaptive sampling: the photo's `before`
+/// plus the mean change, at least `floor` and at most `ceiling`, where the error's two halves are
+/// clamped too (TileAccumulator::error2): a rare photon of huge flux that lit a tile must not make
+/// its error look small against the brightness it gave it, and stop the tile there.
+double judged_value(double before, double change, double floor, double ceiling);
+
 /// Shadow-only matte: the fraction of the photo's light the virtual objects remove,
 /// clamp(-lum(dL) / lum(photo), 0, 1), grey RGB; 0 where the photo is black or dL >= 0.
 Image shadow_matte(const Image& photo, const Image& dL);
