@@ -51,6 +51,29 @@ float GlossLobe::cone_half_angle() const {
     return std::min(kPi, 2 * std::atan(10 * ggx_.alpha()));
 }
 
+GlossySurface::GlossySurface(const Hit& hit, const vec3& dir) : lobe_(hit, dir), facing_(hit) {
+    rho_ = hit.surface->reflectance_at(hit.uv);
+    facing_.ng = facing_normal(hit.ng, dir);
+    facing_.ns = facing_normal(hit.ns, dir);
+}
+
+vec3 GlossySurface::eval_cos(const vec3& w) const {
+    const float c = glm::dot(facing_.ns, w);
+    if (c <= 0 || glm::dot(facing_.ng, w) <= 0) return vec3(0);
+    return rho_ * (c * kInvPi) + vec3(lobe_.eval_cos(w));
+}
+
+float GlossySurface::pdf(const vec3& w) const {
+    return 0.5f * std::max(0.0f, glm::dot(facing_.ns, w)) * kInvPi + 0.5f * lobe_.pdf(w);
+}
+
+bool GlossySurface::sample(float pick, const vec2& u, vec3& w) const {
+    float unused = 0;
+    if (pick < 0.5f) return lobe_.sample(u, w, unused);
+    w = sample_diffuse(facing_, -facing_.ng, u);
+    return true;
+}
+
 bool gloss_may_reflect(const GlossLobe& lobe, const vec3& p, const vec3& c, float R) {
     if (!lobe.valid()) return false;
     const vec3 to = c - p;

@@ -35,6 +35,28 @@ private:
     bool valid_ = false;
 };
 
+/// A glossy real surface whole: its albedo's Lambert lobe plus its gloss lobe, sampled from
+/// the mixture of the two (half and half), for the paths that bounce off it (the reference
+/// path tracer's, photons).
+class GlossySurface {
+public:
+    GlossySurface(const Hit& hit, const vec3& dir);
+    /// BSDF times the cosine towards unit world direction `w` (0 below the surface).
+    vec3 eval_cos(const vec3& w) const;
+    /// The mixture's density of `w`.
+    float pdf(const vec3& w) const;
+    /// A direction from the mixture: `pick` chooses the lobe, `u` the direction in it. False
+    /// when it falls below the surface.
+    bool sample(float pick, const vec2& u, vec3& w) const;
+    /// The hit with its normals turned to the side the path arrives on.
+    const Hit& facing() const { return facing_; }
+
+private:
+    GlossLobe lobe_;
+    vec3 rho_{0};
+    Hit facing_;
+};
+
 /// Whether a gloss lobe at `p` can reflect anything of the sphere (c, R): the sphere meets the
 /// cone of `lobe.cone_half_angle()` about its mirror direction.
 bool gloss_may_reflect(const GlossLobe& lobe, const vec3& p, const vec3& c, float R);

@@ -64,36 +64,21 @@ struct PathTracer {
     /// (half and half), the lights by next-event estimation alone, then the path continued
     /// from the mixture. False when the path ends.
     bool glossy_real(const Hit& hit, Ray& ray, vec3& beta, vec3& L, bool last, Rng& rng, float& bsdf_pdf) const {
-        const GlossLobe lobe(hit, ray.dir);
-        const vec3 rho = hit.surface->reflectance_at(hit.uv);
-        const vec3 n = facing_normal(hit.ns, ray.dir), ng = facing_normal(hit.ng, ray.dir);
-        auto f_cos = [&](const vec3& w) {
-            const float c = glm::dot(n, w);
-            if (c <= 0 || glm::dot(ng, w) <= 0) return vec3(0);
-            return rho * (c * kInvPi) + vec3(lobe.eval_cos(w));
-        };
-        auto mixture_pdf = [&](const vec3& w) {
-            return 0.5f * std::max(0.0f, glm::dot(n, w)) * kInvPi + 0.5f * lobe.pdf(w);
-        };
-        Hit h = hit;
-        h.ng = ng;
-        h.ns = n;
+        const GlossySurface surface(hit, ray.dir);
+        const Hit& h = surface.facing();
+        auto f_cos = [&](const vec3& w) { return surface.eval_cos(w); };
         const ProbeSample ls = scene.probe().sample(rng.uniform(), rng.uniform(), rng.uniform());
         if (ls.pdf > 0) {
             const vec3 f = f_cos(ls.dir);
             if (f != vec3(0) && !occluded(Ray{scene.offset_origin(h, ls.dir), ls.dir}))
-                L += beta * f * ls.radiance * ((last ? 1.0f : power_heuristic(ls.pdf, mixture_pdf(ls.dir))) / ls.pdf);
+                L += beta * f * ls.radiance * ((last ? 1.0f : power_heuristic(ls.pdf, surface.pdf(ls.dir))) / ls.pdf);
         }
         if (lights()) L += beta * reflected_light(scene, h, rng, f_cos);
         if (last) return false;
         vec3 wi;
-        float unused = 0;
-        if (rng.uniform() < 0.5f) {
-            if (!lobe.sample(vec2(rng.uniform(), rng.uniform()), wi, unused)) return false;
-        } else {
-            wi = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
-        }
-        bsdf_pdf = mixture_pdf(wi);
+        const float pick = rng.uniform();
+        if (!surface.sample(pick, vec2(rng.uniform(), rng.uniform()), wi)) return false;
+        bsdf_pdf = surface.pdf(wi);
         const vec3 f = f_cos(wi);
         if (!(bsdf_pdf > 0) || f == vec3(0)) return false;
         beta *= f / bsdf_pdf;

@@ -114,22 +114,13 @@ struct Tracer {
     /// of its Lambert and gloss lobes (half and half), with roulette on |flux| against the
     /// photon's first flux. False when it is absorbed.
     bool glossy_bounce(const Hit& hit, const vec3& dir, vec3& flux, float flux0_max, Rng& rng, vec3& next) const {
-        const GlossLobe lobe(hit, dir);
-        const vec3 rho = hit.surface->reflectance_at(hit.uv);
-        const vec3 n = facing_normal(hit.ns, dir), ng = facing_normal(hit.ng, dir);
-        float unused = 0;
-        if (rng.uniform() < 0.5f) {
-            if (!lobe.sample(vec2(rng.uniform(), rng.uniform()), next, unused)) return false;
-        } else {
-            Hit h = hit;
-            h.ng = ng;
-            next = sample_diffuse(h, -ng, vec2(rng.uniform(), rng.uniform()));
-        }
-        const float c = glm::dot(n, next);
-        if (c <= 0 || glm::dot(ng, next) <= 0) return false;
-        const float pdf = 0.5f * c * kInvPi + 0.5f * lobe.pdf(next);
-        if (!(pdf > 0)) return false;
-        flux *= (rho * (c * kInvPi) + vec3(lobe.eval_cos(next))) / pdf;
+        const GlossySurface surface(hit, dir);
+        const float pick = rng.uniform();
+        if (!surface.sample(pick, vec2(rng.uniform(), rng.uniform()), next)) return false;
+        const vec3 f = surface.eval_cos(next);
+        const float pdf = surface.pdf(next);
+        if (f == vec3(0) || !(pdf > 0)) return false;
+        flux *= f / pdf;
         const vec3 a = glm::abs(flux);
         const float q = std::min(0.98f, std::max({a.x, a.y, a.z}) / std::max(flux0_max, 1e-30f));
         if (q <= 0 || rng.uniform() >= q) return false;
