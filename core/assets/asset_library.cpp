@@ -92,10 +92,11 @@ void check_clipped_photo(size_t clipped, size_t pixels, std::vector<std::string>
 /// A texture file a mesh's material names that is a FIFO, a device or a folder: refused like
 /// any input of that kind. Only a texture that cannot be read as an image (missing, corrupt)
 /// leaves its material its colour; reading this one would block the render or never end.
-void refuse_special_texture(const FileMaterial& f, const fs::path& mesh_path, const std::string& field) {
-    const std::string kind = special_file_kind(f.texture);
+void refuse_special_texture(const FileMaterial& f, const std::string& texture, const fs::path& mesh_path,
+                            const std::string& field) {
+    const std::string kind = special_file_kind(texture);
     if (kind.empty()) return;
-    throw InputError(f.texture, field,
+    throw InputError(texture, field,
                      "is " + kind + ", not a texture: material '" + f.name + "' of mesh '" +
                          shorten_path(mesh_path.filename().string()) + "' names it");
 }
@@ -343,6 +344,11 @@ std::vector<FileMaterialAsset> AssetLibrary::file_materials(const LoadedMesh& me
                                            : f.texture;
         FileMaterialAsset asset{
             f.name, material_from_file(f, embedded || !f.texture.empty() ? label : ""), {}};
+        if (asset.material.kind == Material::Kind::Principled) {
+            asset.metallic_roughness = data_texture(mesh, f, f.metallic_roughness, "metallic-roughness", mesh_path, field, a);
+            asset.normal = data_texture(mesh, f, f.normal, "normal", mesh_path, field, a);
+            asset.normal_scale = std::clamp(f.normal_scale, 0.0f, 10.0f);
+        }
         const bool textured_kind = asset.material.kind == Material::Kind::Diffuse ||
                                    asset.material.kind == Material::Kind::Principled;
         if (!textured_kind || asset.material.albedo.kind != Albedo::Kind::Texture) {
@@ -355,7 +361,7 @@ std::vector<FileMaterialAsset> AssetLibrary::file_materials(const LoadedMesh& me
         char tag[96];
         std::snprintf(tag, sizeof(tag), "|%.9g,%.9g,%.9g", double(factor.x), double(factor.y),
                       double(factor.z));
-        if (!embedded) refuse_special_texture(f, mesh_path, field);
+        if (!embedded) refuse_special_texture(f, f.texture, mesh_path, field);
         const std::string key =
             (embedded ? "embedded|" + mesh_path.string() + "|" + std::to_string(f.embedded_texture)
                       : "texture|" + f.texture) +
@@ -395,6 +401,43 @@ std::vector<FileMaterialAsset> AssetLibrary::file_materials(const LoadedMesh& me
         out.push_back(std::move(asset));
     }
     return out;
+}
+
+Image AssetLibrary::data_texture(const LoadedMesh& mesh, const FileMaterial& f, const FileTexture& t,
+                                const char* what, const fs::path& mesh_path, const std::string& field,
+                                SceneAssets& a) {
+    const bool embedded = t.embedded >= 0 && size_t(t.embedded) < mesh.embedded_textures.size();
+    if (!embedded && t.path.empty()) return {};
+    const std::string label = embedded ? shorten_path(mesh_path.filename().string()) + " (embedded texture " +
+                                             std::to_string(t.embedded) + ")"
+                                       : t.path;
+    // Data, not colour: read as stored, whatever the file's tag says (glTF's rule).
+    const std::string key =
+        (embedded ? "embedded|" + mesh_path.string() + "|" + std::to_string(t.embedded) : "texture|" + t.path) +
+        "|linear";
+    try {
+        if (!embedded) refuse_special_texture(f, t.path, mesh_path, field);
+        Image image = *cached<Image>(key, embedded ? mesh_path : fs::path(t.path), [&](Entry& e) {
+            ImageLoadReport report;
+            ImageLoadOptions linear;
+            linear.colorspace = "linear";
+            Image texture = embedded ? decode_embedded_texture(mesh.embedded_textures[size_t(t.embedded)], t.embedded,
+                                                               mesh_path.string(), field, &report, linear)
+                                     : load_image(t.path, field, &report, linear);
+            e.non_finite = report.non_finite_replaced;
+            if (e.non_finite > 0)
+                e.warnings.push_back(shorten_path(label) + ": " + std::to_string(e.non_finite) +
+                                     " NaN/Inf values replaced by 0 (field '" + field + "')");
+            return texture;
+        });
+        report(key, a);
+        return image;
+    } catch (const InputError& e) {
+        if (!special_file_kind(t.path).empty() && !embedded) throw;
+        a.warnings.push_back(field + ": material '" + f.name + "': its " + what + " texture cannot be read (" +
+                             e.what() + "); it is ignored");
+        return {};
+    }
 }
 
 std::vector<std::string> AssetLibrary::warnings(const Project& project) {

@@ -66,6 +66,10 @@ private:
     /// colour, with a warning in `assets`.
     std::vector<FileMaterialAsset> file_materials(const LoadedMesh& mesh, const std::filesystem::path& mesh_path,
                                                   const std::string& field, SceneAssets& assets);
+    /// A linear data texture of a file material (metallic-roughness, normal map), decoded and
+    /// cached; empty, with a warning, where it cannot be read (a FIFO or device is refused).
+    Image data_texture(const LoadedMesh& mesh, const FileMaterial& f, const FileTexture& t, const char* what,
+                       const std::filesystem::path& mesh_path, const std::string& field, SceneAssets& a);
 
     std::mutex mutex_;
     std::map<std::string, Entry> entries_;

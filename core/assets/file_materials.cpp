@@ -59,7 +59,7 @@ Material material_from_file(const FileMaterial& f, const std::string& texture_la
 
 Image decode_embedded_texture(const EmbeddedTexture& texture, int index,
                               const std::string& mesh_path, const std::string& field,
-                              ImageLoadReport* report) {
+                              ImageLoadReport* report, const ImageLoadOptions& options) {
     // The image decoders read files: the bytes go through a private temporary file, so that an
     // embedded texture meets every check a texture file meets (its header's size first).
     // The reader takes the format from the file's name: the name follows the bytes, as the
@@ -86,7 +86,7 @@ Image decode_embedded_texture(const EmbeddedTexture& texture, int index,
                              label + ": cannot be written to a temporary file to decode it");
     }
     try {
-        return load_image(temp.string(), "", report);
+        return load_image(temp.string(), "", report, options);
     } catch (const InputError& e) {
         // Said of the mesh file, not of the temporary file.
         std::string why = e.what();

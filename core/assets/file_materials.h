@@ -19,10 +19,10 @@ namespace dp {
 Material material_from_file(const FileMaterial& file, const std::string& texture_label = "");
 
 /// Decodes a texture stored inside mesh file `mesh_path`, as load_image decodes a file (the
-/// same size limits, sRGB PNG and JPEG linearised). Throws InputError naming the mesh file,
+/// same size limits, sRGB PNG and JPEG linearised unless `options` say otherwise). Throws InputError naming the mesh file,
 /// `field` and the texture's index.
 Image decode_embedded_texture(const EmbeddedTexture& texture, int index,
                               const std::string& mesh_path, const std::string& field,
-                              ImageLoadReport* report = nullptr);
+                              ImageLoadReport* report = nullptr, const ImageLoadOptions& options = {});
 
 }  // namespace dp

@@ -20,7 +20,14 @@ PrincipledBsdf principled_at(const Surface& surface, const Hit& hit) {
     PrincipledParams p;
     p.base_colour = surface.reflectance_at(hit.uv);
     p.metallic = m.principled.metallic;
-    p.roughness = std::max(m.principled.roughness, kSpecularRoughness);
+    p.roughness = m.principled.roughness;
+    if (surface.metallic_roughness && !surface.metallic_roughness->empty()) {
+        // glTF: green scales roughness, blue metallic.
+        const vec3 t = glm::clamp(texture_at(*surface.metallic_roughness, hit.uv), vec3(0.0f), vec3(1.0f));
+        p.roughness *= t.y;
+        p.metallic *= t.z;
+    }
+    p.roughness = std::max(p.roughness, kSpecularRoughness);
     p.ior = m.principled.ior;
     p.specular = m.principled.specular;
     p.transmission = m.principled.transmission;

@@ -10,7 +10,8 @@
 namespace dp {
 
 /// The BSDF of a principled surface at `hit`: the base colour from its albedo or texture (at
-/// hit.uv), the other parameters from its material. Roughness is raised to kSpecularRoughness:
+/// hit.uv), the other parameters from its material (roughness and metallic times a file's
+/// metallic-roughness texture, glTF's rule). Roughness is raised to kSpecularRoughness:
 /// at 0.03 the lobes already reflect what a mirror or glass does within 1% (docs/materials.md),
 /// and every renderer can then sample, evaluate and MIS-weight one model with no delta cases.
 PrincipledBsdf principled_at(const Surface& surface, const Hit& hit);

@@ -195,13 +195,49 @@ void check_camera_of(const CameraSpec& spec, const Camera& camera) {
 
 }  // namespace
 
+vec3 texture_at(const Image& texture, const vec2& uv) {
+    const float u = uv.x - std::floor(uv.x), v = uv.y - std::floor(uv.y);
+    return texture.bilinear(u * texture.width() - 0.5f, v * texture.height() - 0.5f);
+}
+
 vec3 Surface::reflectance_at(const vec2& uv) const {
-    vec3 rho = albedo;
-    if (texture && !texture->empty()) {
-        float u = uv.x - std::floor(uv.x), v = uv.y - std::floor(uv.y);
-        rho = texture->bilinear(u * texture->width() - 0.5f, v * texture->height() - 0.5f);
-    }
+    const vec3 rho = texture && !texture->empty() ? texture_at(*texture, uv) : albedo;
     return glm::clamp(rho, vec3(0.0f), vec3(0.98f));
+}
+
+vec3 normal_mapped(const Surface& s, const ShapeHit& hit) {
+    if (!s.normal_map || s.normal_map->empty() || !s.mesh || hit.prim < 0 ||
+        size_t(hit.prim) >= s.mesh->triangles.size() || s.mesh->uvs.empty())
+        return hit.ns;
+    const TriangleMesh& m = *s.mesh;
+    const glm::uvec3& tri = m.triangles[size_t(hit.prim)];
+    const vec3 e1 = m.positions[tri.y] - m.positions[tri.x], e2 = m.positions[tri.z] - m.positions[tri.x];
+    const vec2 d1 = m.uvs[tri.y] - m.uvs[tri.x], d2 = m.uvs[tri.z] - m.uvs[tri.x];
+    const float det = d1.x * d2.y - d2.x * d1.y;
+    if (!(std::abs(det) > 1e-20f)) return hit.ns;  // no UV area: no tangent frame
+    const vec3 dpdu = (d2.y * e1 - d1.y * e2) / det, dpdv = (d1.x * e2 - d2.x * e1) / det;
+    // The normal as the file orients it (hit.ns was turned to the side of ng): the map's +Z.
+    vec3 n = hit.ns;
+    bool turned = false;
+    if (!m.normals.empty()) {
+        const float b1 = hit.bary.x, b2 = hit.bary.y;
+        const vec3 file_n = (1 - b1 - b2) * m.normals[tri.x] + b1 * m.normals[tri.y] + b2 * m.normals[tri.z];
+        turned = glm::dot(file_n, hit.ns) < 0;
+        if (turned) n = -n;
+    }
+    const vec3 t = dpdu - n * glm::dot(n, dpdu);
+    const float tl = glm::length(t);
+    if (!(tl > 0) || !std::isfinite(tl)) return hit.ns;
+    const vec3 tangent = t / tl;
+    // +Y of the map points to the top of the image: our v grows downwards (mesh.h).
+    vec3 bitangent = glm::cross(n, tangent);
+    if (glm::dot(bitangent, -dpdv) < 0) bitangent = -bitangent;
+    const vec3 c = texture_at(*s.normal_map, hit.uv) * 2.0f - 1.0f;
+    vec3 bent = tangent * (c.x * s.normal_scale) + bitangent * (c.y * s.normal_scale) + n * std::max(c.z, 0.0f);
+    const float len = glm::length(bent);
+    if (!(len > 0) || !std::isfinite(len)) return hit.ns;
+    bent /= len;
+    return turned ? -bent : bent;
 }
 
 RenderScene::RenderScene(const Project& project, SceneAssets assets)
@@ -254,6 +290,9 @@ void RenderScene::place_surfaces() {
                 part.material = f.material;
                 part.albedo = f.material.albedo.rgb;
                 part.texture = f.texture.empty() ? nullptr : &f.texture;
+                part.metallic_roughness = f.metallic_roughness.empty() ? nullptr : &f.metallic_roughness;
+                part.normal_map = f.normal.empty() || !s.mesh || s.mesh->uvs.empty() ? nullptr : &f.normal;
+                part.normal_scale = f.normal_scale;
                 s.parts.push_back(std::move(part));
             }
         }
@@ -349,6 +388,7 @@ Hit RenderScene::to_hit(const ShapeHit& h) const {
         const Surface& s =
             h.is_virtual ? virtual_surfaces_[size_t(h.index)] : real_surfaces_[size_t(h.index)];
         hit.surface = &s.part(h.prim);
+        if (hit.surface->normal_map) hit.ns = normal_mapped(*hit.surface, hit);
     }
     return hit;
 }

@@ -20,6 +20,11 @@ struct FileMaterialAsset {
     std::string name;
     Material material;
     Image texture;
+    /// Principled: the file's metallic-roughness texture (green roughness, blue metallic,
+    /// linear) and tangent-space normal map (linear), empty for none.
+    Image metallic_roughness;
+    Image normal;
+    float normal_scale = 1;
 };
 
 /// Everything loaded from disk for a project: the linear photo, the lat-long probe, meshes.
@@ -66,6 +71,11 @@ struct Surface {
     float gloss_f0 = 0;     ///< real: the gloss layer's reflectance at normal incidence (0: matte)
     float gloss_alpha = 0;  ///< real: the gloss layer's GGX alpha
     const Image* texture = nullptr;
+    /// Principled: multiplies roughness by green, metallic by blue (glTF's metallicRoughness).
+    const Image* metallic_roughness = nullptr;
+    /// A tangent-space normal map bending the shading normal (RenderScene::to_hit).
+    const Image* normal_map = nullptr;
+    float normal_scale = 1;
     bool analytic_sphere = false;
     vec3 sphere_center{0};
     float sphere_radius = 0;
@@ -89,6 +99,15 @@ struct Surface {
                               (material.kind == Material::Kind::Principled && material.principled.transmission > 0));
     }
 };
+
+/// A texture's bilinear value at `uv` (wrapped to [0, 1); v = 0 at the image's top row).
+vec3 texture_at(const Image& texture, const vec2& uv);
+
+/// The shading normal at a mesh hit bent by the surface's tangent-space normal map (glTF's
+/// convention: +X along u, +Y to the top of the image, +Z the interpolated normal as the file
+/// orients it, X and Y times normal_scale), on the side of hit.ng as hit.ns is. hit.ns where
+/// there is no map or no tangent (a triangle without UV area).
+vec3 normal_mapped(const Surface& s, const ShapeHit& hit);
 
 /// A ray-surface intersection (ShapeHit) and the surface it found.
 struct Hit : ShapeHit {

@@ -31,8 +31,12 @@ void RenderScene::sanitize_images() {
     for (size_t i = 0; i < assets_->object_textures.size(); ++i)
         clean(assets_->object_textures[i], indexed("objects", i, "albedo.texture"));
     for (size_t i = 0; i < assets_->object_file_materials.size(); ++i)
-        for (FileMaterialAsset& f : assets_->object_file_materials[i])
-            clean(f.texture, indexed("objects", i, "shape.path") + " material '" + f.name + "'");
+        for (FileMaterialAsset& f : assets_->object_file_materials[i]) {
+            const std::string what = indexed("objects", i, "shape.path") + " material '" + f.name + "'";
+            clean(f.texture, what);
+            clean(f.metallic_roughness, what + " metallic-roughness texture");
+            clean(f.normal, what + " normal map");
+        }
 }
 
 void enclose(vec3 c1, float r1, vec3 c2, float r2, vec3& c, float& r) {

@@ -35,6 +35,15 @@ TriangleMesh make_box(const vec3& size);
 /// UV sphere with smooth normals (used when a sphere is scaled non-uniformly).
 TriangleMesh make_uv_sphere(float radius, int segments = 96, int rings = 48);
 
+/// A texture a mesh file's material names: a file (its path resolved against the mesh file's
+/// folder) or a texture stored inside the mesh file (an index into LoadedMesh::embedded_textures).
+struct FileTexture {
+    std::string path;
+    int embedded = -1;
+    bool empty() const { return path.empty() && embedded < 0; }
+    bool operator==(const FileTexture&) const = default;
+};
+
 /// A material as a mesh file states it (glTF's metallic-roughness, MTL's Kd and map_Kd, FBX's
 /// diffuse colour), before it is mapped onto the project's kinds (material_from_file in
 /// core/assets).
@@ -51,6 +60,14 @@ struct FileMaterial {
     /// glTF roughnessFactor or MTL Pr; -1 where the file gives none (the material is then
     /// mapped by today's thresholds, not onto the principled material).
     float roughness = -1;
+    /// glTF's metallicRoughnessTexture: linear, roughness in green and metallic in blue, each
+    /// multiplying its factor. Empty for none (MTL's map_Pr and map_Pm are not read).
+    FileTexture metallic_roughness;
+    /// A tangent-space normal map (glTF's normalTexture, MTL's norm): linear, +X along u, +Y
+    /// towards the top of the image (OpenGL's and glTF's convention), its X and Y scaled by
+    /// `normal_scale`. Empty for none.
+    FileTexture normal;
+    float normal_scale = 1;
     bool operator==(const FileMaterial&) const = default;
 };
 

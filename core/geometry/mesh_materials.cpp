@@ -1,5 +1,6 @@
 #include "geometry/mesh_materials.h"
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
@@ -55,6 +56,45 @@ std::string format_hint(const aiTexture& t) {
     return hint;
 }
 
+/// The texture of `type` a material names, as a file path or an embedded texture (added to
+/// `embedded` the first time a material names it); empty, with a warning where the file names
+/// one that cannot be used.
+FileTexture texture_of(const aiScene& scene, const aiMaterial& m, aiTextureType type, const std::string& material,
+                       const char* what, const std::string& mesh_path, std::vector<EmbeddedTexture>& embedded,
+                       std::vector<int>& embedded_slot, std::vector<std::string>& warnings) {
+    FileTexture out;
+    aiString texture;
+    if (m.GetTextureCount(type) == 0 || m.GetTexture(type, 0, &texture) != aiReturn_SUCCESS || texture.length == 0)
+        return out;
+    const std::string reference = texture.C_Str();
+    const bool colour = std::string("colour") == what;
+    const std::string ignored = colour ? "its colour is used" : "it is ignored";
+    const std::string kind = colour ? "" : std::string(what) + " ";  // "texture" alone: the colour's
+    if (const aiTexture* t = scene.GetEmbeddedTexture(texture.C_Str())) {
+        const auto k = size_t(std::find(scene.mTextures, scene.mTextures + scene.mNumTextures, t) - scene.mTextures);
+        if (k >= scene.mNumTextures) return out;
+        if (t->mHeight != 0 || !t->pcData || t->mWidth == 0) {
+            // Decoded texels (mHeight rows) rather than a PNG or JPEG: no exporter in use
+            // writes these.
+            warnings.push_back("material '" + material + "': its embedded " + kind +
+                               "texture is stored uncompressed, which is not read; " + ignored);
+            return out;
+        }
+        if (embedded_slot[k] < 0) {
+            embedded_slot[k] = int(embedded.size());
+            const auto* bytes = reinterpret_cast<const unsigned char*>(t->pcData);
+            embedded.push_back({format_hint(*t), std::vector<unsigned char>(bytes, bytes + t->mWidth)});
+        }
+        out.embedded = embedded_slot[k];
+    } else if (reference[0] == '*') {
+        warnings.push_back("material '" + material + "' names embedded " + kind + "texture " + reference +
+                           ", which the file does not hold; " + ignored);
+    } else {
+        out.path = resolve_texture(mesh_path, reference);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<FileMaterial> read_file_materials(const aiScene& scene, const std::string& mesh_path,
@@ -104,37 +144,17 @@ std::vector<FileMaterial> read_file_materials(const aiScene& scene, const std::s
         // MTL's Ni is read into the same key; only a transmitting (glTF) material uses it.
         if (gltf) f.ior = number_of(*m, AI_MATKEY_REFRACTI, 0.0f);
 
-        aiString texture;
-        if (m->GetTextureCount(texture_type) == 0 ||
-            m->GetTexture(texture_type, 0, &texture) != aiReturn_SUCCESS || texture.length == 0)
-            continue;
-        const std::string reference = texture.C_Str();
-        if (const aiTexture* t = scene.GetEmbeddedTexture(texture.C_Str())) {
-            const auto k =
-                size_t(std::find(scene.mTextures, scene.mTextures + scene.mNumTextures, t) -
-                       scene.mTextures);
-            if (k >= scene.mNumTextures) continue;
-            if (t->mHeight != 0 || !t->pcData || t->mWidth == 0) {
-                // Decoded texels (mHeight rows) rather than a PNG or JPEG: no exporter in use
-                // writes these.
-                warnings.push_back("material '" + f.name +
-                                   "': its embedded texture is stored uncompressed, which is not "
-                                   "read; its colour is used");
-                continue;
-            }
-            if (embedded_slot[k] < 0) {
-                embedded_slot[k] = int(embedded.size());
-                const auto* bytes = reinterpret_cast<const unsigned char*>(t->pcData);
-                embedded.push_back(
-                    {format_hint(*t), std::vector<unsigned char>(bytes, bytes + t->mWidth)});
-            }
-            f.embedded_texture = embedded_slot[k];
-        } else if (reference[0] == '*') {
-            warnings.push_back("material '" + f.name + "' names embedded texture " + reference +
-                               ", which the file does not hold; its colour is used");
-        } else {
-            f.texture = resolve_texture(mesh_path, reference);
-        }
+        const auto read = [&](aiTextureType type, const char* what) {
+            return texture_of(scene, *m, type, f.name, what, mesh_path, embedded, embedded_slot, warnings);
+        };
+        const FileTexture colour = read(texture_type, "colour");
+        f.texture = colour.path;
+        f.embedded_texture = colour.embedded;
+        // Assimp 5.2 keeps glTF's metallicRoughnessTexture under the UNKNOWN type.
+        if (gltf) f.metallic_roughness = read(aiTextureType_UNKNOWN, "metallic-roughness");
+        f.normal = read(aiTextureType_NORMALS, "normal");
+        if (!f.normal.empty())
+            f.normal_scale = number_of(*m, AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), 1.0f);
     }
     return out;
 }

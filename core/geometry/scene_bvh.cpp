@@ -59,6 +59,7 @@ ShapeHit finish_hit(const RTCRayHit& rh, const std::vector<PlacedShape>& shapes,
     const glm::uvec3& tri = m.triangles[rh.hit.primID];
     hit.prim = int(rh.hit.primID);
     float u = rh.hit.u, v = rh.hit.v, w = 1 - u - v;
+    hit.bary = vec2(u, v);
     hit.ns = hit.ng;
     if (!m.normals.empty()) {
         vec3 n = w * m.normals[tri.x] + u * m.normals[tri.y] + v * m.normals[tri.z];

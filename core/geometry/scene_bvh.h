@@ -28,6 +28,7 @@ struct ShapeHit {
     float t = 0;
     vec3 p{0}, ng{0}, ns{0};
     vec2 uv{0};
+    vec2 bary{0};   ///< barycentric coordinates of the hit in triangle `prim` (of vertices 1 and 2)
     int index = -1;
     int prim = -1;  ///< the triangle hit, in the shape's mesh; -1 for an exact sphere
     bool is_virtual = false;
