@@ -343,8 +343,8 @@ def scenes(out):
     lamp["real"].append({"name": "wall", "shape": {"type": "box", "size": [4, 2.2, 0.1]},
                          "transform": {"translation": [0, 1.1, -1.05]}, "albedo": [0.8, 0.8, 0.78]})
     lamp["objects"] = [sphere("ball", [0.3, 0.22, -0.55], 0.22, diffuse([0.7, 0.7, 0.7]))]
-    lamp["lights"] = [{"name": "lamp", "type": "rect", "transform": {"translation": [-0.2, 1.5, -0.1],
-                                                                     "rotation_deg": [35, 0, 0]},
+    lamp["lights"] = [{"name": "lamp", "type": "rect", "transform": {"translation": [-0.2, 1.7, 0.4],
+                                                                     "rotation_deg": [45, 0, 0]},
                        "colour": [1.0, 0.8, 0.6], "power_w": 60, "size": [0.4, 0.3]}]
     s["lamp_wall"] = (lamp, None, (1024, 16384))
 
