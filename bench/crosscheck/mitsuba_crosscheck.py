@@ -3,7 +3,8 @@
 
 Reads a diffphoton project (docs/project-format.md), builds the same scene for Mitsuba 3
 (perspective sensor, envmap emitter, rectangle/cube/sphere/obj/ply shapes, diffuse/conductor/
-dielectric BSDFs, the principled material as principled/roughplastic/roughdielectric blends), renders it with Mitsuba's path tracer and with `diffphoton reference` (the
+dielectric BSDFs, the principled material as principled/roughplastic/roughdielectric blends, the
+virtual lights as point/spot emitters and emitting rectangles and disks), renders it with Mitsuba's path tracer and with `diffphoton reference` (the
 virtual objects included, full global illumination), each as two independent half-spp images,
 and reports the relative RMSE between the two truths next to each one's own noise.
 
@@ -415,10 +416,55 @@ def shape_dict(shape, transform, base_dir, where):
     raise Unsupported(f"{where}.type: {kind}")
 
 
+# Mitsuba's spot shines along its local +Z, its rectangle and disk lie in local XY facing +Z;
+# ours' lights shine along local -Y, the area kinds lying in local XZ. A quarter turn about X
+# takes +Z to -Y (and +Y to +Z).
+LIGHT_FROM_MITSUBA = rot_x(90.0)
+
+
+def light_dicts(light, where):
+    """A virtual light (core/assets/virtual_lights.cpp) as Mitsuba emitters or shapes: a point of
+    intensity colour P / (4 pi) W/sr; a spot of that intensity inside its cone (a hard edge only);
+    a rect or disk face of radiance colour P / (pi A), one-sided, along the light's local -Y. The
+    rotation places the light, the scale stretches an area light's face only."""
+    kind = light.get("type")
+    t = light.get("transform") or {}
+    r3 = euler_xyz_deg(t.get("rotation_deg", [0, 0, 0]))
+    pos = [float(x) for x in t.get("translation", [0, 0, 0])]
+    colour = [max(float(c), 0.0) for c in light.get("colour", [1, 1, 1])]
+    power = max(float(light.get("power_w", 100.0)), 0.0)
+    if kind in ("point", "spot"):
+        intensity = rgb([c * power / (4 * math.pi) for c in colour])
+        if kind == "point":
+            return {"type": "point", "position": pos, "intensity": intensity}
+        blend = float(light.get("spot_blend", 0.15))
+        if blend > 0:
+            # Ours fades the edge by Blender's smoothstep on the cosine; Mitsuba's spot fades
+            # linearly in angle: not the same light, so not compared.
+            raise Unsupported(f"{where}.spot_blend: only hard-edged spots (spot_blend 0) match Mitsuba's falloff")
+        half = 0.5 * min(max(float(light.get("spot_angle_deg", 45.0)), 1e-3), 180.0)
+        return {"type": "spot", "intensity": intensity, "cutoff_angle": half, "beam_width": half,
+                "to_world": mi.ScalarTransform4f(mat4(r3 @ LIGHT_FROM_MITSUBA, pos))}
+    if kind not in ("rect", "disk"):
+        raise Unsupported(f"{where}.type: {kind}")
+    if not light.get("visible", True):
+        # Mitsuba's emitting face is a shape every ray sees; ours' hidden face is seen by none.
+        raise Unsupported(f"{where}.visible: a hidden area light (Mitsuba's face is always seen)")
+    size = light.get("size", [0.5, 0.5] if kind == "rect" else [0.5])
+    scale = t.get("scale", [1, 1, 1])
+    sx = float(size[0]) * float(scale[0])
+    sz = float(size[1] if kind == "rect" else size[0]) * float(scale[2])
+    area = sx * sz if kind == "rect" else 0.25 * math.pi * sx * sz
+    radiance = [c * power / (math.pi * area) for c in colour] if area > 0 else [0.0, 0.0, 0.0]
+    to_world = mat4(r3 @ LIGHT_FROM_MITSUBA, pos, [0.5 * sx, 0.5 * sz, 1.0])
+    # Unlike ours' lights, the face is geometry in Mitsuba: it blocks light and shows a black
+    # back; place it where that does not matter (docs/crosscheck.md).
+    return {"type": "rectangle" if kind == "rect" else "disk", "to_world": mi.ScalarTransform4f(to_world),
+            "bsdf": {"type": "diffuse", "reflectance": rgb([0, 0, 0])},
+            "emitter": {"type": "area", "radiance": rgb(radiance)}}
+
+
 def scene_dict(project, base_dir, width, height, spp, upsample):
-    if project.get("lights"):
-        # Better refused than compared without them: ours would carry light Mitsuba never saw.
-        raise Unsupported("lights: the virtual lights are not converted for Mitsuba")
     max_depth = int(project.get("render", {}).get("max_depth", 8))
     scene = {
         "type": "scene",
@@ -441,6 +487,8 @@ def scene_dict(project, base_dir, width, height, spp, upsample):
         if emitter:
             s["emitter"] = emitter
         scene[f"object_{i}"] = s
+    for i, light in enumerate(project.get("lights", [])):
+        scene[f"light_{i}"] = light_dicts(light, f"lights[{i}]")
     return scene
 
 

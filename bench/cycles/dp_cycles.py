@@ -16,7 +16,9 @@ conventions it maps, and how each was checked, are in docs/cycles.md:
   glossy (mirror) or sharp glass (Blender 3.4's SHARP distribution, GGX at roughness 0 in
   Blender 4 and later, which dropped SHARP and treats roughness 0 as a perfect reflection);
   principled: Principled BSDF (glTF's material; its inputs by the names of Blender 3.4 or 4+;
-  its emission lights the real proxies, as ours does);
+  its emission lights the real proxies, as ours does); meshes from OBJ, PLY or glTF 2.0 (Blender's
+  glTF importer, its Y-up conversion undone), a glTF's own materials kept for
+  "material_source": "file";
 - lights: point and spot (radius 0) and area lights (rectangle, disk or ellipse) of the same
   power in watts, turned from ours' local -Y to Blender's local -Z (LIGHT_FROM_BLENDER);
 - one composite per render: Combined + (1 - Combined.alpha) * photo * ShadowCatcher.
@@ -446,20 +448,57 @@ def import_mesh(path, name, file, field):
         bpy.ops.wm.ply_import(filepath=path, forward_axis="Y", up_axis="Z")
     elif ext == ".ply":
         bpy.ops.import_mesh.ply(filepath=path)  # Blender 3.4's Python add-on: no axes, no normals
+    elif ext in (".gltf", ".glb"):
+        import_gltf(path, file, field)
     else:
-        raise ConversionError(file, field, f"{path}: Cycles meshes are read from OBJ or PLY only")
-    objs = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
+        raise ConversionError(file, field, f"{path}: Cycles meshes are read from OBJ, PLY or glTF 2.0 only")
+    new = [o for o in bpy.data.objects if o not in before]
+    objs = [o for o in new if o.type == "MESH"]
     if not objs:
         raise ConversionError(file, field, f"{path}: the file holds no mesh")
+    # glTF's importer turns the file's +Y up to Blender's +Z up (x, y, z) -> (x, -z, y); ours
+    # reads the file's own coordinates (Y up, as ours' world), so that is undone.
+    undo = GLTF_FILE_FROM_BLENDER.to_4x4() if ext in (".gltf", ".glb") else Matrix.Identity(4)
     for o in objs:
+        world = o.matrix_world.copy()  # the node hierarchy's placement, parents included
+        o.parent = None
         for coll in list(o.users_collection):
             coll.objects.unlink(o)
-        o.data.transform(o.matrix_world)  # bake any importer placement into the vertices
+        o.data.transform(undo @ world)  # bake any importer placement into the vertices
         o.matrix_world = Matrix.Identity(4)
         o.name = name
         if not o.data.has_custom_normals:
             smooth_normals_like_ours(o.data)
+    for o in new:  # the importer's empties, cameras and lights: not ours
+        if o.type != "MESH":
+            bpy.data.objects.remove(o, do_unlink=True)
     return objs
+
+
+# Blender coordinates of glTF's importer back to the file's: (x, y, z) -> (x, z, -y), by rows.
+GLTF_FILE_FROM_BLENDER = Matrix(((1, 0, 0), (0, 0, 1), (0, -1, 0)))
+
+
+def import_gltf(path, file, field):
+    """A glTF 2.0 file (.gltf with its side files, or .glb) by Blender's bundled importer (3.4
+    and 5.0), which builds each glTF material as a Principled BSDF node tree with its textures
+    (base colour sRGB; metallic-roughness and normal maps non-colour, a tangent-space Normal
+    Map node), as ours reads the file's materials where material_source is "file"."""
+    try:
+        bpy.ops.import_scene.gltf.get_rna_type()
+    except (KeyError, AttributeError):  # the add-on is not enabled (a bare bpy module)
+        import addon_utils
+        addon_utils.enable("io_scene_gltf2", default_set=True)
+    # Debian's Blender 3.4 importer uses numpy's aliases np.bool etc., which NumPy 1.24 removed
+    # (AttributeError in set_poly_smoothing); the builtins they stood for take their place.
+    import numpy as np
+    for alias, builtin in (("bool", bool), ("int", int), ("float", float), ("object", object)):
+        if alias not in np.__dict__:
+            setattr(np, alias, builtin)
+    try:
+        bpy.ops.import_scene.gltf(filepath=path)
+    except (RuntimeError, AttributeError) as e:
+        raise ConversionError(file, field, f"{path}: Blender's glTF importer failed: {e}")
 
 
 def ply_importer():
@@ -831,6 +870,7 @@ class CyclesScene:
             add_gloss(mat, r.get("gloss", {}))
             for o in shape_objects(r["shape"], r.get("transform"), frame, base_dir, project_path, field + ".shape",
                                    f"real {i} {r.get('name', '')}"):
+                o.data.materials.clear()  # a proxy is its albedo (and gloss), whatever its file says
                 o.data.materials.append(mat)
                 o.is_shadow_catcher = mode == "catcher"
                 self.proxies.append(o)
@@ -842,16 +882,27 @@ class CyclesScene:
                 if not ob.get("visible", True):
                     continue
                 field = f"objects[{i}]"
-                if ob.get("material_source", "project") != "project":
-                    # Ours would draw the file's own materials; the conversion knows the project's only.
+                source = ob.get("material_source", "project")
+                if source not in ("project", "file"):
                     raise ConversionError(project_path, field + ".material_source",
-                                          "the Cycles conversion draws the project's material only: set \"project\"")
+                                          f"unknown material source '{source}' (project, file)")
+                if source == "file" and ob["shape"].get("type") != "mesh":
+                    raise ConversionError(project_path, field + ".material_source",
+                                          "\"file\" is for mesh objects only")
                 sphere_frame = frame if is_exact_sphere(ob["shape"], ob.get("transform")) else None
                 mat = object_material(f"object {i}", ob.get("material", {}), base_dir, sphere_frame, project_path,
                                       field + ".material", ob["shape"].get("type") == "mesh")
                 for o in shape_objects(ob["shape"], ob.get("transform"), frame, base_dir, project_path,
                                        field + ".shape", f"object {i} {ob.get('name', '')}"):
-                    o.data.materials.append(mat)
+                    if source == "file" and len(o.data.materials) > 0:
+                        # The file's materials, as the importer built them; the project's material
+                        # covers the slots the file left empty (ours: faces without a material).
+                        for k, slot in enumerate(o.data.materials):
+                            if slot is None:
+                                o.data.materials[k] = mat
+                    else:
+                        o.data.materials.clear()  # "project": every face the project's material
+                        o.data.materials.append(mat)
                     if artist and ob.get("material", {}).get("type") == "glass":
                         o.cycles.is_caustics_caster = True
                     scene.collection.objects.link(o)

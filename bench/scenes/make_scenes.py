@@ -22,6 +22,7 @@ import struct
 import subprocess
 import sys
 import time
+import zlib
 
 WIDTH, HEIGHT = 256, 144
 PHOTO_SPP = 8192  # a quiet photograph: Cycles' composite multiplies it, ours adds to it
@@ -126,6 +127,108 @@ def write_terrain_ply(path, n=708, width=40.0, height=8.0):
     return 2 * (n - 1) ** 2
 
 
+def write_png(path, width, height, pixel):
+    """An 8-bit RGB PNG, pixel(x, y) -> (r, g, b) in [0, 255], written with zlib and struct."""
+    rows = bytearray()
+    for y in range(height):
+        rows.append(0)  # filter: none
+        for x in range(width):
+            rows.extend(bytes(max(0, min(255, int(round(c)))) for c in pixel(x, y)))
+
+    def chunk(tag, data):
+        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n")
+        f.write(chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)))
+        f.write(chunk(b"IDAT", zlib.compress(bytes(rows), 9)))
+        f.write(chunk(b"IEND", b""))
+
+
+def write_textured_gltf(folder, name="ball", radius=0.5, segments=64, rings=32, tex=(256, 128)):
+    """A UV sphere as glTF 2.0 (name.gltf + name.bin; positions, normals, UVs, 16-bit indices)
+    with a metallic-roughness material of three PNG side files: the base colour (sRGB; a
+    checker of teal and cream), the metallic-roughness texture (linear; G roughness, B metallic:
+    latitude bands of polished metal and rough dielectric) and a tangent-space normal map
+    (a grid of round bumps). Returns the triangle count."""
+    pos, nrm, uv = [], [], []
+    for i in range(rings + 1):
+        theta = math.pi * i / rings
+        for j in range(segments + 1):
+            phi = 2 * math.pi * j / segments
+            n = (math.sin(theta) * math.cos(phi), math.cos(theta), -math.sin(theta) * math.sin(phi))
+            nrm.append(n)
+            pos.append(tuple(radius * c for c in n))
+            uv.append((j / segments, i / rings))  # glTF: v from the image's top row
+    idx = []
+    for i in range(rings):
+        for j in range(segments):
+            a, b = i * (segments + 1) + j, (i + 1) * (segments + 1) + j
+            for tri in ((a, b, b + 1), (a, b + 1, a + 1)):
+                p0, p1, p2 = (pos[k] for k in tri)
+                e1 = [p1[k] - p0[k] for k in range(3)]
+                e2 = [p2[k] - p0[k] for k in range(3)]
+                g = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
+                if sum(g[k] * g[k] for k in range(3)) < 1e-18:
+                    continue  # degenerate at a pole
+                if sum(g[k] * p0[k] for k in range(3)) < 0:
+                    tri = (tri[0], tri[2], tri[1])  # counter-clockwise seen from outside
+                idx.extend(tri)
+    blobs = [b"".join(struct.pack("<fff", *v) for v in pos), b"".join(struct.pack("<fff", *v) for v in nrm),
+             b"".join(struct.pack("<ff", *v) for v in uv), b"".join(struct.pack("<H", k) for k in idx)]
+    views, offset, data = [], 0, b""
+    for blob in blobs:
+        data += blob + b"\0" * (-len(blob) % 4)
+        views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(blob)})
+        offset = len(data)
+    with open(os.path.join(folder, name + ".bin"), "wb") as f:
+        f.write(data)
+    n = len(pos)
+    gltf = {
+        "asset": {"version": "2.0", "generator": "diffphoton bench/scenes/make_scenes.py"},
+        "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "name": name}],
+        "buffers": [{"uri": name + ".bin", "byteLength": len(data)}],
+        "bufferViews": views[:3] + [dict(views[3], target=34963)],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": n, "type": "VEC3",
+             "min": [-radius] * 3, "max": [radius] * 3},
+            {"bufferView": 1, "componentType": 5126, "count": n, "type": "VEC3"},
+            {"bufferView": 2, "componentType": 5126, "count": n, "type": "VEC2"},
+            {"bufferView": 3, "componentType": 5123, "count": len(idx), "type": "SCALAR"}],
+        "meshes": [{"name": name, "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2},
+                                                  "indices": 3, "material": 0}]}],
+        "materials": [{"name": "striped metal and paint",
+                       "pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                                                "metallicRoughnessTexture": {"index": 1},
+                                                "baseColorFactor": [1, 1, 1, 1],
+                                                "metallicFactor": 1, "roughnessFactor": 1},
+                       "normalTexture": {"index": 2, "scale": 1}}],
+        "samplers": [{"magFilter": 9729, "minFilter": 9987, "wrapS": 10497, "wrapT": 10497}],
+        "textures": [{"source": k, "sampler": 0} for k in range(3)],
+        "images": [{"uri": f"{name}_{t}.png"} for t in ("basecolor", "metalrough", "normal")],
+    }
+    with open(os.path.join(folder, name + ".gltf"), "w") as f:
+        json.dump(gltf, f, indent=1)
+    w, h = tex
+    teal, cream = (30, 130, 140), (235, 215, 170)
+    write_png(os.path.join(folder, f"{name}_basecolor.png"), w, h,
+              lambda x, y: teal if ((x * 16 // w) + (y * 8 // h)) % 2 else cream)
+    # Six latitude bands: polished metal (roughness 0.25, metallic 1) and rough paint (0.8, 0).
+    write_png(os.path.join(folder, f"{name}_metalrough.png"), w, h,
+              lambda x, y: (255, 0.25 * 255, 255) if (y * 6 // h) % 2 == 0 else (255, 0.8 * 255, 0))
+
+    def bump_normal(x, y):
+        # Height: a round bump in each of 24 x 12 cells; the normal from its gradient.
+        cu, cv = (x + 0.5) * 24 / w % 1 - 0.5, (y + 0.5) * 12 / h % 1 - 0.5
+        r2 = cu * cu + cv * cv
+        k = 3.0 * math.exp(-r2 / 0.05)  # slope scale of a Gaussian bump
+        nx, ny = k * cu, -k * cv
+        l = math.sqrt(nx * nx + ny * ny + 1)
+        return tuple(127.5 * (1 + c / l) for c in (nx, ny, 1.0))
+    write_png(os.path.join(folder, f"{name}_normal.png"), w, h, bump_normal)
+    return len(idx) // 3
+
+
 def scenes(out):
     """name -> (scene project, detail project or None, (samples over every pixel, samples per
     pixel in all on the changed ones), size)."""
@@ -210,6 +313,49 @@ def scenes(out):
     prod["objects"] = [sphere("clay", [0, 0.5, 0], 0.5, diffuse([0.7, 0.35, 0.2]))]
     prod["render"]["photons_per_pass"] = 300000
     s["production"] = (prod, None, (64, 2048), (1920, 1080))
+
+    # The materials set (SET=materials bash bench/time_vs_error.sh): new materials and lights.
+    # A rough gold ball: a glossy metal reflecting the probe and the floor.
+    gold = base_project(blender_probe("city", 35))
+    gold["objects"] = [sphere("gold", [0, 0.5, 0], 0.5, {"type": "principled", "base_colour": [1.0, 0.77, 0.34],
+                                                          "metallic": 1, "roughness": 0.35})]
+    s["gold_ball"] = (gold, None, (4096, 65536))
+
+    # A frosted glass ball under a sun: rough transmission and its soft caustic.
+    frosted = base_project(sun_probe_spec("sun-frosted.exr"))
+    frosted["objects"] = [sphere("frosted glass", [0, 0.45, 0], 0.45,
+                                 {"type": "principled", "base_colour": [1, 1, 1], "metallic": 0,
+                                  "roughness": 0.2, "transmission": 1, "ior": 1.5})]
+    # Twice the caustic scene's samples on the changed pixels: at 320 spp the halves' noise
+    # there was 25% of the mean, about 1.8% at 65536 spp, too close to the errors judged.
+    s["frosted_glass"] = (frosted, None, (4096, 131072))
+
+    # A glTF 2.0 ball with its own textured material (base colour, metallic-roughness, normal).
+    textured = base_project(blender_probe("city", 35))
+    textured["objects"] = [{"name": "textured ball", "shape": {"type": "mesh", "path": "ball.gltf"},
+                            "transform": {"translation": [0, 0.5, 0]}, "material_source": "file",
+                            "material": diffuse([0.5, 0.5, 0.5])}]
+    s["textured_gltf"] = (textured, None, (2048, 32768))
+
+    # A warm area lamp near a real wall in a dim room, over a small diffuse ball: the lamp's
+    # light on the wall and the floor and the ball's shadow in it are the change.
+    lamp = base_project(blender_probe("city", 35))
+    lamp["probe"]["intensity"] = 0.25
+    lamp["camera"].update({"eye": [0.3, 1.1, 3.2], "target": [0, 0.55, -0.5]})
+    lamp["real"].append({"name": "wall", "shape": {"type": "box", "size": [4, 2.2, 0.1]},
+                         "transform": {"translation": [0, 1.1, -1.05]}, "albedo": [0.8, 0.8, 0.78]})
+    lamp["objects"] = [sphere("ball", [0.3, 0.22, -0.55], 0.22, diffuse([0.7, 0.7, 0.7]))]
+    lamp["lights"] = [{"name": "lamp", "type": "rect", "transform": {"translation": [-0.2, 1.7, 0.4],
+                                                                     "rotation_deg": [45, 0, 0]},
+                       "colour": [1.0, 0.8, 0.6], "power_w": 60, "size": [0.4, 0.3]}]
+    s["lamp_wall"] = (lamp, None, (1024, 16384))
+
+    # A clay ball on a polished real floor: the floor's gloss layer reflects the ball.
+    polished = base_project(blender_probe("city", 35))
+    polished["real"][0]["albedo"] = [0.35, 0.33, 0.3]
+    polished["real"][0]["gloss"] = {"specular": 0.06, "roughness": 0.15}
+    polished["objects"] = [sphere("clay", [0, 0.5, 0], 0.5, diffuse([0.75, 0.2, 0.12]))]
+    s["polished_floor"] = (polished, None, (2048, 32768))
     return s
 
 
@@ -233,6 +379,12 @@ def make_inputs(name, folder, exe):
         print("knot.obj:", write_torus_knot(os.path.join(folder, "knot.obj")), "triangles", flush=True)
     if name == "big_proxy":
         print("hills.ply:", write_terrain_ply(os.path.join(folder, "hills.ply")), "triangles", flush=True)
+    if name == "frosted_glass":
+        run([exe, "make-test-image", os.path.join(folder, "sun-frosted.exr"), "--size", "1024", "512",
+             "--probe-sun", "--sun-dir", "0.5", "0.75", "0.45", "--sun-irradiance", "3",
+             "--sun-radius-deg", "1.5", "--value", "0.35", "0.4", "0.5", "--sky-zenith", "0.12", "0.2", "0.45"])
+    if name == "textured_gltf":
+        print("ball.gltf:", write_textured_gltf(folder), "triangles", flush=True)
 
 
 def main():
@@ -264,7 +416,10 @@ def main():
         detail_path = os.path.join(folder, "detail.json")
         photo = os.path.join(folder, "photo.exr")
         run([exe, "make-test-image", photo, "--size", str(width), str(height)])  # sets the size
-        run([exe, "reference", detail_path, "--real-only", "--spp", str(args.photo_spp), "--seed", "7", "-o", photo])
+        # The renderer never writes over an input (the project's photo): render beside it, then replace it.
+        rendered = os.path.join(folder, "photo-rendered.exr")
+        run([exe, "reference", detail_path, "--real-only", "--spp", str(args.photo_spp), "--seed", "7", "-o", rendered])
+        os.replace(rendered, photo)
         # Passes of 16 samples: the per-pass overhead would dominate a focused pass of one sample.
         spp_per_pass = 16
         base = max(1, int(base_spp * args.spp_scale) // (2 * spp_per_pass))
