@@ -40,4 +40,11 @@ float ProbeLights::pdf(const vec3& dir) const {
     return float(pmf / probe_->pixel_solid_angle(int(k / size_t(w))));
 }
 
+float ProbeLights::sun_pdf(const vec3& dir) const {
+    if (sun_.empty()) return 0;
+    const int w = probe_->width(), h = probe_->height();
+    const size_t k = latlong_pixel(probe_->to_probe(dir), w, h);
+    return float(sun_.pmf(k) / probe_->pixel_solid_angle(int(k / size_t(w))));
+}
+
 }  // namespace dp

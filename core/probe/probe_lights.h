@@ -30,6 +30,8 @@ public:
     /// The pdf of the light that owns direction dir (the sun's table where dir is in the sun,
     /// the sky's elsewhere): the one other strategy that can draw dir.
     float pdf(const vec3& dir) const;
+    /// The density with which sample_sun draws `dir` (0 outside the sun, or without one).
+    float sun_pdf(const vec3& dir) const;
     /// Bytes the two tables hold per probe pixel.
     double bytes_per_pixel() const { return sun_.bytes_per_pixel() + sky_.bytes_per_pixel(); }
 

@@ -55,6 +55,7 @@ vec3 CameraGather::gloss_change(const Hit& hit, const vec3& dir, const vec2& u, 
     auto lobe_pdf = [&](const vec3& w) { return lobe.pdf(w); };
     if (!scene_.lights().empty())
         dL += reflected_light(scene_, hit, rng, [&](const vec3& w) { return vec3(lobe.eval_cos(w)); }, lobe_pdf);
+    dL -= hidden_sun(hit, lobe, rng);  // whether or not the lobe's own sample below is drawn
     vec3 wi;
     float weight = 0;
     if (!lobe.sample(u, wi, weight)) return dL;
@@ -65,7 +66,14 @@ vec3 CameraGather::gloss_change(const Hit& hit, const vec3& dir, const vec2& u, 
     if (hv && (!hr || hv.t < hr.t)) {
         // An object now, where the photo shows what is behind it reflected.
         const vec3 now = radiance_at(hv, ray, rng, 1, false, kGlassSplits, true);
-        const vec3 before = hr ? photographed_radiance(scene_, hr, wi, rng) : scene_.probe().radiance(wi);
+        vec3 before;
+        if (hr) {
+            before = photographed_radiance(scene_, hr, wi, rng);
+        } else {
+            // The probe; in its sun, shared with hidden_sun's samples by MIS.
+            const float sun = scene_.probe_lights().sun_pdf(wi);
+            before = scene_.probe().radiance(wi) * (sun > 0 ? power_heuristic(lobe.pdf(wi), sun) : 1.0f);
+        }
         change += now - before;
     } else if (hr) {
         const DirectSamples direct = DirectSamples::from(rng);
@@ -73,6 +81,19 @@ vec3 CameraGather::gloss_change(const Hit& hit, const vec3& dir, const vec2& u, 
     }
     if (is_finite(change)) dL += weight * change;
     return dL;
+}
+
+vec3 CameraGather::hidden_sun(const Hit& hit, const GlossLobe& lobe, Rng& rng) const {
+    const ProbeLights& lights = scene_.probe_lights();
+    if (!lights.has_sun()) return vec3(0);
+    const ProbeSample ls = lights.sample_sun(vec2(rng.uniform(), rng.uniform()));
+    const float f = ls.pdf > 0 ? lobe.eval_cos(ls.dir) : 0.0f;
+    if (!(f > 0)) return vec3(0);
+    // The photo reflects the sun here unless a real surface hides it; now an object may.
+    const Ray ray{scene_.offset_origin(hit, ls.dir), ls.dir};
+    if (!scene_.intersect_virtual(ray) || scene_.occluded_real(ray)) return vec3(0);
+    const vec3 v = ls.radiance * (f / ls.pdf * power_heuristic(ls.pdf, lobe.pdf(ls.dir)));
+    return is_finite(v) ? v : vec3(0);
 }
 
 vec3 CameraGather::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {

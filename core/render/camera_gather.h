@@ -7,6 +7,8 @@
 
 namespace dp {
 
+class GlossLobe;
+
 /// The photon maps of one pass, gathered with the pass's radius.
 struct PassMaps {
     PhotonMap real;     ///< signed photons on real surfaces
@@ -86,6 +88,10 @@ public:
     /// along one direction from the lobe (`u`) an object's radiance less what it hides there,
     /// or the change of the real surface reflected (docs/real-gloss.md).
     vec3 gloss_change(const Hit& hit, const vec3& dir, const vec2& u, Rng& rng) const;
+    /// The probe's sun that a glossy real surface reflected in the photo and an object now
+    /// hides, by sampling the sun (MIS-weighted against the lobe): the sun is too small and
+    /// bright to be left to the lobe's samples. To be subtracted.
+    vec3 hidden_sun(const Hit& hit, const GlossLobe& lobe, Rng& rng) const;
     /// Radiance leaving a real point towards -dir in the augmented scene: the photo where the
     /// camera sees the point, rho E / pi elsewhere, plus dL.
     vec3 real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const;

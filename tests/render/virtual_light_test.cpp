@@ -191,15 +191,16 @@ Agreement agreement(const Image& out1, const Image& out2, const Image& truth1, c
 struct Truth {
     explicit Truth(bool ball = true) : project(lit_corner(ball)) {}
     explicit Truth(Project p) : project(std::move(p)) {}
+    Truth(Project p, Image sky) : project(std::move(p)), probe(std::move(sky)) {}
     Project project;
     Image probe = dim_sky();
     Image photo = path_traced(project, probe, false, 2048, 11);
     Image t1 = path_traced(project, probe, true, 512, 12), t2 = path_traced(project, probe, true, 512, 13);
 };
 
-Image progressive(const Truth& t, uint64_t seed) {
+Image progressive(const Truth& t, uint64_t seed, int passes = 24) {
     ProgressiveRenderer r(build(t.project, t.photo, t.probe), settings(100000, seed));
-    for (int i = 0; i < 24; ++i) r.render_pass();
+    for (int i = 0; i < passes; ++i) r.render_pass();
     return r.image();
 }
 
@@ -213,12 +214,12 @@ Image standard(const Truth& t, uint64_t seed) {
 }
 
 /// Two progressive renders of `t` (seeds 3 and 4) against its truths: the picture changes by
-/// more than `min_change`, the error is what the two sides' noise explains, the means agree.
-void expect_progressive_agrees(const char* what, const Truth& t, double min_change) {
-    const Agreement a = agreement(progressive(t, 3), progressive(t, 4), t.t1, t.t2, t.photo);
+/// more than `min_change` either way, the error is what the two sides' noise explains, the means agree.
+void expect_progressive_agrees(const char* what, const Truth& t, double min_change, int passes = 24) {
+    const Agreement a = agreement(progressive(t, 3, passes), progressive(t, 4, passes), t.t1, t.t2, t.photo);
     std::printf("%s: error over the noise %.3f, mean difference %.2f sigma, change %.4f\n", what, a.excess,
                 a.mean_sigmas, a.change);
-    EXPECT_GT(a.change, min_change);
+    EXPECT_GT(std::abs(a.change), min_change);
     EXPECT_LT(a.excess, 1.3);
     EXPECT_LT(std::abs(a.mean_sigmas), 4.0);
 }
@@ -296,4 +297,21 @@ TEST(VirtualLights, TheStandardDifferentialRendererDrawsALightsFaceOverThePhoto)
     EXPECT_EQ(at(r.alpha_layer(), px), 1.0f);
     EXPECT_EQ(at(pr.alpha_layer(), px), 1.0f);
     EXPECT_EQ(at(r.alpha_layer(), beside), 0.0f);
+}
+
+TEST(VirtualLights, TheProgressiveRendererAgreesWithThePathTracerWhereABallHidesTheSunsReflection) {
+    // No lamp: a small bright sun low behind the ball, whose reflection in the varnished floor
+    // the ball now hides from the camera. Left to the gloss lobe's samples, a floor pixel
+    // found the sun behind the ball once in many passes and went tens of units negative; and
+    // the ball's underside, lit by the floor, took the floor's photographed glint (the gloss
+    // the camera sees) as what the floor sends it, 4 to 6 units too bright.
+    Project p = lit_corner();
+    p.lights.clear();
+    p.real.pop_back();  // no wall: it would hide the sun
+    p.real[0].gloss = Gloss{0.1f, 0.15f};
+    const Image sky = make_sun_sky_probe(256, 128, glm::normalize(vec3(0.0f, 0.5f, -0.86f)), vec3(3000.0f), 1.5f,
+                                         vec3(0.05f, 0.08f, 0.15f), vec3(0.1f, 0.1f, 0.12f));
+    const Truth t(p, sky);
+    // 96 passes: at 24 the renderer's own noise still hid the bias.
+    expect_progressive_agrees("sun hidden in a glossy floor", t, 0.5, 96);
 }
