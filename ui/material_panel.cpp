@@ -2,7 +2,11 @@
 
 #include <QColorDialog>
 #include <QComboBox>
+#include <QFileDialog>
+#include <QFileInfo>
 #include <QFormLayout>
+#include <QHBoxLayout>
+#include <QToolButton>
 #include <QLabel>
 #include <QPushButton>
 #include <QSlider>
@@ -14,9 +18,17 @@
 #include "number_field.h"
 #include "panel_widgets.h"
 #include "image/image_io.h"
+#include "scene/relink.h"
 #include "stroke_slider.h"
 
 namespace dp::ui {
+
+namespace {
+const char* const kTextureTips[MaterialPanel::kTextureSlots] = {
+    "An image for the colour, mapped by the object's UVs (sRGB images are decoded to linear)",
+    "glTF's metallic-roughness texture: green times the roughness, blue times the metallic; read as data",
+    "A tangent-space normal map (OpenGL's and glTF's convention: +Y towards the image's top); read as data"};
+}  // namespace
 
 MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), doc_(doc) {
     auto* form = new QFormLayout(this);
@@ -51,6 +63,7 @@ MaterialPanel::MaterialPanel(Document* doc, QWidget* parent) : QWidget(parent), 
     tint_->setToolTip(tr("Glass tint: transmittance per crossing; click to pick"));
     form->addRow(tr("Tint"), tint_);
     addPrincipledFields(form);
+    addTextureSlots(form);
 
     connect(kind_, &QComboBox::currentIndexChanged, this, [this](int k) {
         const int sel = doc_->selected();
@@ -94,7 +107,8 @@ void MaterialPanel::addPrincipledFields(QFormLayout* form) {
         {"IOR", "Index of refraction of the dielectric, 1.01 to 5", kMinPrincipledIor, kMaxPrincipledIor},
         {"Specular", "Strength of the dielectric's reflection, 0 to 1", 0, 1},
         {"Transmission", "Share of the base that lets light through (rough glass), 0 to 1", 0, 1},
-        {"Emission", "Emitted radiance (grey), linear; seen by the camera, it lights no real surface", 0, 1e6},
+        {"Emission", "Emitted radiance (grey), linear; it lights the scene like a lamp", 0, 1e6},
+        {"Normal strength", "How far the normal map tilts the surface: its X and Y times this, 0 to 10", 0, 10},
     };
     for (int i = 0; i < kPrincipledFields; ++i) {
         auto* f = new NumberField;
@@ -123,9 +137,62 @@ void MaterialPanel::principledEdited(PrincipledField field, double value) {
         case Specular: m.specular = v; break;
         case Transmission: m.transmission = v; break;
         case Emission: m.emission = vec3(v); break;
+        case NormalStrength: m.normal_scale = v; break;
         case kPrincipledFields: return;
     }
     if (!doc_->tryEdit(tr("Adjust material"), p)) refresh();
+}
+
+void MaterialPanel::addTextureSlots(QFormLayout* form) {
+    static const char* const labels[kTextureSlots] = {"Colour map", "Metal/rough map", "Normal map"};
+    static const char* const names[kTextureSlots] = {"BaseColour", "MetallicRoughness", "Normal"};
+    for (int i = 0; i < kTextureSlots; ++i) {
+        auto* row = new QWidget;
+        auto* layout = new QHBoxLayout(row);
+        layout->setContentsMargins(0, 0, 0, 0);
+        auto* choose = new QPushButton;
+        choose->setObjectName(QString("textureSlot%1").arg(names[i]));
+        choose->setToolTip(tr(kTextureTips[i]));
+        auto* clear = new QToolButton;
+        clear->setObjectName(QString("textureClear%1").arg(names[i]));
+        clear->setText(QString::fromUtf8("\u2715"));
+        clear->setToolTip(tr("No texture"));
+        layout->addWidget(choose, 1);
+        layout->addWidget(clear);
+        form->addRow(tr(labels[i]), row);
+        textureButtons_[i] = choose;
+        textureClears_[i] = clear;
+        textureRows_[i] = row;
+        const auto slot = TextureSlot(i);
+        connect(choose, &QPushButton::clicked, this, [this, slot] {
+            const QString dir = QString::fromStdString(doc_->project().base_dir.string());
+            const QString f = QFileDialog::getOpenFileName(
+                this, tr("Choose a texture"), dir,
+                tr("Images (*.png *.jpg *.jpeg *.exr *.hdr *.tif *.tiff *.bmp)"));
+            if (!f.isEmpty()) setTexture(slot, f);
+        });
+        connect(clear, &QToolButton::clicked, this, [this, slot] { setTexture(slot, QString()); });
+    }
+}
+
+void MaterialPanel::setTexture(TextureSlot slot, const QString& path) {
+    const int sel = doc_->selected();
+    if (refreshing_ || sel < 0) return;
+    Project p = doc_->project();
+    Material& m = p.objects[size_t(sel)].material;
+    // Stored as projects store paths: relative inside the project's folder.
+    const std::string stored =
+        path.isEmpty() ? std::string() : path_for_project(p.base_dir, QFileInfo(path).absoluteFilePath().toStdString());
+    switch (slot) {
+        case BaseColourMap:
+            m.albedo.kind = stored.empty() ? Albedo::Kind::Constant : Albedo::Kind::Texture;
+            m.albedo.texture_path = stored;
+            break;
+        case MetallicRoughnessMap: m.principled.metallic_roughness_texture = stored; break;
+        case NormalMap: m.principled.normal_texture = stored; break;
+        case kTextureSlots: return;
+    }
+    doc_->edit(stored.empty() ? tr("Clear texture") : tr("Choose texture"), p);
 }
 
 QSlider* MaterialPanel::addSlider(QFormLayout* form, const QString& label, const QString& tip,
@@ -189,6 +256,7 @@ void MaterialPanel::refresh() {
     form_->setRowVisible(source_, false);
     form_->setRowVisible(sourceNote_, false);
     for (NumberField* f : principled_) form_->setRowVisible(f, false);
+    for (QWidget* row : textureRows_) form_->setRowVisible(row, false);
     if (sel >= 0) {
         const VirtualObject& o = doc_->project().objects[size_t(sel)];
         const Material& m = o.material;
@@ -206,13 +274,24 @@ void MaterialPanel::refresh() {
         iorValue_->setText(QString::number(ior_->value() / 100.0, 'f', 2));
         const bool principled = m.kind == Material::Kind::Principled;
         const PrincipledMaterial& pm = m.principled;
-        const float values[kPrincipledFields] = {pm.metallic,     pm.roughness,   pm.ior,
-                                                 pm.specular,     pm.transmission, luminance(pm.emission)};
+        const float values[kPrincipledFields] = {pm.metallic, pm.roughness,    pm.ior,
+                                                 pm.specular, pm.transmission, luminance(pm.emission),
+                                                 pm.normal_scale};
         for (int i = 0; i < kPrincipledFields; ++i) {
             principled_[i]->setValue(double(values[i]));
             form_->setRowVisible(principled_[i], principled);
         }
         const bool diffuse = m.kind == Material::Kind::Diffuse;
+        const std::string paths[kTextureSlots] = {
+            m.albedo.kind == Albedo::Kind::Texture ? m.albedo.texture_path : std::string(),
+            pm.metallic_roughness_texture, pm.normal_texture};
+        for (int i = 0; i < kTextureSlots; ++i) {
+            const QString path = QString::fromStdString(paths[i]);
+            textureButtons_[i]->setText(path.isEmpty() ? tr("Choose...") : QFileInfo(path).fileName());
+            textureButtons_[i]->setToolTip(tr(kTextureTips[i]) + (path.isEmpty() ? QString() : "\n" + path));
+            textureClears_[i]->setEnabled(!path.isEmpty());
+            form_->setRowVisible(textureRows_[i], i == BaseColourMap ? diffuse || principled : principled);
+        }
         colour_->setEnabled(diffuse || principled);
         reflectance_->setEnabled(m.kind == Material::Kind::Mirror);
         ior_->setEnabled(m.kind == Material::Kind::Glass);

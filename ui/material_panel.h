@@ -6,6 +6,7 @@ class QFormLayout;
 class QLabel;
 class QPushButton;
 class QSlider;
+class QToolButton;
 
 namespace dp {
 struct PrincipledMaterial;
@@ -33,8 +34,15 @@ public:
     /// as one undo step, and the box goes back to its prompt.
     QComboBox* presetBox() const { return preset_; }
     /// The principled material's fields, in PrincipledField order.
-    enum PrincipledField { Metallic, Roughness, Ior, Specular, Transmission, Emission, kPrincipledFields };
+    enum PrincipledField { Metallic, Roughness, Ior, Specular, Transmission, Emission, NormalStrength,
+                           kPrincipledFields };
     NumberField* principledField(PrincipledField f) const { return principled_[f]; }
+    /// The texture slots: the base colour's (diffuse and principled), the principled material's
+    /// metallic-roughness texture and normal map. A slot's button names its image and opens a
+    /// file dialog to choose one; its clear button empties the slot. Each is one undo step.
+    enum TextureSlot { BaseColourMap, MetallicRoughnessMap, NormalMap, kTextureSlots };
+    QPushButton* textureButton(TextureSlot s) const { return textureButtons_[s]; }
+    QToolButton* textureClear(TextureSlot s) const { return textureClears_[s]; }
     QLabel* sourceNote() const { return sourceNote_; }
     /// Sets the diffuse colour as the colour dialog would (sRGB).
     void setDiffuseColour(const QColor& colour);
@@ -50,6 +58,9 @@ private:
     void sliderMoved(QSlider* moved);
     void pickColour(bool tint);
     void addPrincipledFields(QFormLayout* form);
+    void addTextureSlots(QFormLayout* form);
+    /// Sets slot `s` of the selected object's material to the image at `path` ("" clears it).
+    void setTexture(TextureSlot s, const QString& path);
     /// A typed principled value: through Document::tryEdit, as every typed value is.
     void principledEdited(PrincipledField f, double value);
 
@@ -61,6 +72,9 @@ private:
     QSlider *reflectance_, *ior_;
     QLabel *reflectanceValue_, *iorValue_;
     NumberField* principled_[kPrincipledFields] = {};
+    QPushButton* textureButtons_[kTextureSlots] = {};
+    QToolButton* textureClears_[kTextureSlots] = {};
+    QWidget* textureRows_[kTextureSlots] = {};
     int strokeKey_ = -1;
     bool refreshing_ = false;
 };

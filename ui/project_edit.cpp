@@ -66,16 +66,7 @@ Project with_absolute_paths(const Project& p) {
     auto abs = [&](std::string& path) {
         if (!path.empty()) path = p.resolve(path).string();
     };
-    abs(out.photo.path);
-    abs(out.probe.path);
-    for (RealProxy& r : out.real) {
-        abs(r.shape.mesh_path);
-        abs(r.albedo.texture_path);
-    }
-    for (VirtualObject& o : out.objects) {
-        abs(o.shape.mesh_path);
-        abs(o.material.albedo.texture_path);
-    }
+    for_each_input(out, [&](const InputRef&, std::string& path) { abs(path); });
     return out;
 }
 

@@ -1,5 +1,6 @@
 // `diffphoton export blender`: a project as one self-contained Python script that builds the
 // Blender Cycles scene (shadow catchers, objects, probe, camera, compositor) for an artist.
+#include <cctype>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -49,10 +50,12 @@ Project hand_off_project(const std::string& file, const LoadedScene& loaded) {
     auto mesh_path = [&](Shape& s, const std::string& field) {
         if (s.kind != Shape::Kind::Mesh) return;
         const std::string ext = fs::path(s.mesh_path).extension().string();
-        if (ext != ".obj" && ext != ".OBJ" && ext != ".ply" && ext != ".PLY")
+        std::string lower = ext;
+        for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
+        if (lower != ".obj" && lower != ".ply" && lower != ".gltf" && lower != ".glb")
             throw InputError(file, field,
                              "'" + s.mesh_path +
-                                 "': Blender's scene is built from OBJ or PLY meshes only");
+                                 "': Blender's scene is built from OBJ, PLY and glTF meshes only");
         s.mesh_path = absolute_path(p, s.mesh_path);
     };
     auto texture_path = [&](Albedo& a) {
@@ -70,6 +73,15 @@ Project hand_off_project(const std::string& file, const LoadedScene& loaded) {
     for (size_t i = 0; i < p.objects.size(); ++i) {
         mesh_path(p.objects[i].shape, "objects[" + std::to_string(i) + "].shape.path");
         texture_path(p.objects[i].material.albedo);
+        PrincipledMaterial& m = p.objects[i].material.principled;
+        for (std::string* t : {&m.metallic_roughness_texture, &m.normal_texture})
+            if (!t->empty()) *t = absolute_path(p, *t);
+        // Blender's tangents follow a UV map as stored; a built-in shape's lookup is flipped or
+        // computed (bench/cycles/dp_cycles.py), so its normal map would tilt the wrong way.
+        if (p.objects[i].material.kind == Material::Kind::Principled && !m.normal_texture.empty() &&
+            p.objects[i].shape.kind != Shape::Kind::Mesh)
+            throw InputError(file, "objects[" + std::to_string(i) + "].material.normal_texture",
+                             "a normal map is exported on meshes from files only, not on built-in shapes");
     }
     p.photo.path = absolute_path(p, p.photo.path);
     p.probe.path = absolute_path(p, p.probe.path);

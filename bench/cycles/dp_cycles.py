@@ -602,13 +602,44 @@ def node_material(name):
     return mat, mat.node_tree.nodes, mat.node_tree.links, out
 
 
+def load_data_image(path, file, field, name):
+    """A Blender image of a data texture (metallic-roughness, normal map): its values as stored,
+    never decoded from sRGB (glTF's rule, and ours)."""
+    if not os.path.isfile(path):
+        raise ConversionError(file, field, f"file not found: {path}")
+    try:
+        img = bpy.data.images.load(path, check_existing=False)
+    except RuntimeError as e:
+        raise ConversionError(file, field, f"cannot read {path}: {e}")
+    if img.size[0] == 0 or img.size[1] == 0:
+        raise ConversionError(file, field, f"cannot read {path} (unsupported or empty image)")
+    img.name = name
+    img.colorspace_settings.name = "Non-Color"
+    return img
+
+
 def texture_albedo(nodes, links, tex_path, sphere_frame, file, field, file_uvs=False):
-    """A node giving a texture's albedo clamped to [0, 0.98], looked up as ours looks it up:
-    by the mesh's UVs, or on an exact sphere (`sphere_frame`: the scene's blender_from_ours) by
-    the direction from its centre. `file_uvs`: the UVs came from a mesh file, whose v ours
-    flips on load, so Blender's own lookup of the imported UVs already agrees."""
+    """A node giving a texture's albedo clamped to [0, 0.98], looked up as texture_node does."""
+    tex = texture_node(nodes, links, load_linear_image(tex_path, file, field, os.path.basename(tex_path)),
+                       sphere_frame, file_uvs)
+    lo = nodes.new("ShaderNodeVectorMath")
+    lo.operation = "MAXIMUM"
+    lo.inputs[1].default_value = (0.0, 0.0, 0.0)
+    hi = nodes.new("ShaderNodeVectorMath")
+    hi.operation = "MINIMUM"
+    hi.inputs[1].default_value = (MAX_ALBEDO,) * 3
+    links.new(tex.outputs["Color"], lo.inputs[0])
+    links.new(lo.outputs["Vector"], hi.inputs[0])
+    return hi.outputs["Vector"]
+
+
+def texture_node(nodes, links, image, sphere_frame, file_uvs=False):
+    """An image texture node of `image` looked up as ours looks it up: by the mesh's UVs, or on
+    an exact sphere (`sphere_frame`: the scene's blender_from_ours) by the direction from its
+    centre. `file_uvs`: the UVs came from a mesh file, whose v ours flips on load, so Blender's
+    own lookup of the imported UVs already agrees."""
     tex = nodes.new("ShaderNodeTexImage")
-    tex.image = load_linear_image(tex_path, file, field, os.path.basename(tex_path))
+    tex.image = image
     tex.interpolation = "Linear"  # ours: bilinear between texel centres, clamped at the edges
     tex.extension = "EXTEND"
     if sphere_frame is not None:
@@ -667,15 +698,7 @@ def texture_albedo(nodes, links, tex_path, sphere_frame, file, field, file_uvs=F
         flip.inputs["Scale"].default_value = (1.0, -1.0, 1.0)
         links.new(uv.outputs["UV"], flip.inputs["Vector"])
         links.new(flip.outputs["Vector"], tex.inputs["Vector"])
-    lo = nodes.new("ShaderNodeVectorMath")
-    lo.operation = "MAXIMUM"
-    lo.inputs[1].default_value = (0.0, 0.0, 0.0)
-    hi = nodes.new("ShaderNodeVectorMath")
-    hi.operation = "MINIMUM"
-    hi.inputs[1].default_value = (MAX_ALBEDO,) * 3
-    links.new(tex.outputs["Color"], lo.inputs[0])
-    links.new(lo.outputs["Vector"], hi.inputs[0])
-    return hi.outputs["Vector"]
+    return tex
 
 
 def diffuse_material(name, albedo, base_dir, sphere_frame, file, field, file_uvs=False):
@@ -755,6 +778,35 @@ def principled_material(name, m, base_dir, sphere_frame, file, field, file_uvs=F
     specular = float(m.get("specular", 1.0))
     bsdf.inputs["Metallic"].default_value = float(m.get("metallic", 0.0))
     bsdf.inputs["Roughness"].default_value = float(m.get("roughness", 0.5))
+    if m.get("metallic_roughness_texture"):
+        # glTF's rule, as ours: green times the roughness, blue times the metallic.
+        path = resolve(base_dir, m["metallic_roughness_texture"])
+        image = load_data_image(path, file, field + ".metallic_roughness_texture", os.path.basename(path))
+        tex = texture_node(nodes, links, image, sphere_frame, file_uvs)
+        sep = nodes.new("ShaderNodeSeparateColor")
+        links.new(tex.outputs["Color"], sep.inputs["Color"])
+        for channel, key, default in (("Green", "Roughness", 0.5), ("Blue", "Metallic", 0.0)):
+            times = nodes.new("ShaderNodeMath")
+            times.operation = "MULTIPLY"
+            times.inputs[1].default_value = float(m.get(key.lower(), default))
+            links.new(sep.outputs[channel], times.inputs[0])
+            links.new(times.outputs["Value"], bsdf.inputs[key])
+    if m.get("normal_texture"):
+        # A tangent-space map by the UVs' tangents (OpenGL's +Y, glTF's and ours). Blender's
+        # Strength blends towards the map where glTF scales its X and Y: the same at 0 and 1.
+        if not file_uvs:
+            # Built-in shapes get their lookup flipped or computed (texture_node); Blender's
+            # tangents follow the UV map as stored, so +Y would not be the texture's top.
+            raise ConversionError(file, field + ".normal_texture",
+                                  "a normal map is converted on meshes from files only, not on built-in shapes")
+        path = resolve(base_dir, m["normal_texture"])
+        image = load_data_image(path, file, field + ".normal_texture", os.path.basename(path))
+        tex = texture_node(nodes, links, image, sphere_frame, file_uvs)
+        normal_map = nodes.new("ShaderNodeNormalMap")
+        normal_map.space = "TANGENT"
+        normal_map.inputs["Strength"].default_value = float(m.get("normal_scale", 1.0))
+        links.new(tex.outputs["Color"], normal_map.inputs["Color"])
+        links.new(normal_map.outputs["Normal"], bsdf.inputs["Normal"])
     bsdf.inputs["IOR"].default_value = ior
     if "Specular IOR Level" in bsdf.inputs:
         bsdf.inputs["Specular IOR Level"].default_value = 0.5 * specular

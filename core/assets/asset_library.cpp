@@ -307,6 +307,28 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
               [](const RealProxy& r) -> const Albedo& { return r.albedo; });
     load_list(project.objects, "objects", a.object_meshes, a.object_textures,
               [](const VirtualObject& o) -> const Albedo& { return o.material.albedo; });
+    a.object_metallic_roughness.resize(project.objects.size());
+    a.object_normal_maps.resize(project.objects.size());
+    for (size_t i = 0; i < project.objects.size(); ++i) {
+        const Material& m = project.objects[i].material;
+        if (m.kind != Material::Kind::Principled) continue;
+        // Data, not colour: read as stored, whatever the file's tag says (glTF's rule).
+        auto data = [&](const std::string& written, const char* key, Image& out) {
+            if (written.empty()) return;
+            const fs::path path = project.resolve(written);
+            const std::string field = indexed("objects", i, (std::string("material.") + key).c_str());
+            const std::string cache_key = "texture|" + path.string() + "|linear";
+            out = *cached<Image>(cache_key, path, [&](Entry& e) {
+                ImageLoadReport report;
+                ImageLoadOptions linear;
+                linear.colorspace = "linear";
+                return load_noted(path, field, report, e.warnings, e.non_finite, linear);
+            });
+            report(cache_key, a);
+        };
+        data(m.principled.metallic_roughness_texture, "metallic_roughness_texture", a.object_metallic_roughness[i]);
+        data(m.principled.normal_texture, "normal_texture", a.object_normal_maps[i]);
+    }
     a.object_file_materials.resize(project.objects.size());
     for (size_t i = 0; i < project.objects.size(); ++i) {
         const VirtualObject& o = project.objects[i];

@@ -60,7 +60,7 @@ PlacedShape placed(const Surface& s, bool present) {
     p.radius = s.sphere_radius;
     p.mesh = s.mesh;
     p.present = present;
-    p.needs_uv = s.texture != nullptr;
+    p.needs_uv = s.texture != nullptr || s.metallic_roughness != nullptr || s.normal_map != nullptr;
     return p;
 }
 
@@ -205,9 +205,35 @@ vec3 Surface::reflectance_at(const vec2& uv) const {
     return glm::clamp(rho, vec3(0.0f), vec3(0.98f));
 }
 
+namespace {
+
+/// The bent normal from a normal-map texel `c` (in [0, 1]^3) in the frame of normal `n` (the
+/// map's +Z), the direction of growing u and that towards the image's top; `n` where they give
+/// no frame.
+vec3 bend(const vec3& n, const vec3& dpdu, const vec3& towards_top, const vec3& c, float scale) {
+    const vec3 t = dpdu - n * glm::dot(n, dpdu);
+    const float tl = glm::length(t);
+    if (!(tl > 0) || !std::isfinite(tl)) return n;
+    const vec3 tangent = t / tl;
+    vec3 bitangent = glm::cross(n, tangent);
+    if (glm::dot(bitangent, towards_top) < 0) bitangent = -bitangent;
+    const vec3 m = c * 2.0f - 1.0f;
+    const vec3 bent = tangent * (m.x * scale) + bitangent * (m.y * scale) + n * std::max(m.z, 0.0f);
+    const float len = glm::length(bent);
+    return len > 0 && std::isfinite(len) ? bent / len : n;
+}
+
+}  // namespace
+
 vec3 normal_mapped(const Surface& s, const ShapeHit& hit) {
-    if (!s.normal_map || s.normal_map->empty() || !s.mesh || hit.prim < 0 ||
-        size_t(hit.prim) >= s.mesh->triangles.size() || s.mesh->uvs.empty())
+    if (!s.normal_map || s.normal_map->empty()) return hit.ns;
+    const vec3 texel = texture_at(*s.normal_map, hit.uv);
+    if (s.analytic_sphere) {
+        // sphere_uv: u grows with atan2(n.x, -n.z), v with the polar angle from +y.
+        const vec3 n = hit.ng;
+        return bend(n, vec3(-n.z, 0.0f, n.x), vec3(0, 1, 0), texel, s.normal_scale);
+    }
+    if (!s.mesh || hit.prim < 0 || size_t(hit.prim) >= s.mesh->triangles.size() || s.mesh->uvs.empty())
         return hit.ns;
     const TriangleMesh& m = *s.mesh;
     const glm::uvec3& tri = m.triangles[size_t(hit.prim)];
@@ -225,18 +251,8 @@ vec3 normal_mapped(const Surface& s, const ShapeHit& hit) {
         turned = glm::dot(file_n, hit.ns) < 0;
         if (turned) n = -n;
     }
-    const vec3 t = dpdu - n * glm::dot(n, dpdu);
-    const float tl = glm::length(t);
-    if (!(tl > 0) || !std::isfinite(tl)) return hit.ns;
-    const vec3 tangent = t / tl;
     // +Y of the map points to the top of the image: our v grows downwards (mesh.h).
-    vec3 bitangent = glm::cross(n, tangent);
-    if (glm::dot(bitangent, -dpdv) < 0) bitangent = -bitangent;
-    const vec3 c = texture_at(*s.normal_map, hit.uv) * 2.0f - 1.0f;
-    vec3 bent = tangent * (c.x * s.normal_scale) + bitangent * (c.y * s.normal_scale) + n * std::max(c.z, 0.0f);
-    const float len = glm::length(bent);
-    if (!(len > 0) || !std::isfinite(len)) return hit.ns;
-    bent /= len;
+    const vec3 bent = bend(n, dpdu, -dpdv, texel, s.normal_scale);
     return turned ? -bent : bent;
 }
 
@@ -279,6 +295,11 @@ void RenderScene::place_surfaces() {
         s.albedo = o.material.albedo.rgb;
         if (i < assets_->object_textures.size() && !assets_->object_textures[i].empty())
             s.texture = &assets_->object_textures[i];
+        if (i < assets_->object_metallic_roughness.size() && !assets_->object_metallic_roughness[i].empty())
+            s.metallic_roughness = &assets_->object_metallic_roughness[i];
+        if (i < assets_->object_normal_maps.size() && !assets_->object_normal_maps[i].empty())
+            s.normal_map = &assets_->object_normal_maps[i];
+        s.normal_scale = o.material.principled.normal_scale;
         const TriangleMesh* loaded = i < assets_->object_meshes.size() ? &assets_->object_meshes[i] : nullptr;
         place_shape(o.shape, o.transform, loaded, s, (*virtual_world_meshes_)[i]);
         // A mesh drawn with its file's materials: a part per material, found per triangle.
@@ -373,6 +394,7 @@ std::shared_ptr<const RenderScene> RenderScene::with_materials(const Project& pr
         v->project_.objects[i].material = project.objects[i].material;
         v->virtual_surfaces_[i].material = project.objects[i].material;
         v->virtual_surfaces_[i].albedo = project.objects[i].material.albedo.rgb;
+        v->virtual_surfaces_[i].normal_scale = project.objects[i].material.principled.normal_scale;
         // Parts keep their file materials: only the triangles without one take the project's.
     }
     v->has_transmissive_ = any_transmits(v->virtual_surfaces_);

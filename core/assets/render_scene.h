@@ -36,6 +36,9 @@ struct SceneAssets {
     std::vector<TriangleMesh> object_meshes;  ///< one per project.objects entry (empty for spheres)
     std::vector<Image> real_textures;         ///< one per real entry (empty unless Texture)
     std::vector<Image> object_textures;       ///< one per object (empty unless Texture)
+    /// One per object: its principled material's metallic-roughness texture and normal map,
+    /// decoded as data (empty for none).
+    std::vector<Image> object_metallic_roughness, object_normal_maps;
     /// One per object: its mesh file's materials, by the indices of the mesh's
     /// triangle_materials, where its material_source is "file" (empty otherwise).
     std::vector<std::vector<FileMaterialAsset>> object_file_materials;

@@ -30,6 +30,10 @@ void RenderScene::sanitize_images() {
         clean(assets_->real_textures[i], indexed("real", i, "albedo.texture"));
     for (size_t i = 0; i < assets_->object_textures.size(); ++i)
         clean(assets_->object_textures[i], indexed("objects", i, "albedo.texture"));
+    for (size_t i = 0; i < assets_->object_metallic_roughness.size(); ++i)
+        clean(assets_->object_metallic_roughness[i], indexed("objects", i, "material.metallic_roughness_texture"));
+    for (size_t i = 0; i < assets_->object_normal_maps.size(); ++i)
+        clean(assets_->object_normal_maps[i], indexed("objects", i, "material.normal_texture"));
     for (size_t i = 0; i < assets_->object_file_materials.size(); ++i)
         for (FileMaterialAsset& f : assets_->object_file_materials[i]) {
             const std::string what = indexed("objects", i, "shape.path") + " material '" + f.name + "'";

@@ -95,6 +95,12 @@ void for_each_input(Project& project,
         if (o.material.albedo.kind == Albedo::Kind::Texture)
             item(at + ".material.albedo.texture", "texture of " + quoted(o.name),
                  o.material.albedo.texture_path);
+        if (o.material.kind == Material::Kind::Principled) {
+            PrincipledMaterial& m = o.material.principled;
+            item(at + ".material.metallic_roughness_texture", "metallic-roughness texture of " + quoted(o.name),
+                 m.metallic_roughness_texture);
+            item(at + ".material.normal_texture", "normal map of " + quoted(o.name), m.normal_texture);
+        }
     }
 }
 

@@ -74,6 +74,11 @@ struct PrincipledMaterial {
     float specular = 1.0f;      ///< [0, 1]: KHR_materials_specular's factor
     float transmission = 0.0f;  ///< [0, 1]: share of the base that is rough transmission
     vec3 emission{0.0f};        ///< emitted radiance (linear RGB, >= 0)
+    /// glTF's metallicRoughnessTexture: green scales roughness, blue metallic ("" for none).
+    std::string metallic_roughness_texture;
+    /// A tangent-space normal map in glTF's convention ("" for none), X and Y times normal_scale.
+    std::string normal_texture;
+    float normal_scale = 1.0f;  ///< [0, 10]
     bool operator==(const PrincipledMaterial&) const = default;
 };
 
@@ -278,7 +283,8 @@ struct InputRef {
 };
 
 /// Calls `visit` with every non-empty path `project` reads a file from (the photo, the probe,
-/// the meshes of mesh shapes and the textures of textured albedos), in file order, as written:
+/// the meshes of mesh shapes, the textures of textured albedos and of principled materials), in
+/// file order, as written:
 /// `visit` may change it (a file relinked).
 void for_each_input(Project& project,
                     const std::function<void(const InputRef&, std::string& path)>& visit);

@@ -26,7 +26,13 @@ Change classify(const Project& a, const Project& b) {
         if (!same_geometry(a.objects[i], b.objects[i])) return Change::Scene;
         // Albedo textures are images loaded with the assets: a texture edit needs a rebuild.
         const Material &ma = a.objects[i].material, &mb = b.objects[i].material;
-        if (ma.albedo.kind != mb.albedo.kind || ma.albedo.texture_path != mb.albedo.texture_path)
+        if (ma.albedo.kind != mb.albedo.kind || ma.albedo.texture_path != mb.albedo.texture_path ||
+            ma.principled.metallic_roughness_texture != mb.principled.metallic_roughness_texture ||
+            ma.principled.normal_texture != mb.principled.normal_texture)
+            return Change::Scene;
+        // A principled material's textures are loaded only while it is principled.
+        const bool textured = !ma.principled.metallic_roughness_texture.empty() || !ma.principled.normal_texture.empty();
+        if (textured && (ma.kind == Material::Kind::Principled) != (mb.kind == Material::Kind::Principled))
             return Change::Scene;
         material |= !(ma == mb);
     }

@@ -116,6 +116,11 @@ void parse_principled(const JsonReader& r, const json& j, const std::string& pat
     unit("transmission", p.transmission);
     if (auto* v = r.optional(j, "ior"))
         p.ior = bounded(r, *v, json_join(path, "ior"), kMinPrincipledIor, kMaxPrincipledIor);
+    if (auto* v = r.optional(j, "metallic_roughness_texture"))
+        p.metallic_roughness_texture = r.string(*v, json_join(path, "metallic_roughness_texture"));
+    if (auto* v = r.optional(j, "normal_texture")) p.normal_texture = r.string(*v, json_join(path, "normal_texture"));
+    if (auto* v = r.optional(j, "normal_scale"))
+        p.normal_scale = bounded(r, *v, json_join(path, "normal_scale"), 0.0f, 10.0f);
     if (auto* v = r.optional(j, "emission")) {
         const std::string e = json_join(path, "emission");
         p.emission = r.vector3(*v, e);
@@ -157,7 +162,8 @@ Material parse_material(const JsonReader& r, const json& j, const std::string& p
             break;
         case Material::Kind::Principled:
             r.object(j, path,
-                     {"type", "base_colour", "metallic", "roughness", "ior", "specular", "transmission", "emission"},
+                     {"type", "base_colour", "metallic", "roughness", "ior", "specular", "transmission", "emission",
+                      "metallic_roughness_texture", "normal_texture", "normal_scale"},
                      ctx);
             parse_principled(r, j, path, m);
             break;
@@ -436,10 +442,15 @@ J write_material(const Material& m) {
             return J{{"type", "glass"}, {"ior", num(m.ior)}, {"tint", vec<J>(m.tint)}};
         case Material::Kind::Principled: {
             const PrincipledMaterial& p = m.principled;
-            return J{{"type", "principled"},           {"base_colour", write_albedo<J>(m.albedo)},
-                     {"metallic", num(p.metallic)},    {"roughness", num(p.roughness)},
-                     {"ior", num(p.ior)},              {"specular", num(p.specular)},
-                     {"transmission", num(p.transmission)}, {"emission", vec<J>(p.emission)}};
+            J out{{"type", "principled"},           {"base_colour", write_albedo<J>(m.albedo)},
+                  {"metallic", num(p.metallic)},    {"roughness", num(p.roughness)},
+                  {"ior", num(p.ior)},              {"specular", num(p.specular)},
+                  {"transmission", num(p.transmission)}, {"emission", vec<J>(p.emission)}};
+            // Written only where used, so that projects without them read as before.
+            if (!p.metallic_roughness_texture.empty()) out["metallic_roughness_texture"] = p.metallic_roughness_texture;
+            if (!p.normal_texture.empty()) out["normal_texture"] = p.normal_texture;
+            if (p.normal_scale != 1.0f) out["normal_scale"] = num(p.normal_scale);
+            return out;
         }
     }
     return J();

@@ -252,4 +252,37 @@ print("principled_ok")
 PY
 run_blender principled.blend --python check_principled.py
 grep -q principled_ok blender.txt || fail "the Principled BSDF does not carry the project's numbers"
+
+# Its metallic-roughness texture: a Non-Color image whose green and blue multiply the
+# roughness and the metallic. A normal map on a built-in sphere is refused, naming the field.
+run make-test-image mr.png --size 8 8 --value 0 0.5 1
+sed 's/"emission": \[0, 1, 2\]}/"emission": [0, 1, 2], "metallic_roughness_texture": "mr.png"}/' principled.json >textured.json
+grep -q metallic_roughness_texture textured.json || fail "the textured project was not written"
+run export blender textured.json -o textured.py --blend "$PWD/textured.blend"
+expect_rc 0 "export blender textured.json"
+run_blender --python textured.py
+cat >check_textured.py <<'PY'
+import bpy
+trees = [m.node_tree for m in bpy.data.materials if m.node_tree]
+tree = next(t for t in trees if any(n.type == "BSDF_PRINCIPLED" for n in t.nodes))
+bsdf = next(n for n in tree.nodes if n.type == "BSDF_PRINCIPLED")
+images = [n.image for n in tree.nodes if n.type == "TEX_IMAGE"]
+assert any(i.name == "mr.png" and i.colorspace_settings.name == "Non-Color" for i in images), [(i.name, i.colorspace_settings.name) for i in images]
+def factor_into(name):
+    link = next(l for l in tree.links if l.to_socket == bsdf.inputs[name])
+    times = link.from_node
+    assert times.type == "MATH" and times.operation == "MULTIPLY", times.type
+    channel = next(l for l in tree.links if l.to_socket == times.inputs[0]).from_socket.name
+    return channel, times.inputs[1].default_value
+rough, metal = factor_into("Roughness"), factor_into("Metallic")
+assert rough[0] == "Green" and abs(rough[1] - 0.3) < 1e-6, rough
+assert metal[0] == "Blue" and abs(metal[1] - 1.0) < 1e-6, metal
+print("textured_ok")
+PY
+run_blender textured.blend --python check_textured.py
+grep -q textured_ok blender.txt || fail "the metallic-roughness texture is not wired into the Principled BSDF"
+sed 's/"emission": \[0, 1, 2\]}/"emission": [0, 1, 2], "normal_texture": "mr.png"}/' principled.json >normal.json
+run export blender normal.json -o normal.py
+expect_rc 2 "export blender normal.json (a normal map on a sphere)"
+expect_stderr "objects[0].material.normal_texture" "the refusal of a normal map on a sphere"
 echo "ok"

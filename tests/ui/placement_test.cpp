@@ -9,6 +9,10 @@
 #include <QComboBox>
 #include <QCursor>
 #include <QFile>
+#include <QFileDialog>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QTimer>
 #include <QLabel>
 #include <QListWidget>
 #include <QStatusBar>
@@ -47,6 +51,7 @@ private Q_SLOTS:
     void anImportedMeshWithMaterialsIsDrawnWithThemAndThePanelSaysSo();
     void thePanelSetsAPrincipledMaterialField();
     void aPresetPickedByKeyTurnsTheBallToFrostedGlassOnScreenAndUndoTakesItBack();
+    void aNormalMapChosenInItsSlotReshadesTheBallAndItsClearButtonTakesItAway();
 
 private:
     void press(int key, Qt::KeyboardModifiers modifiers = {});
@@ -468,6 +473,60 @@ void PlacementTest::aPresetPickedByKeyTurnsTheBallToFrostedGlassOnScreenAndUndoT
     const double restored = test::mean_abs_diff(before, undone, objects);
     std::printf("objects' pixels: %.4f changed by the preset, %.4f apart after undo\n", changed, restored);
     QVERIFY2(changed > 0.01 && changed > 4 * restored, qPrintable(QString("%1 / %2").arg(changed).arg(restored)));
+}
+
+void PlacementTest::aNormalMapChosenInItsSlotReshadesTheBallAndItsClearButtonTakesItAway() {
+    w_->action("addSphere")->trigger();
+    const int ball = int(w_->document()->project().objects.size()) - 1;
+    MaterialPanel* panel = w_->materialPanel();
+    QPushButton* normalSlot = panel->textureButton(MaterialPanel::NormalMap);
+    QVERIFY(!normalSlot->isVisibleTo(panel));  // a diffuse ball: no normal map
+    QVERIFY(panel->textureButton(MaterialPanel::BaseColourMap)->isVisibleTo(panel));
+    panel->kindBox()->setCurrentIndex(int(Material::Kind::Principled));
+    QVERIFY(normalSlot->isVisibleTo(panel));
+    auto shown = [this](const QString& name) {
+        const QString path = dir_->filePath(name);
+        if (!test::wait_refined(*w_) || !test::export_and_wait(*w_, path)) return Image();
+        return load_exr_layer(path.toStdString(), "");
+    };
+    const Image plain = shown("plain.exr");
+    QVERIFY(plain.width() > 0);
+    const Image alpha = load_exr_layer(dir_->filePath("plain.exr").toStdString(), "alpha");
+    std::vector<uint8_t> objects(alpha.size());
+    for (size_t i = 0; i < alpha.size(); ++i) objects[i] = alpha[i].x > 0.5f;
+
+    // A map tilting every normal 45 degrees towards +X of the texture, chosen in the dialog.
+    const float c = 0.5f + 0.5f * std::sqrt(0.5f);
+    const Image tilt(4, 4, vec3(c, 0.5f, c));
+    save_exr(dir_->filePath("tilt.exr").toStdString(), {{"", &tilt}});
+    QTimer::singleShot(300, this, [this] {
+        auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+        if (!dialog) return;
+        QLineEdit* name = dialog->findChild<QLineEdit*>("fileNameEdit");
+        if (!name) return;
+        name->setText(dir_->filePath("tilt.exr"));
+        QTest::keyClick(name, Qt::Key_Return);
+    });
+    QTest::mouseClick(normalSlot, Qt::LeftButton);
+    QCOMPARE(QString::fromStdString(object(ball).material.principled.normal_texture), QString("tilt.exr"));
+    QCOMPARE(normalSlot->text(), QString("tilt.exr"));
+    QCOMPARE(w_->document()->undoStack()->undoText(), QString("Choose texture"));
+    const Image mapped = shown("mapped.exr");
+    QVERIFY(mapped.width() > 0);
+
+    QTest::mouseClick(panel->textureClear(MaterialPanel::NormalMap), Qt::LeftButton);
+    QVERIFY(object(ball).material.principled.normal_texture.empty());
+    QCOMPARE(normalSlot->text(), QString("Choose..."));
+    const Image cleared = shown("cleared.exr");
+    const double changed = test::mean_abs_diff(plain, mapped, objects);
+    const double restored = test::mean_abs_diff(plain, cleared, objects);
+    std::printf("the ball's pixels: %.4f changed by the normal map, %.4f apart once cleared\n", changed, restored);
+    QVERIFY2(changed > 0.01 && changed > 4 * restored, qPrintable(QString("%1 / %2").arg(changed).arg(restored)));
+    // Choosing and clearing are one undo step each.
+    w_->document()->undoStack()->undo();
+    QCOMPARE(QString::fromStdString(object(ball).material.principled.normal_texture), QString("tilt.exr"));
+    w_->document()->undoStack()->undo();
+    QVERIFY(object(ball).material.principled.normal_texture.empty());
 }
 
 QTEST_MAIN(PlacementTest)

@@ -13,6 +13,7 @@
 
 #include "assets/asset_library.h"
 #include "assets/principled_scatter.h"
+#include "base/error.h"
 #include "common/byte_buffers.h"
 #include "image/image_io.h"
 #include "scene/project_io.h"
@@ -173,4 +174,57 @@ TEST_F(MaterialTextures, AMissingTextureIsIgnoredWithAWarningNamingTheMaterialAn
         << w[0];
     const Hit h = hit_at(*s, 11.0f);
     EXPECT_NEAR(principled_at(*h.surface, h).params().roughness, 0.8f, 1e-6f);
+}
+
+TEST_F(MaterialTextures, AProjectsPrincipledMaterialTakesBothTexturesOnASphereAndAMesh) {
+    // Uniform maps: roughness 0.8 x 0.25 and metallic 0; a tilt of 30 degrees towards +Y.
+    write_png("mr.png", codes(0, 64, 0), codes(0, 64, 0));
+    const int tilt = 191, flat = 128, up = int(std::lround((0.5 + 0.5 * std::cos(M_PI / 6)) * 255));
+    write_png("n.png", codes(flat, tilt, up), codes(flat, tilt, up));
+    scene("", "");  // writes quad.gltf
+    auto project = [&](const std::string& shape, const char* y) {
+        std::ofstream(dir_ / "own.json") << R"({"schema_version": 1, "photo": {"path": "photo.exr"},
+            "probe": {"path": "probe.exr"},
+            "camera": {"model": "lookat", "eye": [0, 1, 3], "target": [0, 1, 0], "vfov_deg": 60},
+            "objects": [{"name": "thing", "shape": )" + shape + R"(, "transform": {"translation": [0, )" + y + R"(, 0]},
+                         "material": {"type": "principled", "metallic": 1, "roughness": 0.8,
+                                      "metallic_roughness_texture": "mr.png", "normal_texture": "n.png"}}]})";
+        const std::string file = (dir_ / "own.json").string();
+        return build_scene(library_, load_project(file), 0, 0, file);
+    };
+    for (const auto& [shape, y] : {std::pair{R"({"type": "sphere", "radius": 0.6})", "1"},
+                                   std::pair{R"({"type": "mesh", "path": "quad.gltf"})", "0"}}) {
+        SCOPED_TRACE(shape);
+        const auto s = project(shape, y);
+        // The middle of the view: the sphere's point facing the camera, or the quad's middle.
+        const Hit h = s->intersect(s->camera_ray(15.5f, 12.0f));
+        ASSERT_TRUE(h && h.surface->is_virtual);
+        const PrincipledParams p = principled_at(*h.surface, h).params();
+        EXPECT_NEAR(p.roughness, 0.8f * 64 / 255, 0.01f);
+        EXPECT_NEAR(p.metallic, 0.0f, 0.01f);
+        // 30 degrees off the surface's normal, towards the top of the texture: up the sphere's
+        // meridian, up the quad.
+        const vec3 ng = glm::dot(h.ng, vec3(0, 0, 1)) > 0 ? h.ng : -h.ng;
+        const vec3 n = glm::dot(h.ng, vec3(0, 0, 1)) > 0 ? h.ns : -h.ns;
+        EXPECT_NEAR(glm::dot(n, ng), std::cos(M_PI / 6), 0.01);
+        const vec3 tilt = n - ng * glm::dot(n, ng);
+        EXPECT_NEAR(glm::length(tilt), 0.5f, 0.01f);
+        EXPECT_GT(tilt.y, 0.49f);
+        EXPECT_NEAR(tilt.x, 0.0f, 0.02f);
+    }
+}
+
+TEST_F(MaterialTextures, AProjectTextureThatCannotBeReadIsAnErrorNamingItsField) {
+    std::ofstream(dir_ / "bad.json") << R"({"schema_version": 1, "photo": {"path": "photo.exr"},
+        "probe": {"path": "probe.exr"},
+        "camera": {"model": "lookat", "eye": [0, 1, 3], "target": [0, 1, 0], "vfov_deg": 60},
+        "objects": [{"shape": {"type": "sphere", "radius": 0.5},
+                     "material": {"type": "principled", "normal_texture": "gone.png"}}]})";
+    const std::string file = (dir_ / "bad.json").string();
+    try {
+        build_scene(library_, load_project(file), 0, 0, file);
+        FAIL() << "a missing normal map was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("objects[0].material.normal_texture"), std::string::npos) << e.what();
+    }
 }

@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "base/error.h"
 #include "scene/project_diff.h"
@@ -206,6 +209,21 @@ TEST_F(ProjectIo, APrincipledMaterialRoundTripsWithEveryFieldAndItsDefaults) {
     EXPECT_EQ(d.principled.ior, 1.5f);
     EXPECT_EQ(d.principled.specular, 1.0f);
     EXPECT_EQ(d.principled.emission, vec3(0.0f));
+    EXPECT_FALSE(to_json(a)["objects"][0]["material"].contains("normal_texture"));  // none: not written
+    // The metallic-roughness texture and the normal map with its scale.
+    m.principled.metallic_roughness_texture = "textures/rust_mr.png";
+    m.principled.normal_texture = "textures/rust_n.png";
+    m.principled.normal_scale = 0.5f;
+    const nlohmann::json textured = to_json(a)["objects"][0]["material"];
+    EXPECT_EQ(textured["metallic_roughness_texture"], "textures/rust_mr.png");
+    EXPECT_EQ(textured["normal_texture"], "textures/rust_n.png");
+    EXPECT_EQ(textured["normal_scale"], 0.5);
+    EXPECT_EQ(parse_project(to_json(a), "memory", dir_), a);
+    // Both are inputs of the project, under their fields.
+    std::vector<std::string> fields;
+    for_each_input(a, [&](const InputRef& in, const std::string&) { fields.push_back(in.field); });
+    EXPECT_NE(std::find(fields.begin(), fields.end(), "objects[0].material.metallic_roughness_texture"), fields.end());
+    EXPECT_NE(std::find(fields.begin(), fields.end(), "objects[0].material.normal_texture"), fields.end());
 }
 
 TEST_F(ProjectIo, EditingAPrincipledParameterIsAMaterialChange) {
@@ -219,6 +237,18 @@ TEST_F(ProjectIo, EditingAPrincipledParameterIsAMaterialChange) {
     b.objects[0].material.principled.emission = vec3(1.0f);
     EXPECT_EQ(classify(a, b), Change::Material);
     EXPECT_EQ(classify(a, a), Change::None);
+    // A texture is an image to load: a rebuild; the normal map's strength is not.
+    b = a;
+    b.objects[0].material.principled.normal_texture = "n.png";
+    EXPECT_EQ(classify(a, b), Change::Scene);
+    Project c = b;
+    c.objects[0].material.principled.normal_scale = 2.0f;
+    EXPECT_EQ(classify(b, c), Change::Material);
+    // Textures are loaded only for a principled material: turning one with them into another
+    // kind, or back, is a rebuild too.
+    c = b;
+    c.objects[0].material.kind = Material::Kind::Diffuse;
+    EXPECT_EQ(classify(b, c), Change::Scene);
 }
 
 TEST_F(ProjectIo, EveryLightKindRoundTripsWithItsOwnFieldsOnly) {
