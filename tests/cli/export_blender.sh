@@ -285,4 +285,33 @@ sed 's/"emission": \[0, 1, 2\]}/"emission": [0, 1, 2], "normal_texture": "mr.png
 run export blender normal.json -o normal.py
 expect_rc 2 "export blender normal.json (a normal map on a sphere)"
 expect_stderr "objects[0].material.normal_texture" "the refusal of a normal map on a sphere"
+
+# A glTF mesh goes through Blender's glTF importer, placed where ours puts it: a 2 x 1.6 m quad
+# from y 0.2 to 1.8 (glTF is Y-up like ours), raised 0.5 m by the object's transform.
+printf '%s' '{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2}]}],
+  "buffers": [{"byteLength": 92, "uri": "data:application/octet-stream;base64,AACAv83MTD4AAAAAAACAP83MTD4AAAAAAACAP2Zm5j8AAAAAAACAv2Zm5j8AAAAAAAAAAAAAgD8AAIA/AACAPwAAgD8AAAAAAAAAAAAAAAAAAAEAAgAAAAIAAwA="}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                  {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [-1, 0.2, 0], "max": [1, 1.8, 0]},
+                {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]}' >quad.gltf
+sed 's/"shape": {"type": "sphere", "radius": 0.5}/"shape": {"type": "mesh", "path": "quad.gltf"}/' small.json >gltf.json
+grep -q quad.gltf gltf.json || fail "the glTF project was not written"
+run export blender gltf.json -o gltf.py --blend "$PWD/gltf.blend"
+expect_rc 0 "export blender gltf.json"
+run_blender --python gltf.py
+cat >check_gltf.py <<'PY'
+import bpy, math
+# Blender is Z-up: our height is its z; the scene is turned about it by the probe's frame.
+verts = [o.matrix_world @ v.co for o in bpy.data.objects if o.type == "MESH" for v in o.data.vertices]
+quad = [v for v in verts if 0.69 < v.z < 2.31]
+assert len(quad) == 4, [tuple(round(c, 3) for c in v) for v in verts]
+assert abs(min(v.z for v in quad) - 0.7) < 1e-4 and abs(max(v.z for v in quad) - 2.3) < 1e-4
+width = max(math.hypot(a.x - b.x, a.y - b.y) for a in quad for b in quad)
+assert abs(width - 2) < 1e-4 and abs(sum(v.x for v in quad)) < 1e-4 and abs(sum(v.y for v in quad)) < 1e-4, width
+print("gltf_ok")
+PY
+run_blender gltf.blend --python check_gltf.py
+grep -q gltf_ok blender.txt || fail "the glTF quad is not where the project puts it in Blender"
 echo "ok"
