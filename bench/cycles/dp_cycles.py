@@ -235,19 +235,26 @@ def pixels_of(img):
     return px
 
 
-def load_linear_image(path, file, field, name):
-    """A Blender image of the file's linear values: EXR and HDR as stored, 8-bit PNG/JPEG/TIFF/
-    BMP decoded from sRGB with the IEC 61966-2-1 curve (as ours), NaN/Inf replaced by 0."""
+def open_image(path, file, field, name):
+    """The image file as Blender reads it, named `name`; a ConversionError naming `field` where
+    it is missing, unreadable or empty."""
     if not os.path.isfile(path):
         raise ConversionError(file, field, f"file not found: {path}")
     try:
         img = bpy.data.images.load(path, check_existing=False)
     except RuntimeError as e:
         raise ConversionError(file, field, f"cannot read {path}: {e}")
-    w, h = img.size
-    if w == 0 or h == 0:
+    if img.size[0] == 0 or img.size[1] == 0:
         raise ConversionError(file, field, f"cannot read {path} (unsupported or empty image)")
     img.name = name
+    return img
+
+
+def load_linear_image(path, file, field, name):
+    """A Blender image of the file's linear values: EXR and HDR as stored, 8-bit PNG/JPEG/TIFF/
+    BMP decoded from sRGB with the IEC 61966-2-1 curve (as ours), NaN/Inf replaced by 0."""
+    img = open_image(path, file, field, name)
+    w, h = img.size
     if is_linear_file(path):
         set_linear(img)
         px = pixels_of(img)
@@ -605,15 +612,7 @@ def node_material(name):
 def load_data_image(path, file, field, name):
     """A Blender image of a data texture (metallic-roughness, normal map): its values as stored,
     never decoded from sRGB (glTF's rule, and ours)."""
-    if not os.path.isfile(path):
-        raise ConversionError(file, field, f"file not found: {path}")
-    try:
-        img = bpy.data.images.load(path, check_existing=False)
-    except RuntimeError as e:
-        raise ConversionError(file, field, f"cannot read {path}: {e}")
-    if img.size[0] == 0 or img.size[1] == 0:
-        raise ConversionError(file, field, f"cannot read {path} (unsupported or empty image)")
-    img.name = name
+    img = open_image(path, file, field, name)
     img.colorspace_settings.name = "Non-Color"
     return img
 

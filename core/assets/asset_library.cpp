@@ -437,8 +437,8 @@ Image AssetLibrary::data_texture(const LoadedMesh& mesh, const FileMaterial& f, 
     const std::string key =
         (embedded ? "embedded|" + mesh_path.string() + "|" + std::to_string(t.embedded) : "texture|" + t.path) +
         "|linear";
+    if (!embedded) refuse_special_texture(f, t.path, mesh_path, field);  // refused, not ignored
     try {
-        if (!embedded) refuse_special_texture(f, t.path, mesh_path, field);
         Image image = *cached<Image>(key, embedded ? mesh_path : fs::path(t.path), [&](Entry& e) {
             ImageLoadReport report;
             ImageLoadOptions linear;
@@ -455,7 +455,6 @@ Image AssetLibrary::data_texture(const LoadedMesh& mesh, const FileMaterial& f, 
         report(key, a);
         return image;
     } catch (const InputError& e) {
-        if (!special_file_kind(t.path).empty() && !embedded) throw;
         a.warnings.push_back(field + ": material '" + f.name + "': its " + what + " texture cannot be read (" +
                              e.what() + "); it is ignored");
         return {};
