@@ -19,6 +19,9 @@ namespace {
 
 constexpr int64_t kBlock = 1024;
 
+/// A shadow photon's (all its flux at most 0); a light photon's flux is at least 0.
+bool is_negative(const Photon& p) { return p.flux.x <= 0 && p.flux.y <= 0 && p.flux.z <= 0; }
+
 /// Per-block output, merged in block order so the photon order is deterministic.
 struct Block {
     std::vector<Photon> real, caustic;
@@ -32,7 +35,7 @@ struct Tracer {
 
     bool store_first_shadow = true;  ///< false: next-event estimation takes the first landing
     const DirectChange* direct = nullptr;
-    PhotonMap probe_map;     ///< this pass's probe photons on real surfaces, for the emitters
+    PhotonMap probe_map;     ///< this pass's negative probe photons on real surfaces, for the emitters
     double inv_area = 0;     ///< 1 / (pi r^2) of probe_map's gathers
     double inv_light_count = 0;  ///< 1 / the number of light photons
 
@@ -161,10 +164,11 @@ struct Tracer {
         follow(hit, e.ray.dir, e.flux, PhotonKind::Light, rng, out, true, false);
     }
 
-    /// How much a real point's radiance towards -dir has changed: the direct light the objects
-    /// block there (rays, one estimate), and what the pass's probe photons changed there. The
-    /// photo shows a floor under an object unshadowed, and it must not light the object's
-    /// underside as if it were sunlit, nor a glass ball's caustic be left out.
+    /// How much a real point's radiance towards -dir has changed, as far as no photon carries
+    /// that change on by itself: the direct light the objects block there (rays, one estimate)
+    /// and the pass's negative probe photons (which die at the objects). The photo shows a
+    /// floor under an object unshadowed, and it must not light the object's underside as if it
+    /// were sunlit. Positive photons (a glass ball's caustic) bounce on to the objects alone.
     vec3 emitter_change(const Hit& x, const vec3& dir, Rng& rng, Block& out) const {
         const vec3 n = facing_normal(x.ng, dir);
         dvec3 E(0);
@@ -178,8 +182,7 @@ struct Tracer {
             out.stats.rays += 4;  // about: the samples that reach a cone cost one or two rays
         }
         if (!probe_map.empty()) E += probe_map.gather(x.p, n) * inv_area;
-        // Not the virtual lights' light: their photons go on from real surfaces to the objects
-        // themselves, so an emitter that sent it as well would count it twice.
+        // Nor the virtual lights' light: their photons go on from real surfaces to the objects.
         if (E == dvec3(0)) return vec3(0);
         return vec3(dvec3(x.surface->reflectance_at(x.uv)) * double(kInvPi) * E);
     }
@@ -334,11 +337,14 @@ PhotonPass trace_photons(const RenderScene& scene, uint64_t seed, uint64_t pass,
     };
     run(0, probe_blocks + light_blocks);
     if (surround > 0 && options.emitter_radius > 0) {
-        // The probe photons first: the surroundings' emitters see the change they make (the
-        // lights' photons carry their own light on, see emitter_change).
+        // The probe photons first: the surroundings' emitters see the change they make. Only
+        // the negative ones: they die at the objects, while a positive photon bounces on to
+        // them by itself and an emitter sending its light too counted it twice (the floor in
+        // a gold ball's shadow came out 1% bright, docs/method-notes.md).
         std::vector<Photon> first_real;
         for (int64_t b = 0; b < probe_blocks; ++b)
-            first_real.insert(first_real.end(), out[b].real.begin(), out[b].real.end());
+            for (const Photon& ph : out[b].real)
+                if (is_negative(ph)) first_real.push_back(ph);
         tracer.probe_map.build(std::move(first_real), options.emitter_radius);
         tracer.inv_area = 1.0 / (double(kPi) * options.emitter_radius * options.emitter_radius);
     }

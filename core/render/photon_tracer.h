@@ -85,8 +85,9 @@ struct PhotonPassOptions {
     /// not stored where they first land; they still bounce on, carrying the indirect change.
     bool direct_by_rays = false;
     /// The light a real surface sends at the objects is its radiance now, not as photographed:
-    /// the photograph plus the change the pass's probe photons make there (gathered with this
-    /// radius; 0 leaves them out) and, with `direct`, the direct change by rays (under the
+    /// the photograph plus the light the pass's negative probe photons take away there
+    /// (gathered with this radius; 0 leaves them out; positive ones bounce on to the objects by
+    /// themselves) and, with `direct`, the direct change by rays (under the
     /// all-photon estimator only the light of real surfaces the objects block, the probe's
     /// being in the probe photons).
     float emitter_radius = 0;

@@ -72,6 +72,15 @@ inline Material mirror(vec3 reflectance = vec3(1.0f)) {
     m.reflectance = reflectance;
     return m;
 }
+inline Material principled(vec3 base, float metallic, float roughness, float specular = 1.0f) {
+    Material m;
+    m.kind = Material::Kind::Principled;
+    m.albedo.rgb = base;
+    m.principled.metallic = metallic;
+    m.principled.roughness = roughness;
+    m.principled.specular = specular;
+    return m;
+}
 inline Material glass(float ior, vec3 tint = vec3(1.0f)) {
     Material m;
     m.kind = Material::Kind::Glass;

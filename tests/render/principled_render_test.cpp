@@ -17,16 +17,6 @@ namespace {
 
 constexpr int kW = 48, kH = 36;
 
-Material principled(vec3 base, float metallic, float roughness, float specular = 1.0f) {
-    Material m;
-    m.kind = Material::Kind::Principled;
-    m.albedo.rgb = base;
-    m.principled.metallic = metallic;
-    m.principled.roughness = roughness;
-    m.principled.specular = specular;
-    return m;
-}
-
 Image sun_sky(float sun = 300.0f, float size_deg = 6.0f) {
     return make_sun_sky_probe(128, 64, glm::normalize(vec3(1, 1.3f, 0.4f)), vec3(sun), size_deg,
                               vec3(0.2f, 0.35f, 0.8f), vec3(0.7f, 0.8f, 0.9f));
