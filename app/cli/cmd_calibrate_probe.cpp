@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "common.h"
 #include "reconstruction/probe_align.h"
+#include "reconstruction/sun_from_shadow.h"
 #include "scene/project_io.h"
 
 namespace dp::cli {
@@ -24,7 +25,8 @@ namespace {
 struct ProbeOptions {
     std::string project, output;
     std::optional<float> fov, intensity, clip;
-    std::vector<float> shadow, card;
+    std::vector<float> shadow, card, sun_from_shadow;
+    int patch_radius = 2;
     float object_height = 0, reflectance = 0.18f;
     bool object_base = false;
     bool white_balance = false, force = false;
@@ -111,15 +113,50 @@ void match_grey_card(Project& p, const ProbeOptions& o) {
     p.probe.intensity = m.intensity;
 }
 
+/// Scales the probe's sun so that it gives a lit and a shadowed patch of one surface the
+/// photo's contrast between them.
+void restore_sun(Project& p, const ProbeOptions& o) {
+    if (o.patch_radius < 0 || o.patch_radius > 50)
+        throw InputError(o.project, "--patch-radius", "must be in [0, 50] pixels");
+    SceneAssets assets = load_assets(p);
+    for (const std::string& w : assets.warnings)
+        if (w.rfind("probe.path: the probe's", 0) != 0) warn(w);  // the clipped sun is what this fixes
+    RenderScene scene(p, std::move(assets));
+    SunShadowPatches patches;
+    patches.lit = vec2(o.sun_from_shadow[0], o.sun_from_shadow[1]);
+    patches.shadow = vec2(o.sun_from_shadow[2], o.sun_from_shadow[3]);
+    patches.radius = o.patch_radius;
+    SunFromShadow m;
+    try {
+        m = match_sun_to_shadow(scene, patches);
+    } catch (const InputError& e) {
+        // Named by the option that carried the patches.
+        std::string what = e.what();
+        const std::string prefix = "field '" + e.field() + "': ";
+        if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+        throw InputError(o.project, "--sun-from-shadow", what);
+    }
+    std::printf("lit / shadowed patch: photo %.4g, probe before %.4g (sun %.4g, sky %.4g and %.4g)\n",
+                m.photo_contrast, m.probe_contrast, m.sun_lit, m.sky_lit, m.sky_shadow);
+    std::printf("probe sun_scale %g -> %g (x%.4g)\n", p.probe.sun_scale, m.sun_scale, m.scale);
+    if (!(m.sun_scale <= kMaxSunScale))
+        throw InputError(o.project, "--sun-from-shadow",
+                         "the sun would need " + std::to_string(m.sun_scale) + " times its light, more than "
+                         "probe.sun_scale allows: is the shadowed patch lit by the sky at all?");
+    p.probe.sun_scale = m.sun_scale;
+}
+
 void run_probe(const ProbeOptions& o) {
-    if (!o.fov && !o.intensity && o.shadow.empty() && o.card.empty())
+    if (!o.fov && !o.intensity && o.shadow.empty() && o.card.empty() && o.sun_from_shadow.empty())
         throw InputError(o.project, "",
-                         "nothing to do: give --fov, --shadow (with --object-height), --grey-card "
-                         "(with --reflectance) or --intensity");
+                         "nothing to do: give --fov, --shadow (with --object-height), --sun-from-shadow, "
+                         "--grey-card (with --reflectance) or --intensity");
     Project p = load_project(o.project);
     check_scene_outputs(p, o.project, o.output, {}, o.force);
     if (o.fov) set_mirror_ball_fov(p, o);
     if (!o.shadow.empty()) align_to_shadow(p, o);
+    // Before the grey card: a card in sunlight is lit by the restored sun.
+    if (!o.sun_from_shadow.empty()) restore_sun(p, o);
     if (o.intensity) {
         std::printf("probe intensity %g -> %g (set by hand)\n", p.probe.intensity, *o.intensity);
         p.probe.intensity = *o.intensity;
@@ -152,6 +189,15 @@ Command add_calibrate_probe_command(CLI::App& calibrate) {
     sub->add_flag("--object-base", o->object_base,
                   "The clicked object point is its base on the ground; the point casting the "
                   "shadow is --object-height above it");
+    sub->add_option("--sun-from-shadow", o->sun_from_shadow,
+                    "A sunlit and a shadowed patch of one real surface, x y x y (pixels): scales the "
+                    "probe's sun (probe.sun_scale) so that it gives them the photo's contrast; for a "
+                    "clipped sun")
+        ->expected(4)
+        ->check(kFinite);
+    sub->add_option("--patch-radius", o->patch_radius,
+                    "With --sun-from-shadow: each patch is (2r+1)^2 pixels (default 2)")
+        ->needs(sub->get_option("--sun-from-shadow"));
     sub->add_option("--grey-card", o->card,
                     "Grey card rectangle x0 y0 x1 y1 (pixels, inclusive) on a real proxy")
         ->expected(4)

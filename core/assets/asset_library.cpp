@@ -17,6 +17,7 @@
 #include "image/image_io.h"
 #include "probe/probe.h"
 #include "probe/probe_resize.h"
+#include "probe/probe_sun.h"
 
 namespace dp {
 
@@ -138,7 +139,8 @@ std::string photo_key(const Project& p) {
 
 std::string probe_key(const Project& p) {
     return "probe|" + p.resolve(p.probe.path).string() + "|" + std::to_string(int(p.probe.format)) + "|" +
-           std::to_string(p.probe.mirror_ball_fov_deg) + "|" + std::to_string(probe_max_width(p.probe));
+           std::to_string(p.probe.mirror_ball_fov_deg) + "|" + std::to_string(probe_max_width(p.probe)) + "|" +
+           std::to_string(p.probe.sun_scale);
 }
 
 }  // namespace
@@ -221,6 +223,14 @@ std::shared_ptr<const Image> AssetLibrary::probe(const Project& p) {
             probe = unwrap_mirror_ball(probe, 2 * h, h, p.probe.mirror_ball_fov_deg);
         }
         limit_probe_size(probe, probe_max_width(p.probe), e.warnings);
+        const ProbeSun sun = find_probe_sun(probe);
+        if (p.probe.sun_scale != 1.0f) {
+            if (!sun.found)
+                e.warnings.push_back("probe.sun_scale: the probe has no compact sun to scale; it is left as shot");
+            scale_probe_sun(probe, sun, p.probe.sun_scale);
+        } else if (const std::string why = clipped_sun_warning(sun); !why.empty()) {
+            e.warnings.push_back(why);
+        }
         return probe;
     });
 }

@@ -178,6 +178,8 @@ struct PhotoSpec {
 /// The range of `probe.max_width`: narrower probes lose the sun's shape and the sky's
 /// gradients; the widest is the decoding limit's (2^29 pixels at 2:1).
 inline constexpr int kMinProbeMaxWidth = 64, kMaxProbeMaxWidth = 32768;
+/// probe.sun_scale's ceiling: a sun clipped at a 16-bit ceiling has lost up to about 10^5.
+inline constexpr float kMaxSunScale = 1e6f;
 
 struct ProbeSpec {
     enum class Format { LatLong, MirrorBall };
@@ -195,6 +197,9 @@ struct ProbeSpec {
     /// The widest the lat-long map is kept (a wider one is shrunk on load, its light kept);
     /// 0: automatic (8192, less on a machine with little memory).
     int max_width = 0;
+    /// Multiplies the pixels of the probe's sun (find_probe_sun): a clipped sun's light given
+    /// back (`calibrate probe --sun-from-shadow`, docs/probe-sun.md). 1 leaves the probe as shot.
+    float sun_scale = 1.0f;
     /// What the probe's radiance is multiplied by, per channel: intensity * white_balance.
     vec3 gain() const { return intensity * white_balance; }
     bool operator==(const ProbeSpec&) const = default;

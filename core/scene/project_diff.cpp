@@ -16,8 +16,9 @@ bool same_geometry(const VirtualObject& a, const VirtualObject& b) {
 }  // namespace
 
 Change classify(const Project& a, const Project& b) {
+    // The sun's scale is applied to the probe's pixels as they load.
     if (a.photo != b.photo || a.probe.path != b.probe.path || a.probe.format != b.probe.format ||
-        a.base_dir != b.base_dir)
+        a.probe.sun_scale != b.probe.sun_scale || a.base_dir != b.base_dir)
         return Change::Assets;
     if (!(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real || a.objects.size() != b.objects.size())
         return Change::Scene;

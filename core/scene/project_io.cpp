@@ -499,6 +499,7 @@ J write_project(const Project& p) {
     doc["probe"]["mirror_ball_fov_deg"] = num(p.probe.mirror_ball_fov_deg);
     // Automatic is left out, as a neutral white balance is.
     if (p.probe.max_width > 0) doc["probe"]["max_width"] = p.probe.max_width;
+    if (p.probe.sun_scale != 1.0f) doc["probe"]["sun_scale"] = p.probe.sun_scale;
     doc["camera"] = write_camera<J>(p.camera);
     doc["real"] = J::array();
     for (const RealProxy& r : p.real) {
@@ -593,7 +594,7 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     const json& probe = r.required(doc, "", "probe");
     r.object(probe, "probe",
              {"path", "format", "rotation_deg", "intensity", "white_balance",
-              "mirror_ball_fov_deg", "max_width"});
+              "mirror_ball_fov_deg", "max_width", "sun_scale"});
     p.probe.path = r.string(r.required(probe, "probe", "path"), "probe.path");
     if (auto* f = r.optional(probe, "format")) {
         p.probe.format =
@@ -619,6 +620,11 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
     }
     if (auto* e = r.optional(probe, "max_width"))
         p.probe.max_width = int(r.integer(*e, "probe.max_width", kMinProbeMaxWidth, kMaxProbeMaxWidth));
+    if (auto* e = r.optional(probe, "sun_scale")) {
+        p.probe.sun_scale = r.real(*e, "probe.sun_scale");
+        r.check(p.probe.sun_scale > 0 && p.probe.sun_scale <= kMaxSunScale, "probe.sun_scale",
+                "must be in (0, " + shortest_decimal(kMaxSunScale) + "] (got " + shortest_decimal(p.probe.sun_scale) + ")");
+    }
 
     p.camera = parse_camera(r, r.required(doc, "", "camera"));
 

@@ -147,6 +147,23 @@ TEST_F(ProjectIo, TheProbesMaxWidthRoundTripsAndIsLeftOutWhenAutomatic) {
     EXPECT_EQ(load_project(saved).probe.max_width, 0);
 }
 
+TEST_F(ProjectIo, TheProbesSunScaleRoundTripsAndIsLeftOutAtOne) {
+    const char* text = R"({"schema_version": 1, "photo": {"path": "p.png"},
+        "probe": {"path": "probe.exr", "sun_scale": 19.75},
+        "camera": {"model": "lookat", "eye": [0, 1, 4], "target": [0, 0.5, 0]}})";
+    Project a = load_project(write("ss.json", text));
+    EXPECT_EQ(a.probe.sun_scale, 19.75f);
+    const std::string saved = (dir_ / "saved.json").string();
+    save_project(a, saved);
+    EXPECT_EQ(load_project(saved), a);
+    Project b = a;
+    b.probe.sun_scale = 1;
+    // The scale is applied to the probe's pixels as they load: a change reloads the assets.
+    EXPECT_EQ(classify(a, b), Change::Assets);
+    save_project(b, saved);
+    EXPECT_EQ(read(saved).find("sun_scale"), std::string::npos);
+}
+
 TEST_F(ProjectIo, ProgrammaticProjectRoundTripsBitExactly) {
     Project a;
     a.photo.path = "photo.exr";
