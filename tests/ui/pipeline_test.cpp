@@ -115,8 +115,13 @@ void PipelineTest::assetWarningsAreShownInTheStatusBar() {
     QVERIFY2(warnings->toolTip().contains("ball.exr"), qPrintable(warnings->toolTip()));
     QVERIFY(warnings->text().contains("1 asset warning"));
 
-    // A project whose files are clean clears the indicator.
-    QVERIFY(w.openProject(test::write_small_sample(dir.path())));
+    // A project whose files are clean clears the indicator: the small sample with a probe
+    // whose sun is not clipped (the sample's city probe is, docs/probe-sun.md).
+    Project clean = load_project(test::write_small_sample(dir.path()).toStdString());
+    clean.probe.path = "/usr/share/blender/datafiles/studiolights/world/sunset.exr";
+    const QString clean_path = dir.filePath("clean.json");
+    save_project(clean, clean_path.toStdString());
+    QVERIFY(w.openProject(clean_path));
     QTRY_VERIFY_WITH_TIMEOUT(!warnings->isVisibleTo(&w), 30000);
 }
 
