@@ -16,6 +16,7 @@
 #include "error_reporter.h"
 #include "photo_geometry.h"
 #include "reconstruction/probe_align.h"
+#include "reconstruction/sun_from_shadow.h"
 #include "viewport.h"
 
 namespace dp::ui {
@@ -47,6 +48,17 @@ ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporte
     sunForm->addRow(pickSun);
     layout->addWidget(sun);
 
+    auto* strength = new QGroupBox(tr("Sun strength from a shadow"));
+    auto* strengthLayout = new QVBoxLayout(strength);
+    auto* pickStrength = new QPushButton(tr("Click a sunlit patch, then a shadowed one"));
+    pickStrength->setObjectName("sunStrength");
+    pickStrength->setToolTip(tr("Two patches of one surface, one in sunlight and one in shadow: the "
+                                "probe's sun is scaled so that it gives them the photo's contrast "
+                                "(for a probe whose sun was clipped when it was shot)"));
+    connect(pickStrength, &QPushButton::clicked, this, [this] { startPicking(Target::SunStrength); });
+    strengthLayout->addWidget(pickStrength);
+    layout->addWidget(strength);
+
     auto* card = new QGroupBox(tr("Exposure and colour from a grey card"));
     auto* cardForm = new QFormLayout(card);
     reflectance_ = new NumberField;
@@ -74,12 +86,13 @@ ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporte
 
     PickTool* pick = viewport_->pickTool();
     connect(pick, &PickTool::pointPicked, this, [this](QPointF p) {
-        if (target_ != Target::Sun) return;
+        if (target_ != Target::Sun && target_ != Target::SunStrength) return;
         points_.push_back(p);
+        const bool cue = target_ == Target::Sun;
         QVector<PickTool::Mark> marks;
         for (int i = 0; i < points_.size(); ++i)
             marks.push_back({points_[i], points_[i], false, QColor(255, 220, 60),
-                             i == 0 ? tr("object") : tr("shadow")});
+                             i == 0 ? (cue ? tr("object") : tr("sunlit")) : tr("shadow")});
         viewport_->pickTool()->setMarks(marks);
     });
     connect(pick, &PickTool::segmentDrawn, this, [this](QPointF a, QPointF b) {
@@ -95,6 +108,7 @@ ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporte
         if (cancelled || pts.size() != 2) return;
         if (t == Target::Sun) alignSun(pts[0], pts[1]);
         if (t == Target::Card) matchGreyCard(pts[0], pts[1]);
+        if (t == Target::SunStrength) restoreSun(pts[0], pts[1]);
     });
 }
 
@@ -107,6 +121,9 @@ void ProbeAlignPanel::startPicking(Target target) {
     if (target == Target::Sun)
         viewport_->pickTool()->start(PickTool::Kind::Point, 2,
                                      tr("Click the object point, then the tip of its shadow"));
+    else if (target == Target::SunStrength)
+        viewport_->pickTool()->start(PickTool::Kind::Point, 2,
+                                     tr("Click a sunlit patch, then a shadowed patch of the same surface"));
     else
         viewport_->pickTool()->start(PickTool::Kind::Segment, 1,
                                      tr("Drag from corner to corner inside the grey card"));
@@ -175,6 +192,34 @@ bool ProbeAlignPanel::matchGreyCard(QPointF a, QPointF b) {
         status_->setText(text + tr(" (from %1 card pixels, spread %2)")
                                     .arg(m.pixels)
                                     .arg(m.spread, 0, 'f', 3));
+    });
+}
+
+bool ProbeAlignPanel::restoreSun(QPointF lit, QPointF shadow) {
+    return guarded(tr("Sun strength failed"), [&] {
+        Project p = doc_->project();
+        const QSize ps = photo_size(doc_->assets(), p);
+        SunShadowPatches patches;
+        patches.lit = render_to_photo(lit, viewport_->renderSize(), ps);
+        patches.shadow = render_to_photo(shadow, viewport_->renderSize(), ps);
+        QApplication::setOverrideCursor(Qt::WaitCursor);
+        SunFromShadow m;
+        try {
+            m = match_sun_to_shadow(*build_scene(doc_->assets(), p), patches);
+        } catch (...) {
+            QApplication::restoreOverrideCursor();
+            throw;
+        }
+        QApplication::restoreOverrideCursor();
+        if (!(m.sun_scale <= kMaxSunScale))
+            throw InputError("", "sun_from_shadow", tr("the sun would need more light than it can be given; is the "
+                                                       "shadowed patch lit by the sky at all?").toStdString());
+        p.probe.sun_scale = m.sun_scale;
+        doc_->tryEdit(tr("Sun strength from the shadow"), p);
+        status_->setText(tr("Sun x%1: the patches' contrast is %2 in the photo, the probe gave %3")
+                             .arg(m.scale, 0, 'g', 4)
+                             .arg(m.photo_contrast, 0, 'f', 2)
+                             .arg(m.probe_contrast, 0, 'f', 2));
     });
 }
 

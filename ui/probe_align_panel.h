@@ -18,7 +18,9 @@ class Viewport;
 /// of its shadow: the probe turns about the vertical so its brightest region lies where the
 /// shadow says the sun is) and the grey card (drag over a card of known reflectance: the probe
 /// intensity is scaled so the card's shading matches the photo, and with "Match colour too" its
-/// white balance so the card's colour does). Each is one undo step.
+/// white balance so the card's colour does), and the sun's strength from a shadow (click a
+/// sunlit and a shadowed patch of one surface: a clipped sun is scaled back until the probe
+/// gives them the photo's contrast). Each is one undo step.
 class ProbeAlignPanel : public QWidget {
     Q_OBJECT
 public:
@@ -31,9 +33,12 @@ public:
     /// colourBox() ticked, the white balance is matched in the same edit.
     bool matchGreyCard(QPointF a, QPointF b);
     QCheckBox* colourBox() const { return colour_; }
+    /// Scales the probe's sun (probe.sun_scale) from a sunlit and a shadowed patch of one real
+    /// surface, in render pixels.
+    bool restoreSun(QPointF lit, QPointF shadow);
 
 private:
-    enum class Target { None, Sun, Card };
+    enum class Target { None, Sun, Card, SunStrength };
     void startPicking(Target target);
     bool guarded(const QString& title, const std::function<void()>& f);
 

@@ -47,7 +47,7 @@ vec3 CameraGather::real_dL(const Hit& hit, const vec3& dir, Rng& rng, const Dire
     return vec3(rho_over_pi * (E + E_photons));
 }
 
-vec3 CameraGather::gloss_change(const Hit& hit, const vec3& dir, const vec2& u, Rng& rng) const {
+vec3 CameraGather::gloss_change(const Hit& hit, const vec3& dir, const vec2& u, Rng& rng, int depth) const {
     const GlossLobe lobe(hit, dir);
     if (!lobe.valid()) return vec3(0);
     vec3 dL(0);
@@ -65,7 +65,7 @@ vec3 CameraGather::gloss_change(const Hit& hit, const vec3& dir, const vec2& u, 
     vec3 change = lights_seen(scene_, ray, first, lobe.pdf(wi));
     if (hv && (!hr || hv.t < hr.t)) {
         // An object now, where the photo shows what is behind it reflected.
-        const vec3 now = radiance_at(hv, ray, rng, 1, false, kGlassSplits, true);
+        const vec3 now = radiance_at(hv, ray, rng, depth + 1, false, kGlassSplits, true);
         vec3 before;
         if (hr) {
             before = photographed_radiance(scene_, hr, wi, rng);
@@ -96,9 +96,15 @@ vec3 CameraGather::hidden_sun(const Hit& hit, const GlossLobe& lobe, Rng& rng) c
     return is_finite(v) ? v : vec3(0);
 }
 
-vec3 CameraGather::real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const {
+vec3 CameraGather::real_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth) const {
     const DirectSamples direct = DirectSamples::from(rng);
-    return photographed_radiance(scene_, hit, dir, rng) + real_dL(hit, dir, rng, &direct);
+    vec3 L = photographed_radiance(scene_, hit, dir, rng) + real_dL(hit, dir, rng, &direct);
+    // The photo's gloss reflected the sky where the object now stands over the floor: seen
+    // from the object's underside, the floor must reflect the object (a clay ball's bottom
+    // came out 2.5% bright on the polished-floor benchmark scene without it).
+    if (hit.surface->gloss_f0 > 0 && depth < kDiffuseGatherDepth)
+        L += gloss_change(hit, dir, vec2(rng.uniform(), rng.uniform()), rng, depth);
+    return L;
 }
 
 vec3 CameraGather::virtual_diffuse_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth, int samples,
@@ -173,7 +179,7 @@ vec3 CameraGather::radiance_at(const Hit& hit, const Ray& ray, Rng& rng, int dep
         if (Le != vec3(0)) return Le;
     }
     if (!hit) return from_diffuse ? vec3(0) : scene_.probe().radiance(ray.dir);
-    if (!hit.surface->is_virtual) return real_radiance(hit, ray.dir, rng);
+    if (!hit.surface->is_virtual) return real_radiance(hit, ray.dir, rng, depth);
     if (hit.surface->material.kind == Material::Kind::Diffuse)
         return virtual_diffuse_radiance(hit, ray.dir, rng, depth, 1);
     if (hit.surface->material.kind == Material::Kind::Principled)

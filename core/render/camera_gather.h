@@ -87,14 +87,18 @@ public:
     /// -dir, 0 for a matte one: the virtual lights' highlights by next-event estimation, and
     /// along one direction from the lobe (`u`) an object's radiance less what it hides there,
     /// or the change of the real surface reflected (docs/real-gloss.md).
-    vec3 gloss_change(const Hit& hit, const vec3& dir, const vec2& u, Rng& rng) const;
+    /// `depth`: of the path that reaches the surface (0 from the camera); the object seen in
+    /// the gloss is shaded one deeper.
+    vec3 gloss_change(const Hit& hit, const vec3& dir, const vec2& u, Rng& rng, int depth = 0) const;
     /// The probe's sun that a glossy real surface reflected in the photo and an object now
     /// hides, by sampling the sun (MIS-weighted against the lobe): the sun is too small and
     /// bright to be left to the lobe's samples. To be subtracted.
     vec3 hidden_sun(const Hit& hit, const GlossLobe& lobe, Rng& rng) const;
     /// Radiance leaving a real point towards -dir in the augmented scene: the photo where the
-    /// camera sees the point, rho E / pi elsewhere, plus dL.
-    vec3 real_radiance(const Hit& hit, const vec3& dir, Rng& rng) const;
+    /// camera sees the point, rho E / pi elsewhere, plus dL, plus on a glossy surface the change
+    /// of what its gloss reflects (the object above it, where it reflected the sky), up to
+    /// kDiffuseGatherDepth deep.
+    vec3 real_radiance(const Hit& hit, const vec3& dir, Rng& rng, int depth = 0) const;
     /// Radiance leaving a virtual diffuse point towards -dir, averaging `samples` estimates
     /// of the probe and bounce light (caustic photons are gathered once). With `sampler`, the
     /// estimates are samples index * samples + k of the pixel's stream.
