@@ -561,9 +561,15 @@ void MainWindow::showKeyMap() {
                            "scale",    "delete",    "hide",          "duplicate", "import",
                            "onGround", "viewPhoto", "viewAugmented", "viewdL",    "overlays",
                            "fit",      "keyMap"};
-    for (const char* name : names) {
-        QAction* a = action(name);
-        if (!a || a->shortcuts().isEmpty()) continue;
+    // The named actions in their order, then every other action with a key (the list once
+    // left Denoise's D out): a key the studio answers to is never missing here.
+    QList<QAction*> listed;
+    for (const char* name : names)
+        if (QAction* a = action(name)) listed << a;
+    for (QAction* a : findChildren<QAction*>())
+        if (!listed.contains(a) && !a->objectName().isEmpty()) listed << a;
+    for (QAction* a : listed) {
+        if (a->shortcuts().isEmpty()) continue;
         QStringList keys;
         for (const QKeySequence& k : a->shortcuts()) keys << k.toString(QKeySequence::NativeText);
         row(keys.join(QStringLiteral(", ")), a->text().remove(QLatin1Char('&')));

@@ -96,8 +96,8 @@ std::string clipped_sun_warning(const ProbeSun& sun, const std::string& field) {
                       "%s: the probe's %d brightest pixels lie up to %.0f deg apart yet all within 5%% of one "
                       "peak (%.4g): separate lights do not match that closely, a camera's ceiling does. Its "
                       "lights are likely clipped, and shadows will come out too weak. Restore the sun from a "
-                      "lit and a shadowed patch of one surface in the photo (`diffphoton calibrate probe "
-                      "--sun-from-shadow`, the probe.sun_scale field; docs/probe-sun.md)",
+                      "lit and a shadowed patch of one surface in the photo (the studio's Sun strength from a "
+                      "shadow, or `calibrate probe --sun-from-shadow`; docs/probe-sun.md)",
                       field.c_str(), sun.near_peak, sun.near_peak_spread_deg, double(sun.peak));
         return text;
     }
@@ -107,8 +107,8 @@ std::string clipped_sun_warning(const ProbeSun& sun, const std::string& field) {
                   "%s: the probe's sun (%.0f deg up, peak %.4g) gives a surface facing it %.2g times the "
                   "light the sky gives the ground, where a clear sun that high gives 3 to 10 times: it is "
                   "likely clipped, and shadows will come out too weak. Restore it from a lit and a shadowed "
-                  "patch of one surface in the photo (`diffphoton calibrate probe --sun-from-shadow`, the "
-                  "probe.sun_scale field; docs/probe-sun.md)",
+                  "patch of one surface in the photo (the studio's Sun strength from a shadow, or `calibrate "
+                  "probe --sun-from-shadow`; docs/probe-sun.md)",
                   field.c_str(), sun.elevation_deg, double(sun.peak), sun.ratio());
     return text;
 }

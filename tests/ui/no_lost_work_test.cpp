@@ -321,6 +321,18 @@ void NoLostWorkTest::saveAsAndTheKeyMapHaveTheirKeys() {
     QVERIFY(QTest::qWaitFor([&] { return (map = w_->findChild<QMessageBox*>("keyMapDialog")); }));
     for (const char* needle : {"Grab", "Ctrl+Shift+S", "Ctrl+Z", "Esc"})
         QVERIFY2(map->text().contains(needle), needle);
+    // Every key an action of the window answers to is listed, with the action's name.
+    int keyed = 0;
+    for (QAction* a : w_->findChildren<QAction*>()) {
+        if (a->shortcuts().isEmpty() || a->objectName().isEmpty()) continue;
+        ++keyed;
+        const QString key = a->shortcuts().first().toString(QKeySequence::NativeText).toHtmlEscaped();
+        const QString what = a->text().remove(QLatin1Char('&')).toHtmlEscaped();
+        QVERIFY2(map->text().contains(QStringLiteral("<b>%1").arg(key)) && map->text().contains(what),
+                 qPrintable(a->objectName() + ": " + key + " " + what));
+    }
+    QVERIFY(keyed > 20);
+    QVERIFY(map->text().contains(QStringLiteral("<b>D</b>")));  // Denoise, once left out
     map->close();
 }
 
