@@ -401,7 +401,22 @@ void MainWindow::createDocks() {
 void MainWindow::createToolbar() {
     QToolBar* bar = addToolBar(tr("Tools"));
     bar->setObjectName("toolbar");
-    bar->addActions({action("undo"), action("redo")});
+    // The menu's Undo says what it undoes ("Undo Move sphere"); on the toolbar that text made
+    // every button after it jump at each edit. The toolbar's buttons keep one word and say
+    // the rest in their tooltips.
+    for (const char* name : {"undo", "redo"}) {
+        QAction* full = action(name);
+        auto* shortAction = new QAction(full->text().remove(QLatin1Char('&')), bar);
+        shortAction->setObjectName(QStringLiteral("%1Toolbar").arg(QLatin1String(name)));
+        auto sync = [shortAction, full] {
+            shortAction->setEnabled(full->isEnabled());
+            shortAction->setToolTip(full->text().remove(QLatin1Char('&')));
+        };
+        connect(full, &QAction::changed, shortAction, sync);
+        connect(shortAction, &QAction::triggered, full, &QAction::trigger);
+        sync();
+        bar->addAction(shortAction);
+    }
     bar->addSeparator();
     bar->addActions(viewGroup_->actions());
     bar->addSeparator();

@@ -405,8 +405,13 @@ void MainWindow::newDialog(const QString& photo, const QString& probe) {
 }
 
 void MainWindow::exportDialog() {
+    // Beside the project, named after it (the process's folder is no place a user chose).
+    const QFileInfo project(doc_->path());
+    const QString suggested = doc_->path().isEmpty()
+                                  ? QString()
+                                  : project.dir().filePath(project.completeBaseName() + QStringLiteral(".png"));
     const QString f =
-        QFileDialog::getSaveFileName(this, tr("Export image"), QString(),
+        QFileDialog::getSaveFileName(this, tr("Export image"), suggested,
                                      tr("PNG (*.png);;OpenEXR with layers (*.exr);;JPEG (*.jpg);;TIFF, 16 bits (*.tif)"));
     if (!f.isEmpty()) exportImage(f);
 }

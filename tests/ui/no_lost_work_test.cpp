@@ -13,7 +13,9 @@
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTemporaryDir>
+#include <QFileInfo>
 #include <QTest>
+#include <QToolBar>
 #include <QTimer>
 #include <QUndoStack>
 
@@ -42,6 +44,8 @@ private Q_SLOTS:
     void gInANumberFieldGrabsAndTheToolbarModeComesBack();
     void undoAndDeleteWorkWhileAFieldHasTheFocus();
     void saveAsAndTheKeyMapHaveTheirKeys();
+    void anEditLeavesTheToolbarInPlaceAndItsUndoUndoes();
+    void theExportDialogOpensBesideTheProject();
 
 private:
     /// Answers the next modal dialog with `key` once it shows; records its buttons.
@@ -334,6 +338,38 @@ void NoLostWorkTest::saveAsAndTheKeyMapHaveTheirKeys() {
     QVERIFY(keyed > 20);
     QVERIFY(map->text().contains(QStringLiteral("<b>D</b>")));  // Denoise, once left out
     map->close();
+}
+
+void NoLostWorkTest::anEditLeavesTheToolbarInPlaceAndItsUndoUndoes() {
+    auto* bar = w_->findChild<QToolBar*>("toolbar");
+    QWidget* undo = bar->widgetForAction(w_->findChild<QAction*>("undoToolbar"));
+    QWidget* move = bar->widgetForAction(w_->action("gizmoMove"));
+    QVERIFY(undo && move);
+    QVERIFY(!undo->isEnabled());
+    const QPoint before = move->mapTo(w_, QPoint(0, 0));
+    const Project original = w_->document()->project();
+    // An edit through the Sphere action, as clicked: the menu's Undo now names it.
+    w_->action("addSphere")->trigger();
+    QTRY_VERIFY(undo->isEnabled());
+    QVERIFY(w_->action("undo")->text().size() > QStringLiteral("&Undo").size());
+    QCOMPARE(move->mapTo(w_, QPoint(0, 0)), before);  // nothing after Undo moved
+    QVERIFY2(undo->toolTip().startsWith("Undo "), qPrintable(undo->toolTip()));
+    QTest::mouseClick(undo, Qt::LeftButton);
+    QVERIFY(w_->document()->project() == original);
+    QTRY_VERIFY(!undo->isEnabled());
+}
+
+void NoLostWorkTest::theExportDialogOpensBesideTheProject() {
+    QString opened;
+    QTimer::singleShot(200, this, [&] {
+        if (auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget())) {
+            opened = dialog->directory().absolutePath() + "/" + dialog->selectedFiles().value(0).section('/', -1);
+            dialog->reject();
+        }
+    });
+    w_->action("export")->trigger();
+    const QFileInfo project(project_);
+    QCOMPARE(opened, project.dir().absolutePath() + "/" + project.completeBaseName() + ".png");
 }
 
 QTEST_MAIN(NoLostWorkTest)
