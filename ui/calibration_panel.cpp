@@ -79,6 +79,7 @@ CalibrationPanel::CalibrationPanel(Document* doc, Viewport* viewport, CameraPane
     connect(doc_, &Document::reloaded, this, [this] {
         boardOrigin_.reset();
         clearPicks();
+        status_->clear();  // the last project's result is not this one's
     });
     setMethod(Method::Rectangle);
 }

@@ -83,6 +83,8 @@ ProbeAlignPanel::ProbeAlignPanel(Document* doc, Viewport* viewport, ErrorReporte
     status_->setWordWrap(true);
     status_->setObjectName("probeAlignStatus");
     layout->addWidget(status_);
+    // The last project's result is not this one's.
+    connect(doc_, &Document::reloaded, status_, &QLabel::clear);
 
     PickTool* pick = viewport_->pickTool();
     connect(pick, &PickTool::pointPicked, this, [this](QPointF p) {

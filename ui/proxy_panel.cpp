@@ -169,6 +169,8 @@ ProxyPanel::ProxyPanel(Document* doc, Viewport* viewport, ErrorReporter* reporte
     status_->setWordWrap(true);
     status_->setObjectName("proxyStatus");
     layout->addWidget(status_);
+    // The last project's result is not this one's.
+    connect(doc_, &Document::reloaded, status_, &QLabel::clear);
     layout->addStretch(1);
 
     PickTool* pick = viewport_->pickTool();

@@ -223,6 +223,12 @@ void CalibrationTest::drawnVanishingLinesMatchTheCamera() {
     QVERIFY(angle < 0.5);
     QVERIFY(position < 0.01);
     QVERIFY(pixels < 1.5);
+
+    // Another project opened: the result shown is not that project's.
+    QVERIFY(!child<QLabel>("calibrationStatus")->text().isEmpty());
+    w_->document()->undoStack()->setClean();
+    QVERIFY(w_->openProject(test::write_small_sample(dir_->path())));
+    QCOMPARE(child<QLabel>("calibrationStatus")->text(), QString());
 }
 
 void CalibrationTest::threeCornersAreReportedAndChangeNothing() {

@@ -111,6 +111,13 @@ void ProbeSunTest::aClippedSunIsRestoredByClickingALitAndAShadowedPatchAndUndoTa
     QTest::keyClick(&w, Qt::Key_Z, Qt::ControlModifier);
     QCOMPARE(w.document()->project().probe.sun_scale, 1.0f);
     QTRY_VERIFY_WITH_TIMEOUT(warnings->isVisibleTo(&w), 30000);
+
+    // Another project opened: the panel's last result is not that project's.
+    auto* status = w.findChild<QLabel*>("probeAlignStatus");
+    QVERIFY(!status->text().isEmpty());
+    w.document()->undoStack()->setClean();
+    QVERIFY(w.openProject(test::write_small_sample(dir.path())));
+    QCOMPARE(status->text(), QString());
     w.document()->undoStack()->setClean();  // closes without asking
 }
 
