@@ -608,6 +608,11 @@ void MainWindow::showKeyMap() {
     box->open();
 }
 
+bool MainWindow::event(QEvent* e) {
+    if (e->type() == QEvent::StatusTip) return true;
+    return QMainWindow::event(e);
+}
+
 void MainWindow::error(const QString& title, const QString& text) {
     reporter_->error(this, title, text);
 }

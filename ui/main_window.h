@@ -163,6 +163,9 @@ public:
 
 protected:
     void closeEvent(QCloseEvent*) override;
+    /// Swallows status tips: hovering a menu or a button would hide the render's status line
+    /// and wipe a message the user has not read yet. The same words are in the tooltips.
+    bool event(QEvent* e) override;
     void dragEnterEvent(QDragEnterEvent*) override;
     void dropEvent(QDropEvent*) override;
 

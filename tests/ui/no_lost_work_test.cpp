@@ -5,6 +5,7 @@
 #include <QApplication>
 #include <QCursor>
 #include <QFileDialog>
+#include <QLabel>
 #include <QLineEdit>
 #include <QListWidget>
 #include <QMenu>
@@ -14,6 +15,8 @@
 #include <QSignalSpy>
 #include <QTemporaryDir>
 #include <QFileInfo>
+#include <QStatusBar>
+#include <QStatusTipEvent>
 #include <QTest>
 #include <QToolBar>
 #include <QTimer>
@@ -46,6 +49,7 @@ private Q_SLOTS:
     void saveAsAndTheKeyMapHaveTheirKeys();
     void anEditLeavesTheToolbarInPlaceAndItsUndoUndoes();
     void theExportDialogOpensBesideTheProject();
+    void hoveringAButtonLeavesTheStatusLineAndItsMessage();
 
 private:
     /// Answers the next modal dialog with `key` once it shows; records its buttons.
@@ -370,6 +374,24 @@ void NoLostWorkTest::theExportDialogOpensBesideTheProject() {
     w_->action("export")->trigger();
     const QFileInfo project(project_);
     QCOMPARE(opened, project.dir().absolutePath() + "/" + project.completeBaseName() + ".png");
+}
+
+void NoLostWorkTest::hoveringAButtonLeavesTheStatusLineAndItsMessage() {
+    QStatusBar* bar = w_->statusBar();
+    auto* status = w_->findChild<QLabel*>("renderStatus");
+    QVERIFY(status && status->isVisible());
+    bar->showMessage("a message to read", 15000);
+    // What hovering the toolbar's Move button and the File menu's first item sends.
+    auto* toolbar = w_->findChild<QToolBar*>("toolbar");
+    QWidget* move = toolbar->widgetForAction(w_->action("gizmoMove"));
+    QTest::mouseMove(move);
+    QStatusTipEvent tip(w_->action("gizmoMove")->toolTip());
+    QApplication::sendEvent(move, &tip);
+    QStatusTipEvent none(QString{});  // a menu item without a tip
+    QApplication::sendEvent(w_->menuBar(), &none);
+    QCOMPARE(bar->currentMessage(), QString("a message to read"));
+    bar->clearMessage();
+    QVERIFY(status->isVisible());
 }
 
 QTEST_MAIN(NoLostWorkTest)
