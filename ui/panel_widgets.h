@@ -1,5 +1,6 @@
 #pragma once
 // Small widget factories the panels share.
+#include <QApplication>
 #include <QColor>
 #include <QPushButton>
 #include <QString>
@@ -11,6 +12,16 @@
 #include "number_field.h"
 
 namespace dp::ui {
+
+/// The wait cursor for as long as it lives, taken back however the scope ends (a match that
+/// throws left the cursor waiting).
+class WaitCursor {
+public:
+    WaitCursor() { QApplication::setOverrideCursor(Qt::WaitCursor); }
+    ~WaitCursor() { QApplication::restoreOverrideCursor(); }
+    WaitCursor(const WaitCursor&) = delete;
+    WaitCursor& operator=(const WaitCursor&) = delete;
+};
 
 /// A number field with its range, decimals, value, unit suffix and tooltip set.
 inline NumberField* make_number_field(double lo, double hi, double value, int decimals,

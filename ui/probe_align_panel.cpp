@@ -14,6 +14,7 @@
 #include "document.h"
 #include "number_field.h"
 #include "error_reporter.h"
+#include "panel_widgets.h"
 #include "photo_geometry.h"
 #include "reconstruction/probe_align.h"
 #include "reconstruction/sun_from_shadow.h"
@@ -169,16 +170,17 @@ bool ProbeAlignPanel::matchGreyCard(QPointF a, QPointF b) {
         card.y1 = int(std::lround(std::max(pa.y, pb.y)));
         card.reflectance = float(reflectance_->value());
         const float clip = doc_->assets().photo_clip_level(p);
-        QApplication::setOverrideCursor(Qt::WaitCursor);
-        const std::shared_ptr<RenderScene> scene = build_scene(doc_->assets(), p);
         const bool colour = colour_->isChecked();
         ExposureMatch m;
         WhiteBalanceMatch wb;
-        if (colour)
-            m = wb = match_white_balance_grey_card(*scene, card, clip);
-        else
-            m = match_exposure_grey_card(*scene, card, clip);
-        QApplication::restoreOverrideCursor();
+        {
+            const WaitCursor wait;
+            const std::shared_ptr<RenderScene> scene = build_scene(doc_->assets(), p);
+            if (colour)
+                m = wb = match_white_balance_grey_card(*scene, card, clip);
+            else
+                m = match_exposure_grey_card(*scene, card, clip);
+        }
         p.probe.intensity = m.intensity;
         QString text = tr("Probe intensity x%1").arg(m.scale, 0, 'f', 3);
         if (colour) {
@@ -204,15 +206,11 @@ bool ProbeAlignPanel::restoreSun(QPointF lit, QPointF shadow) {
         SunShadowPatches patches;
         patches.lit = render_to_photo(lit, viewport_->renderSize(), ps);
         patches.shadow = render_to_photo(shadow, viewport_->renderSize(), ps);
-        QApplication::setOverrideCursor(Qt::WaitCursor);
         SunFromShadow m;
-        try {
+        {
+            const WaitCursor wait;
             m = match_sun_to_shadow(*build_scene(doc_->assets(), p), patches);
-        } catch (...) {
-            QApplication::restoreOverrideCursor();
-            throw;
         }
-        QApplication::restoreOverrideCursor();
         if (!(m.sun_scale <= kMaxSunScale))
             throw InputError("", "sun_from_shadow", tr("the sun would need more light than it can be given; is the "
                                                        "shadowed patch lit by the sky at all?").toStdString());

@@ -38,6 +38,7 @@ private Q_SLOTS:
     void cleanup();
     void theGreyCardWithMatchColourTooSetsTheWhiteBalanceAndUndoRestoresIt();
     void theGreyCardAloneLeavesTheWhiteBalanceAndResetMakesItNeutral();
+    void aGreyCardOffTheProxiesIsRefusedAndLeavesTheCursorAsItWas();
 
 private:
     /// Drags a grey card over the ground in the middle of the photo (render pixels), as a user
@@ -165,6 +166,22 @@ void ProbeColourTest::theGreyCardAloneLeavesTheWhiteBalanceAndResetMakesItNeutra
     QCOMPARE(w_->document()->project().probe.intensity, exposureOnly.intensity);
     w_->action("undo")->trigger();
     QVERIFY(w_->document()->project() == tinted);
+}
+
+void ProbeColourTest::aGreyCardOffTheProxiesIsRefusedAndLeavesTheCursorAsItWas() {
+    const Project before = w_->document()->project();
+    QTest::mouseClick(child<QPushButton>("greyCard"), Qt::LeftButton);
+    Viewport* v = w_->viewport();
+    // Across the sky at the top of the frame: no real proxy there.
+    const QPoint a = v->widgetFromRender(QPointF(20, 1)).toPoint();
+    const QPoint b = v->widgetFromRender(QPointF(60, 4)).toPoint();
+    QTest::mousePress(v, Qt::LeftButton, {}, a);
+    for (int i = 1; i <= 4; ++i) QTest::mouseMove(v, a + (b - a) * i / 4);
+    QTest::mouseRelease(v, Qt::LeftButton, {}, b);
+    QCOMPARE(reporter_->errors.size(), 1);
+    QVERIFY2(reporter_->errors.first().contains("no real proxy"), qPrintable(reporter_->errors.first()));
+    QVERIFY(w_->document()->project() == before);
+    QVERIFY(QApplication::overrideCursor() == nullptr);  // the wait cursor is gone
 }
 
 QTEST_MAIN(ProbeColourTest)
