@@ -24,16 +24,21 @@ dvec3 direction_d(double u, double v) {
     return dvec3(st * std::sin(phi), std::cos(theta), -st * std::cos(phi));
 }
 
+}  // namespace
+
 // Exact band area; the product form avoids cancelling cos(theta_top) - cos(theta_bottom)
 // near the poles.
-double row_solid_angle(int row, int width, int height) {
+double latlong_row_solid_angle(int row, int width, int height) {
     return 4 * kPiD / width * std::sin(kPiD * (row + 0.5) / height) *
            std::sin(kPiD / (2.0 * height));
 }
 
-}  // namespace
-
 vec3 latlong_direction(float u, float v) { return vec3(direction_d(u, v)); }
+
+vec3 latlong_pixel_direction(size_t pixel, int width, int height) {
+    return latlong_direction((float(pixel % size_t(width)) + 0.5f) / float(width),
+                             (float(pixel / size_t(width)) + 0.5f) / float(height));
+}
 
 vec2 latlong_uv(const vec3& dir) {
     double x = dir.x, y = dir.y, z = dir.z;
@@ -96,7 +101,7 @@ void Probe::build() {
     for (int j = 0; j < h; ++j) {
         // Once per row here rather than once per sample.
         const double cos_top = std::cos(kPiD * j / h), cos_bottom = std::cos(kPiD * (j + 1) / h);
-        rows_[j] = Row{cos_top, cos_bottom - cos_top, row_solid_angle(j, w, h)};
+        rows_[j] = Row{cos_top, cos_bottom - cos_top, latlong_row_solid_angle(j, w, h)};
     }
     // Straight into the compact table: no per-pixel array of weights or pmf is kept, even
     // while building (an 8k probe has 33 million pixels).
@@ -132,7 +137,7 @@ double Probe::pixel_pmf(size_t pixel) const {
 double Probe::pixel_solid_angle(int row) const {
     // The same number as row_solid_angle gives, computed once per row.
     if (row >= 0 && size_t(row) < rows_.size()) return rows_[size_t(row)].solid_angle;
-    return row_solid_angle(row, width(), height());
+    return latlong_row_solid_angle(row, width(), height());
 }
 
 vec3 Probe::pixel_radiance(size_t pixel) const { return (*image_)[pixel] * gain_; }

@@ -18,6 +18,10 @@ namespace dp {
 ///   (sin theta sin phi, cos theta, -sin theta cos phi),
 /// so the image centre looks along -Z, u = 3/4 along +X, and the top row is straight up.
 vec3 latlong_direction(float u, float v);
+/// The direction through the centre of pixel `pixel` (row-major) of a width x height map.
+vec3 latlong_pixel_direction(size_t pixel, int width, int height);
+/// The exact solid angle of a pixel in row `row` of a width x height map.
+double latlong_row_solid_angle(int row, int width, int height);
 /// Inverse of latlong_direction: u, v in [0, 1).
 vec2 latlong_uv(const vec3& dir);
 /// Row-major index of the pixel of a width x height lat-long map that contains the probe-space

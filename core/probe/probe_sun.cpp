@@ -13,15 +13,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-/// Exact solid angle of a pixel in row j of a lat-long map w x h.
-double row_solid_angle(int j, int w, int h) {
-    const double t0 = pi * j / h, t1 = pi * (j + 1) / h;
-    return 2 * pi / w * (std::cos(t0) - std::cos(t1));
-}
-
-vec3 pixel_direction(size_t k, int w, int h) {
-    return latlong_direction((float(k % size_t(w)) + 0.5f) / float(w), (float(k / size_t(w)) + 0.5f) / float(h));
-}
+double row_solid_angle(size_t pixel, int w, int h) { return latlong_row_solid_angle(int(pixel / size_t(w)), w, h); }
 
 }  // namespace
 
@@ -34,18 +26,15 @@ ProbeSun find_probe_sun(const Image& latlong) {
         if (luminance(latlong.data()[k]) > luminance(latlong.data()[brightest])) brightest = k;
     sun.peak = n > 0 ? luminance(latlong.data()[brightest]) : 0.0f;
     if (!(sun.peak > 0) || !std::isfinite(sun.peak)) return sun;
-    const vec3 towards = pixel_direction(brightest, w, h);
-    std::vector<vec3> at_peak;
+    const vec3 towards = latlong_pixel_direction(brightest, w, h);
+    float min_cos = 1;  // of the angle between the brightest pixel and another near its value
     for (size_t k = 0; k < n; ++k) {
         const float l = luminance(latlong.data()[k]);
-        if (l >= 0.5f * sun.peak) sun.half_peak_solid_angle += row_solid_angle(int(k / size_t(w)), w, h);
-        if (l >= kCeilingLevel * sun.peak) at_peak.push_back(pixel_direction(k, w, h));
+        if (l >= 0.5f * sun.peak) sun.half_peak_solid_angle += row_solid_angle(k, w, h);
+        if (l < kCeilingLevel * sun.peak) continue;
+        ++sun.near_peak;
+        min_cos = std::min(min_cos, glm::dot(latlong_pixel_direction(k, w, h), towards));
     }
-    sun.near_peak = int(at_peak.size());
-    float min_cos = 1;
-    if (at_peak.size() < 4096)  // a softbox's worth is not looked at pair by pair
-        for (size_t a = 0; a < at_peak.size(); ++a)
-            for (size_t b = a + 1; b < at_peak.size(); ++b) min_cos = std::min(min_cos, glm::dot(at_peak[a], at_peak[b]));
     sun.near_peak_spread_deg = std::acos(std::clamp(double(min_cos), -1.0, 1.0)) * 180 / pi;
     const float cap_cos = float(std::cos(kSunCapDeg * pi / 180.0));
     for (float level : kSunLevels) {
@@ -53,7 +42,7 @@ ProbeSun find_probe_sun(const Image& latlong) {
         bool compact = true;
         for (size_t k = 0; k < n && compact; ++k) {
             if (!(luminance(latlong.data()[k]) >= level * sun.peak)) continue;
-            if (glm::dot(pixel_direction(k, w, h), towards) < cap_cos)
+            if (glm::dot(latlong_pixel_direction(k, w, h), towards) < cap_cos)
                 compact = false;  // as bright out there: a bright sky, not a sun
             else
                 pixels.push_back(uint32_t(k));
@@ -68,10 +57,10 @@ ProbeSun find_probe_sun(const Image& latlong) {
     dvec3 centre(0);
     std::vector<bool> in_sun(n, false);
     for (uint32_t k : sun.pixels) {
-        const double flux = luminance(latlong.data()[k]) * row_solid_angle(int(k / uint32_t(w)), w, h);
-        centre += dvec3(pixel_direction(k, w, h)) * flux;
+        const double flux = luminance(latlong.data()[k]) * row_solid_angle(k, w, h);
+        centre += dvec3(latlong_pixel_direction(k, w, h)) * flux;
         sun.sun_irradiance += flux;
-        sun.solid_angle += row_solid_angle(int(k / uint32_t(w)), w, h);
+        sun.solid_angle += row_solid_angle(k, w, h);
         in_sun[k] = true;
     }
     sun.direction = glm::length(centre) > 0 ? vec3(glm::normalize(centre)) : towards;
@@ -84,7 +73,7 @@ ProbeSun find_probe_sun(const Image& latlong) {
             const size_t k = size_t(j) * w + i;
             if (!in_sun[k]) row += std::max(0.0f, luminance(latlong.data()[k]));
         }
-        sun.sky_irradiance += row * up * row_solid_angle(j, w, h);
+        sun.sky_irradiance += row * up * latlong_row_solid_angle(j, w, h);
     }
     return sun;
 }
@@ -93,8 +82,8 @@ std::string clipped_sun_warning(const ProbeSun& sun, const std::string& field) {
     char text[512];
     if (sun.near_peak_spread_deg > kSunCapDeg && sun.half_peak_solid_angle < kMaxCeilingSolidAngle) {
         std::snprintf(text, sizeof(text),
-                      "%s: the probe's %d brightest pixels lie up to %.0f deg apart yet all within 5%% of one "
-                      "peak (%.4g): separate lights do not match that closely, a camera's ceiling does. Its "
+                      "%s: the probe's %d brightest pixels lie up to %.0f deg from the brightest yet all within "
+                      "5%% of its value (%.4g): separate lights do not match that closely, a camera's ceiling does. Its "
                       "lights are likely clipped, and shadows will come out too weak. Restore the sun from a "
                       "lit and a shadowed patch of one surface in the photo (the studio's Sun strength from a "
                       "shadow, or `calibrate probe --sun-from-shadow`; docs/probe-sun.md)",

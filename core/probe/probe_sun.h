@@ -24,8 +24,8 @@ struct ProbeSun {
     /// Luminance irradiance the region gives a surface facing it, and the rest of the upper
     /// hemisphere a horizontal surface (cosine-weighted).
     double sun_irradiance = 0, sky_irradiance = 0;
-    /// Pixels at least kCeilingLevel times the peak, and the widest angle between two of them
-    /// (degrees): separate lights that all reach the same peak met a camera's ceiling.
+    /// Pixels at least kCeilingLevel times the peak, and how far the furthest of them lies from
+    /// the brightest (degrees): separate lights that all reach the same peak met a ceiling.
     int near_peak = 0;
     double near_peak_spread_deg = 0;
     /// Solid angle of the pixels at least half the peak: hot spots, or a softbox's panels.
@@ -40,9 +40,9 @@ inline constexpr double kSunCapDeg = 10.0;
 /// whole probe lies inside that cap (a bright sky around a clipped sun fails the first cuts).
 inline constexpr float kSunLevels[] = {0.05f, 0.25f, 0.5f};
 
-/// Pixels this close to the peak are "at the peak"; if they stand further apart than the sun's
-/// cap and all pixels half as bright cover less than kMaxCeilingSolidAngle (hot spots, not a
-/// studio's equal panels), they met a ceiling.
+/// Pixels this close to the peak are "at the peak"; if one stands further from the brightest
+/// than the sun's cap and all pixels half as bright cover less than kMaxCeilingSolidAngle (hot
+/// spots, not a studio's equal panels), they met a ceiling.
 inline constexpr float kCeilingLevel = 0.95f;
 inline constexpr double kMaxCeilingSolidAngle = 0.01;
 

@@ -79,9 +79,7 @@ SunFromShadow match_sun_to_shadow(const RenderScene& scene, const SunShadowPatch
     std::vector<SunPixel> sun_pixels;
     for (uint32_t k : sun.pixels) {
         in_sun[k] = true;
-        const vec3 d = latlong_direction((float(k % uint32_t(w)) + 0.5f) / float(w),
-                                         (float(k / uint32_t(w)) + 0.5f) / float(h));
-        sun_pixels.push_back({probe.to_world(d), luminance(probe.pixel_radiance(k)) *
+        sun_pixels.push_back({probe.to_world(latlong_pixel_direction(k, w, h)), luminance(probe.pixel_radiance(k)) *
                                                      probe.pixel_solid_angle(int(k / uint32_t(w)))});
     }
 
