@@ -351,6 +351,7 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
                                        [&](Entry&) { return load_mesh(path.string(), field); });
         a.object_file_materials[i] = file_materials(*mesh, path, field, a);
     }
+    load_holdouts(project, a);
     SceneAssets head;
     report(photo_key(project), head);
     report(probe_key(project), head);
@@ -359,6 +360,31 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
     if (a.degenerate_triangles_dropped > 0)
         a.warnings.push_back(std::to_string(a.degenerate_triangles_dropped) + " zero-area triangles dropped");
     return a;
+}
+
+void AssetLibrary::load_holdouts(const Project& project, SceneAssets& a) {
+    int photo_w = 0, photo_h = 0;
+    if (!project.holdouts.empty()) photo_size(project, photo_w, photo_h);
+    for (size_t i = 0; i < project.holdouts.size(); ++i) {
+        const Holdout& h = project.holdouts[i];
+        const fs::path path = project.resolve(h.mask);
+        const std::string field = indexed("holdouts", i, "mask");
+        // A mask is data: painted white means covered, whatever a colour profile says.
+        const std::string key = "texture|" + path.string() + "|linear";
+        auto image = cached<Image>(key, path, [&](Entry& e) {
+            ImageLoadReport report;
+            ImageLoadOptions linear;
+            linear.colorspace = "linear";
+            return load_noted(path, field, report, e.warnings, e.non_finite, linear);
+        });
+        report(key, a);
+        a.holdouts.push_back(HoldoutMask::from_image(*image, h.depth));
+        const double mask_aspect = double(image->width()) / image->height(), photo_aspect = double(photo_w) / photo_h;
+        if (std::abs(mask_aspect / photo_aspect - 1) > 0.01)
+            a.warnings.push_back(field + ": the mask is " + std::to_string(image->width()) + "x" +
+                                 std::to_string(image->height()) + " and the photo " + std::to_string(photo_w) + "x" +
+                                 std::to_string(photo_h) + ": it is stretched over the photo");
+    }
 }
 
 std::vector<FileMaterialAsset> AssetLibrary::file_materials(const LoadedMesh& mesh,

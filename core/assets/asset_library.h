@@ -61,6 +61,8 @@ private:
     std::shared_ptr<const T> cached(const std::string& key, const std::filesystem::path& path, Make&& make);
     /// Adds what decoding `key` found to `assets` (its warnings and replaced NaN/Inf).
     void report(const std::string& key, SceneAssets& assets);
+    /// The holdouts' masks, thresholded, into `a.holdouts` (one per project.holdouts entry).
+    void load_holdouts(const Project& project, SceneAssets& a);
     /// The materials of `mesh` (read from `mesh_path`, named in the project by `field`) mapped
     /// onto ours, their textures decoded; a texture that cannot be read leaves its material its
     /// colour, with a warning in `assets`.

@@ -423,6 +423,19 @@ bool RenderScene::occluded(const Ray& ray, float tmax) const { return bvh_->occl
 
 Ray RenderScene::camera_ray(float px, float py) const { return bvh_->near_clipped(camera_.generate_ray(px, py)); }
 
+float RenderScene::holdout_t(const Ray& ray) const {
+    if (assets_->holdouts.empty()) return INFINITY;
+    vec2 px;
+    const float cos_axis = glm::dot(ray.dir, camera_.forward());
+    if (cos_axis <= 0 || !camera_.project(camera_.position() + ray.dir, px)) return INFINITY;
+    // Pixel centres are whole numbers (OpenCV's convention): pixel 0 spans [-0.5, 0.5).
+    const float u = (px.x + 0.5f) / float(camera_.width()), v = (px.y + 0.5f) / float(camera_.height());
+    float t = INFINITY;
+    for (const HoldoutMask& h : assets_->holdouts)
+        if (h.covers(u, v)) t = std::min(t, h.depth / cos_axis);
+    return t;
+}
+
 bool RenderScene::camera_sees(const vec3& p, const vec3& ng, vec2* pixel) const {
     const vec3 to_cam = camera_.position() - p;
     vec2 px;
@@ -431,6 +444,7 @@ bool RenderScene::camera_sees(const vec3& p, const vec3& ng, vec2* pixel) const 
     const vec3 d = to_cam / dist;
     const vec3 n = glm::dot(ng, d) > 0 ? ng : -ng;
     if (bvh_->occluded_real(Ray{bvh_->offset_origin(p, n, d), d}, dist * (1 - 1e-4f))) return false;
+    if (!assets_->holdouts.empty() && dist > holdout_t(Ray{camera_.position(), -d})) return false;
     if (pixel) *pixel = px;
     return true;
 }

@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "assets/holdout.h"
 #include "camera/camera.h"
 #include "geometry/mesh.h"
 #include "geometry/scene_bvh.h"
@@ -42,6 +43,7 @@ struct SceneAssets {
     /// One per object: its mesh file's materials, by the indices of the mesh's
     /// triangle_materials, where its material_source is "file" (empty otherwise).
     std::vector<std::vector<FileMaterialAsset>> object_file_materials;
+    std::vector<HoldoutMask> holdouts;        ///< one per project.holdouts entry
     size_t non_finite_replaced = 0;           ///< NaN/Inf channels replaced (on load, or by RenderScene)
     size_t degenerate_triangles_dropped = 0;
     std::vector<std::string> warnings;
@@ -171,12 +173,17 @@ public:
     /// front of the eye: a near clip, so a surface touching the lens (the eye on an object, to
     /// float precision) is not seen from the wrong side.
     Ray camera_ray(float px, float py) const;
+    /// How far along `camera_ray` (one of camera_ray's) the first holdout whose mask covers it
+    /// stands: what the ray meets beyond is hidden and the photo shows. Infinity where no mask
+    /// covers the ray (always, with no holdouts).
+    float holdout_t(const Ray& camera_ray) const;
 
     /// Origin for a new ray leaving `hit` towards `dir`, offset off the surface.
     vec3 offset_origin(const Hit& hit, const vec3& dir) const { return bvh_->offset_origin(hit.p, hit.ng, dir); }
 
     /// True if the camera sees real point `p` (geometric normal `ng`) directly: on the side of
-    /// the surface facing the camera, inside the frame, and not hidden by real geometry. The
+    /// the surface facing the camera, inside the frame, and hidden neither by real geometry nor
+    /// by a holdout (whose occluder the photo shows there instead). The
     /// photograph shows the point there, at the returned pixel.
     bool camera_sees(const vec3& p, const vec3& ng, vec2* pixel = nullptr) const;
 

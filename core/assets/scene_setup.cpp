@@ -127,8 +127,10 @@ void RenderScene::estimate_albedos() {
     const int kProbeSamples = 64;
     for (int y = stride / 2; y < H; y += stride)
         for (int x = stride / 2; x < W; x += stride) {
-            Hit hit = intersect_real(camera_ray(float(x), float(y)));
+            const Ray ray = camera_ray(float(x), float(y));
+            Hit hit = intersect_real(ray);
             if (!hit || project_.real[hit.surface->index].albedo.kind != Albedo::Kind::Estimate) continue;
+            if (hit.t > holdout_t(ray)) continue;  // the photo shows the occluder there, not the proxy
             vec3 n = glm::dot(hit.ng, camera_.position() - hit.p) >= 0 ? hit.ng : -hit.ng;
             dvec3 E = real_irradiance(*this, hit.p, n, rng, kProbeSamples).E;
             if (luminance(E) <= 0) continue;

@@ -82,6 +82,12 @@ bool StandardDifferentialRenderer::render_pass(const std::atomic<bool>* cancel) 
                 // Same camera jitter as the reference path tracer.
                 const Ray ray = reference_camera_ray(s, with_virtual_.seed, x, y, smp);
                 Hit first_hit = s.intersect(ray);
+                // Held out: the photo, which shows the occluder, stands (no change).
+                const float t_hold = s.holdout_t(ray);
+                // A lamp's face in front of the occluder still shows.
+                if (t_hold < INFINITY && (!first_hit || first_hit.t > t_hold) &&
+                    (s.lights().empty() || s.lights().emitted(ray, t_hold) == vec3(0)))
+                    continue;
                 vec3 L_new = reference_radiance(s, with_virtual_, ray, pixel, int(smp));
                 // An area light's face in front counts as a virtual object: it replaces the photo.
                 const bool sees_light = !s.lights().empty() &&

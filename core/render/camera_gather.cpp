@@ -245,16 +245,18 @@ SampleResult CameraGather::shade_camera(int x, int y, float px, float py, PixelS
     SampleResult r;
     const Ray ray = scene_.camera_ray(px, py);
     const Hit hit = scene_.intersect(ray);
+    // A holdout's occluder hides what lies beyond it: the photo, which shows the occluder, stands.
+    const float t_hold = scene_.holdout_t(ray);
     if (!scene_.lights().empty()) {
         // An area light's face, seen directly: its glare replaces the photo like an object.
-        const vec3 Le = scene_.lights().emitted(ray, hit ? hit.t : INFINITY);
+        const vec3 Le = scene_.lights().emitted(ray, std::min(hit ? hit.t : INFINITY, t_hold));
         if (Le != vec3(0)) {
             r.alpha = 1;
             r.pixel_change = Le - scene_.photo().at(x, y);
             return r;
         }
     }
-    if (!hit) return r;  // nothing modelled here: the photo stands
+    if (!hit || hit.t > t_hold) return r;  // nothing modelled here, or held out: the photo stands
     if (!hit.surface->is_virtual) {
         const DirectSamples direct = DirectSamples::from(sampler, work.direct_weight);
         r.dL = real_dL(hit, ray.dir, rng, work.direct_weight > 0 ? &direct : nullptr, work.gather, &r.photon);

@@ -50,7 +50,7 @@ DenoiseAovs denoise_aovs(const RenderScene& s, const std::atomic<bool>* cancel) 
         for (int x = 0; x < W; ++x) {
             const Ray ray = s.camera_ray(float(x), float(y));
             const Hit hit = s.intersect(ray);
-            if (!hit) continue;
+            if (!hit || hit.t > s.holdout_t(ray)) continue;  // held out: the photo stands
             const vec3 n = glm::dot(hit.ns, hit.ns) > 0 ? hit.ns : hit.ng;
             out.albedo.at(x, y) = glm::clamp(albedo_along(s, ray, hit), vec3(0), vec3(1));
             out.normal.at(x, y) = facing_normal(glm::normalize(n), ray.dir);

@@ -77,12 +77,14 @@ FramePlan build_frame_plan(const RenderScene& s, bool direct_by_rays, const std:
             const size_t i = size_t(y) * W + x;
             const Ray ray = s.camera_ray(float(x), float(y));
             const Hit hit = s.intersect(ray);
+            // A holdout's occluder hides what lies beyond it (CameraGather::shade_camera).
+            const float t_hold = s.holdout_t(ray);
             // An area light's face is drawn like an object.
-            if (!lights.empty() && lights.emitted(ray, hit ? hit.t : INFINITY) != vec3(0)) {
+            if (!lights.empty() && lights.emitted(ray, std::min(hit ? hit.t : INFINITY, t_hold)) != vec3(0)) {
                 sees_virtual[i] = 1;
                 continue;
             }
-            if (!hit) continue;
+            if (!hit || hit.t > t_hold) continue;
             if (hit.surface->is_virtual) {
                 sees_virtual[i] = 1;
                 continue;

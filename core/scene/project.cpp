@@ -65,7 +65,7 @@ std::filesystem::path Project::resolve(const std::string& path) const {
 bool Project::operator==(const Project& o) const {
     // base_dir records where the file was read from, not what it says.
     return schema_version == o.schema_version && photo == o.photo && probe == o.probe &&
-           camera == o.camera && real == o.real && objects == o.objects && lights == o.lights &&
+           camera == o.camera && real == o.real && objects == o.objects && lights == o.lights && holdouts == o.holdouts &&
            render == o.render &&
            display == o.display;
 }
@@ -102,6 +102,9 @@ void for_each_input(Project& project,
             item(at + ".material.normal_texture", "normal map of " + quoted(o.name), m.normal_texture);
         }
     }
+    for (size_t i = 0; i < project.holdouts.size(); ++i)
+        item("holdouts[" + std::to_string(i) + "].mask", "mask of holdout " + quoted(project.holdouts[i].name),
+             project.holdouts[i].mask);
 }
 
 void for_each_input(const Project& project,

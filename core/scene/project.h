@@ -205,6 +205,23 @@ struct ProbeSpec {
     bool operator==(const ProbeSpec&) const = default;
 };
 
+/// A part of the photograph that stands in front of what lies beyond a distance: a real
+/// occluder no proxy models (a board, a plant, a person). Virtual objects, lamps' faces and the
+/// change of light seen through its mask farther than `depth` are hidden there, and the photo
+/// shows; nearer ones show over it. Shadows and light the hidden parts cast still fall where
+/// they are seen (docs/holdouts.md).
+struct Holdout {
+    std::string name;
+    /// An image, stretched over the photo, whose pixels of luminance >= 0.5 (as stored, not
+    /// decoded as colour) are the occluder.
+    std::string mask;
+    float depth = 1.0f;  ///< metres from the camera along its view axis, > 0
+    bool operator==(const Holdout&) const = default;
+};
+
+/// The farthest a holdout's depth may be (metres): far past any occluder a photo holds.
+inline constexpr float kMaxHoldoutDepth = 1e6f;
+
 /// Either explicit OpenCV intrinsics + pose, or look-at + vertical field of view.
 struct CameraSpec {
     enum class Model { Intrinsics, LookAt };
@@ -274,6 +291,7 @@ struct Project {
     std::vector<RealProxy> real;
     std::vector<VirtualObject> objects;
     std::vector<VirtualLight> lights;
+    std::vector<Holdout> holdouts;
     RenderSettings render;
     DisplaySettings display;
 
@@ -288,7 +306,8 @@ struct InputRef {
 };
 
 /// Calls `visit` with every non-empty path `project` reads a file from (the photo, the probe,
-/// the meshes of mesh shapes, the textures of textured albedos and of principled materials), in
+/// the meshes of mesh shapes, the textures of textured albedos and of principled materials, the
+/// holdouts' masks), in
 /// file order, as written:
 /// `visit` may change it (a file relinked).
 void for_each_input(Project& project,

@@ -20,6 +20,11 @@ Change classify(const Project& a, const Project& b) {
     if (a.photo != b.photo || a.probe.path != b.probe.path || a.probe.format != b.probe.format ||
         a.probe.sun_scale != b.probe.sun_scale || a.base_dir != b.base_dir)
         return Change::Assets;
+    // A mask is an image loaded with the assets; a depth is read when the scene is built.
+    if (a.holdouts.size() != b.holdouts.size()) return Change::Assets;
+    for (size_t i = 0; i < a.holdouts.size(); ++i)
+        if (a.holdouts[i].mask != b.holdouts[i].mask) return Change::Assets;
+    if (a.holdouts != b.holdouts) return Change::Scene;
     if (!(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real || a.objects.size() != b.objects.size())
         return Change::Scene;
     bool material = false;
@@ -45,7 +50,7 @@ Change classify(const Project& a, const Project& b) {
 bool edited_objects(const Project& a, const Project& b, std::vector<int>& edited) {
     edited.clear();
     if (classify(a, b) == Change::Assets || !(a.probe == b.probe) || !(a.camera == b.camera) || a.real != b.real ||
-        a.render != b.render || a.lights != b.lights)
+        a.render != b.render || a.lights != b.lights || a.holdouts != b.holdouts)
         return false;
     const size_t n = std::max(a.objects.size(), b.objects.size());
     for (size_t i = 0; i < n; ++i)

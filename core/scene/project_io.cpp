@@ -215,6 +215,20 @@ VirtualObject parse_object(const JsonReader& r, const json& j, const std::string
     return o;
 }
 
+Holdout parse_holdout(const JsonReader& r, const json& j, const std::string& path) {
+    if (!j.is_object()) r.wrong_type(j, path, "an object");
+    r.object(j, path, {"name", "mask", "depth"});
+    Holdout h;
+    h.name = parse_name(r, j, path);
+    h.mask = r.string(r.required(j, path, "mask"), json_join(path, "mask"));
+    const std::string p = json_join(path, "depth");
+    h.depth = r.real(r.required(j, path, "depth"), p);
+    r.check(h.depth > 0 && h.depth <= kMaxHoldoutDepth, p,
+            "must be in (0, " + shortest_decimal(kMaxHoldoutDepth) + "] metres from the camera (got " +
+                shortest_decimal(h.depth) + ")");
+    return h;
+}
+
 VirtualLight parse_light(const JsonReader& r, const json& j, const std::string& path) {
     if (!j.is_object()) r.wrong_type(j, path, "an object");
     VirtualLight l;
@@ -543,6 +557,12 @@ J write_project(const Project& p) {
             doc["lights"].push_back(light);
         }
     }
+    // Written only when there are holdouts, as lights are.
+    if (!p.holdouts.empty()) {
+        doc["holdouts"] = J::array();
+        for (const Holdout& h : p.holdouts)
+            doc["holdouts"].push_back(J{{"name", h.name}, {"mask", h.mask}, {"depth", num(h.depth)}});
+    }
     const RenderSettings& s = p.render;
     J render;
     render["photons_per_pass"] = s.photons_per_pass;
@@ -580,7 +600,7 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
                 std::to_string(kProjectSchemaVersion));
     r.object(
         doc, "",
-        {"schema_version", "photo", "probe", "camera", "real", "objects", "lights", "render", "display"});
+        {"schema_version", "photo", "probe", "camera", "real", "objects", "lights", "holdouts", "render", "display"});
 
     Project p;
     p.base_dir = std::move(base_dir);
@@ -640,6 +660,8 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
         p.objects.push_back(parse_object(r, j, path));
     });
     each("lights", [&](const json& j, const std::string& path) { p.lights.push_back(parse_light(r, j, path)); });
+    each("holdouts",
+         [&](const json& j, const std::string& path) { p.holdouts.push_back(parse_holdout(r, j, path)); });
     if (auto* s = r.optional(doc, "render")) p.render = parse_render(r, *s);
     if (auto* d = r.optional(doc, "display")) {
         r.object(*d, "display", {"exposure", "view", "look"});

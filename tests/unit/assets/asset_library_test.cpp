@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "assets/asset_library.h"
+#include "base/error.h"
 #include "image/image_io.h"
 
 using namespace dp;
@@ -177,4 +178,38 @@ TEST_F(AssetLibraryTest, TheProjectsMaxWidthShrinksTheProbeOnLoadAndSaysSo) {
     EXPECT_TRUE(warned(library, "the 300x150 probe is reduced to 100x50 on load, its light kept"));
     // The lit probe is built from the shrunk map, sharing it with the cache.
     EXPECT_EQ(&library.lit_probe(project_)->probe.image(), small.get());
+}
+
+TEST_F(AssetLibraryTest, AHoldoutsMaskIsLoadedAsDataAndAMaskOfAnotherShapeIsWarnedOf) {
+    // Left half white; the top right quarter written as sRGB 0.54 (0.25 linear): as stored it
+    // is over half and covered, as decoded colour it would not be.
+    Image mask(32, 24);
+    for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 32; ++x) mask.at(x, y) = vec3(x < 16 ? 1.0f : 0.25f * (y < 12));
+    save_ldr((dir_ / "mask.png").string(), mask);
+    project_.holdouts.push_back({"board", "mask.png", 2.5f});
+    AssetLibrary library;
+    const SceneAssets a = library.load(project_, 0, 0, false);
+    ASSERT_EQ(a.holdouts.size(), 1u);
+    EXPECT_EQ(a.holdouts[0].depth, 2.5f);
+    EXPECT_NEAR(a.holdouts[0].coverage(), 0.75, 1e-9);  // the left half, and the top right quarter
+    EXPECT_FALSE(warned(library, "stretched"));
+    for (const std::string& w : a.warnings) EXPECT_EQ(w.find("stretched"), std::string::npos) << w;
+
+    save_ldr((dir_ / "square.png").string(), Image(24, 24, vec3(1)));
+    project_.holdouts[0].mask = "square.png";
+    const SceneAssets b = library.load(project_, 0, 0, false);
+    bool stretched = false;
+    for (const std::string& w : b.warnings)
+        stretched |= w.find("holdouts[0].mask: the mask is 24x24 and the photo 32x24") != std::string::npos;
+    EXPECT_TRUE(stretched);
+
+    // A missing mask is an error naming its field.
+    project_.holdouts[0].mask = "missing.png";
+    try {
+        library.load(project_, 0, 0, false);
+        FAIL() << "a missing mask loaded";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.field(), "holdouts[0].mask");
+    }
 }

@@ -164,6 +164,39 @@ TEST_F(ProjectIo, TheProbesSunScaleRoundTripsAndIsLeftOutAtOne) {
     EXPECT_EQ(read(saved).find("sun_scale"), std::string::npos);
 }
 
+TEST_F(ProjectIo, HoldoutsRoundTripAndAreLeftOutWhenThereAreNone) {
+    const char* text = R"({"schema_version": 1, "photo": {"path": "p.png"},
+        "probe": {"path": "probe.exr"},
+        "camera": {"model": "lookat", "eye": [0, 1, 4], "target": [0, 0.5, 0]},
+        "holdouts": [{"name": "board", "mask": "board.mask.png", "depth": 1.25}]})";
+    Project a = load_project(write("h.json", text));
+    ASSERT_EQ(a.holdouts.size(), 1u);
+    EXPECT_EQ(a.holdouts[0].name, "board");
+    EXPECT_EQ(a.holdouts[0].mask, "board.mask.png");
+    EXPECT_EQ(a.holdouts[0].depth, 1.25f);
+    const std::string saved = (dir_ / "saved.json").string();
+    save_project(a, saved);
+    EXPECT_EQ(load_project(saved), a);
+    // The mask is an input file: relinking, bundling and the missing-files check see it.
+    std::vector<std::string> fields;
+    for_each_input(a, [&](const InputRef& ref, const std::string&) { fields.push_back(ref.field); });
+    EXPECT_NE(std::find(fields.begin(), fields.end(), "holdouts[0].mask"), fields.end());
+
+    // A new mask is loaded with the assets; a new depth only rebuilds the scene.
+    Project b = a;
+    b.holdouts[0].depth = 2;
+    EXPECT_EQ(classify(a, b), Change::Scene);
+    b = a;
+    b.holdouts[0].mask = "other.png";
+    EXPECT_EQ(classify(a, b), Change::Assets);
+    std::vector<int> edited;
+    EXPECT_FALSE(edited_objects(a, b, edited));  // the whole picture can change
+    b.holdouts.clear();
+    EXPECT_EQ(classify(a, b), Change::Assets);
+    save_project(b, saved);
+    EXPECT_EQ(read(saved).find("holdouts"), std::string::npos);
+}
+
 TEST_F(ProjectIo, ProgrammaticProjectRoundTripsBitExactly) {
     Project a;
     a.photo.path = "photo.exr";
