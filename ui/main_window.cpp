@@ -34,6 +34,7 @@
 #include "material_panel.h"
 #include "probe_align_panel.h"
 #include "probe_panel.h"
+#include "holdout_panel.h"
 #include "proxy_panel.h"
 #include "project_edit.h"
 #include "denoise_worker.h"
@@ -379,7 +380,10 @@ void MainWindow::createDocks() {
         dock("proxyDock", tr("Real Proxies"), proxyPanel_, Qt::LeftDockWidgetArea);
     tabifyDockWidget(render, probe);
     tabifyDockWidget(probe, camera);
+    QDockWidget* holdouts = dock("holdoutDock", tr("Holdouts"), new HoldoutPanel(doc_, viewport_, reporter_),
+                                 Qt::LeftDockWidgetArea);
     tabifyDockWidget(camera, proxies);
+    tabifyDockWidget(proxies, holdouts);
     render->raise();
     // The viewport gets most of the width; the panels only what their fields need.
     resizeDocks({render, findChild<QDockWidget*>("sceneDock")}, {300, 440}, Qt::Horizontal);

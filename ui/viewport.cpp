@@ -13,7 +13,7 @@
 namespace dp::ui {
 
 Viewport::Viewport(Document* doc, QWidget* parent)
-    : QWidget(parent), doc_(doc), pick_(new PickTool(this)) {
+    : QWidget(parent), doc_(doc), pick_(new PickTool(this)), matte_(new MatteTool(this)) {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(320, 200);
     setAttribute(Qt::WA_OpaquePaintEvent);
@@ -22,6 +22,11 @@ Viewport::Viewport(Document* doc, QWidget* parent)
            "Wheel zooms, middle button pans, X deletes, Esc cancels a drag."));
     connect(doc_, &Document::changed, this, [this] { update(); });
     connect(pick_, &PickTool::changed, this, [this] { update(); });
+    // The brush's outline follows the cursor while the matte tool paints.
+    connect(matte_, &MatteTool::changed, this, [this] {
+        if (!dragging_) setMouseTracking(matte_->active());
+        update();
+    });
     connect(doc_, &Document::selectionChanged, this, [this](int index) {
         overlays_.selected = index;
         update();
@@ -191,6 +196,9 @@ void Viewport::paintEvent(QPaintEvent*) {
         draw_overlays(p, doc_->project(), camera(), camToWidget, o);
         p.setClipping(false);
     }
+    p.setClipRect(imageRect());
+    matte_->paint(p, camToWidget);
+    p.setClipping(false);
     pick_->paint(p, camToWidget);
     if (modal_) {
         // What the keys have set so far, as Blender shows it in its header.
@@ -252,7 +260,7 @@ void Viewport::finishDrag(bool cancel) {
     dragging_ = false;
     axis_ = -1;
     typed_.clear();
-    setMouseTracking(false);
+    setMouseTracking(matte_->active());
     if (cancel) doc_->edit(tr("Cancel transform"), projectAtDrag_, dragKey_);
     if (modal_) {
         modal_ = false;
@@ -275,6 +283,7 @@ void Viewport::mousePressEvent(QMouseEvent* e) {
     }
     if (e->button() != Qt::LeftButton || !renderSize_.isValid()) return;
     const vec2 px = toImage(e->position());
+    if (matte_->press(QPointF(px.x, px.y), e->modifiers())) return;
     if (pick_->press(QPointF(px.x, px.y))) return;
     // A light's glyph is small and drawn over what is behind it: it is picked first.
     const float perPixel = float(imageToWidget().m11());
@@ -294,6 +303,11 @@ void Viewport::mouseMoveEvent(QMouseEvent* e) {
         pan_ += e->position() - lastPos_;
         lastPos_ = e->position();
         update();
+        return;
+    }
+    if (matte_->active()) {
+        const vec2 px = toImage(e->position());
+        matte_->move(QPointF(px.x, px.y));
         return;
     }
     if (pick_->active()) {
@@ -382,12 +396,25 @@ void Viewport::mouseReleaseEvent(QMouseEvent* e) {
         panning_ = false;
         return;
     }
+    if (e->button() == Qt::LeftButton && matte_->active()) {
+        const vec2 px = toImage(e->position());
+        matte_->release(QPointF(px.x, px.y));
+        return;
+    }
     if (e->button() == Qt::LeftButton && pick_->active()) {
         const vec2 px = toImage(e->position());
         pick_->release(QPointF(px.x, px.y));
         return;
     }
     if (e->button() == Qt::LeftButton && dragging_ && !modal_) finishDrag(false);
+}
+
+void Viewport::mouseDoubleClickEvent(QMouseEvent* e) {
+    if (e->button() == Qt::LeftButton && matte_->active() && renderSize_.isValid()) {
+        const vec2 px = toImage(e->position());
+        if (matte_->doubleClick(QPointF(px.x, px.y))) return;
+    }
+    QWidget::mouseDoubleClickEvent(e);
 }
 
 void Viewport::wheelEvent(QWheelEvent* e) {
@@ -403,6 +430,7 @@ void Viewport::keyPressEvent(QKeyEvent* e) {
     // G, R, S and X are the window's actions (they work from any panel); here only what ends a
     // drag or a pick, and a modal transform's axes and typed value.
     if (modalKey(e)) return;
+    if (matte_->key(e->key())) return;
     switch (e->key()) {
         case Qt::Key_Return:
         case Qt::Key_Enter:

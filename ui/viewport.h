@@ -5,6 +5,7 @@
 
 #include "display.h"
 #include "gizmo.h"
+#include "matte_tool.h"
 #include "overlays.h"
 #include "pick_tool.h"
 #include "render_controller.h"
@@ -19,7 +20,7 @@ class Document;
 /// left-drag applies the toolbar's mode, and startModalTransform (the window's G, R and S keys)
 /// makes the object follow the mouse until a click or Enter confirms it; Esc or the right button
 /// cancels a drag. While the pick tool is active, left clicks and drags go to it
-/// (calibration and proxy tools) and Esc cancels it.
+/// (calibration and proxy tools) and Esc cancels it; so too the matte tool (holdout masks).
 class Viewport : public QWidget {
     Q_OBJECT
 public:
@@ -85,6 +86,9 @@ public:
     QPointF widgetFromRender(QPointF renderPx) const;
     /// The point and segment picker the calibration and proxy tools share.
     PickTool* pickTool() const { return pick_; }
+    /// The holdout mask painter (the holdout panel drives it); while active it takes left
+    /// clicks and drags before anything else.
+    MatteTool* matteTool() const { return matte_; }
 
 Q_SIGNALS:
     void dragStarted();
@@ -96,6 +100,7 @@ protected:
     void mousePressEvent(QMouseEvent*) override;
     void mouseMoveEvent(QMouseEvent*) override;
     void mouseReleaseEvent(QMouseEvent*) override;
+    void mouseDoubleClickEvent(QMouseEvent*) override;
     void wheelEvent(QWheelEvent*) override;
     void keyPressEvent(QKeyEvent*) override;
     bool event(QEvent*) override;
@@ -118,6 +123,7 @@ protected:
 
     Document* doc_;
     PickTool* pick_;
+    MatteTool* matte_;
     std::shared_ptr<const RenderFrame> frame_;
     bool denoise_ = false, showingDenoised_ = false;
     std::shared_ptr<const Image> denoised_;

@@ -1,11 +1,15 @@
 #include "reconstruction/holdout_matte.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
 
+#include "base/error.h"
 #include "image/image_io.h"
 
 namespace dp {
@@ -66,6 +70,40 @@ std::vector<uint8_t> grabcut_matte(const Image& photo, const std::vector<MatteLa
                                                                      : cut.at<uint8_t>(y, x) != 0;
         }
     return out;
+}
+
+std::string save_holdout_mask(const std::vector<uint8_t>& covered, int width, int height,
+                              const std::string& project_file, const std::string& name) {
+    namespace fs = std::filesystem;
+    if (covered.size() != size_t(width) * size_t(height))
+        throw std::invalid_argument("save_holdout_mask: the mask is not one byte per pixel");
+    // FNV-1a over the size and the covered pixels: a name that changes with the content.
+    uint64_t hash = 1469598103934665603ull;
+    auto mix = [&](uint64_t v) {
+        hash ^= v;
+        hash *= 1099511628211ull;
+    };
+    mix(uint64_t(width));
+    mix(uint64_t(height));
+    for (uint8_t c : covered) mix(c != 0);
+    std::string stem;
+    for (char c : name) stem += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '_';
+    if (stem.empty()) stem = "holdout";
+    char tag[20];
+    std::snprintf(tag, sizeof tag, "%012llx", static_cast<unsigned long long>(hash & 0xffffffffffffull));
+    const fs::path project(project_file);
+    const fs::path folder = fs::path(project.stem().string() + ".holdouts");
+    const fs::path relative = folder / (stem + "-" + tag + ".png");
+    const fs::path full = project.parent_path() / relative;
+    std::error_code ec;
+    fs::create_directories(full.parent_path(), ec);
+    if (ec) throw InputError(full.parent_path().string(), "", "cannot create the holdouts' folder: " + ec.message());
+    if (!fs::exists(full)) {
+        Image image(width, height);
+        for (size_t i = 0; i < covered.size(); ++i) image[i] = vec3(covered[i] ? 1.0f : 0.0f);
+        save_ldr(full.string(), image);
+    }
+    return relative.generic_string();
 }
 
 }  // namespace dp

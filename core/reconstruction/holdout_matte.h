@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "image/image.h"
@@ -25,5 +26,13 @@ std::vector<MatteLabel> matte_labels_from_rect(int width, int height, int x0, in
 /// for labels of another size, or when the labels hold no possible occluder or no background.
 std::vector<uint8_t> grabcut_matte(const Image& photo, const std::vector<MatteLabel>& labels,
                                    double max_pixels = 400000, int iterations = 5);
+
+/// Writes a mask (one byte per pixel of a `width` x `height` frame, non-zero where the occluder
+/// is) as a black-and-white PNG in the folder "<project stem>.holdouts" beside `project_file`,
+/// named after the holdout `name` and the mask's content: each version of a mask keeps its own
+/// file, so an undo finds the old one. Returns the path relative to the project's folder, as
+/// holdouts[].mask takes it. Throws InputError naming the file when it cannot be written.
+std::string save_holdout_mask(const std::vector<uint8_t>& covered, int width, int height,
+                              const std::string& project_file, const std::string& name);
 
 }  // namespace dp
