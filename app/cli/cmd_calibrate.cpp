@@ -249,7 +249,8 @@ Command add_calibrate_command(CLI::App& app) {
                         "Print the result as one JSON object on stdout (the other lines go to stderr)");
     // proxy, albedo and probe edit the scene and print no JSON result.
     auto scene_commands = std::make_shared<std::vector<Command>>(std::vector<Command>{
-        add_calibrate_proxy_command(*sub), add_calibrate_albedo_command(*sub), add_calibrate_probe_command(*sub)});
+        add_calibrate_proxy_command(*sub), add_calibrate_albedo_command(*sub), add_calibrate_probe_command(*sub),
+        add_calibrate_holdout_command(*sub)});
     return {sub, [commands, scene_commands, json] {
                 for (const Command& c : *scene_commands)
                     if (c.app->parsed()) return c.run();

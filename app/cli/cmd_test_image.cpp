@@ -1,5 +1,6 @@
 // `diffphoton make-test-image` (hidden): small inputs for the shell tests, which have no other
 // way to write EXR files.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -26,6 +27,7 @@ struct TestImageOptions {
     float sun_radius_deg = 0;
     std::vector<float> sky_zenith;
     int checker = 0;
+    std::vector<int> box;  ///< x0 y0 x1 y1: a rectangle of value2 over the image
     std::vector<float> value2{0.1f, 0.1f, 0.1f};
     size_t nan_pixels = 0;
 };
@@ -76,6 +78,10 @@ int run_make_test_image(const TestImageOptions& o) {
         img = checker_image(w, h, o.checker, value, vec3(o.value2[0], o.value2[1], o.value2[2]));
     else
         img = Image(w, h, value);
+    if (!o.box.empty())
+        for (int y = std::max(0, o.box[1]); y < std::min(h, o.box[3]); ++y)
+            for (int x = std::max(0, o.box[0]); x < std::min(w, o.box[2]); ++x)
+                img.at(x, y) = vec3(o.value2[0], o.value2[1], o.value2[2]);
     if (o.nan_pixels > img.size())
         throw InputError(o.output, "--nan", "more NaN pixels than the image has");
     // Deliberately non-finite input: one NaN channel per pixel, spread over the image.
@@ -113,7 +119,9 @@ Command add_make_test_image_command(CLI::App& app) {
         ->check(kFinite);
     sub->add_option("--checker", o->checker, "A checkerboard of this many cells a side (--value, --value2)")
         ->check(CLI::Range(1, 4096));
-    sub->add_option("--value2", o->value2, "The checkerboard's second colour")->expected(3)->check(kFinite);
+    sub->add_option("--value2", o->value2, "The checkerboard's (or the box's) second colour")->expected(3)->check(kFinite);
+    sub->add_option("--box", o->box, "X0 Y0 X1 Y1: a rectangle of --value2 over the image (a board in a photo)")
+        ->expected(4);
     sub->add_option("--nan", o->nan_pixels, "Number of pixels whose red channel is NaN");
     add_force_flag(sub, o->force);
     return {sub, [o] { return run_make_test_image(*o); }, [o] { check_output_path(o->output, "output"); }};

@@ -44,6 +44,8 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate);
 Command add_calibrate_proxy_command(CLI::App& calibrate);
 Command add_calibrate_albedo_command(CLI::App& calibrate);
 Command add_calibrate_probe_command(CLI::App& calibrate);
+/// `calibrate holdout` (cmd_calibrate_holdout.cpp): a real occluder that hides the objects behind it.
+Command add_calibrate_holdout_command(CLI::App& calibrate);
 /// Hidden: writes constant images and synthetic probes for the shell tests.
 Command add_make_test_image_command(CLI::App& app);
 
