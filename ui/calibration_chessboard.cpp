@@ -95,7 +95,16 @@ QWidget* CalibrationPanel::makeChessboardPage() {
                          tr("Height of the board's origin corner (its first inner corner, "
                             "marked O after Detect and apply) above the floor"));
     boardHeight_->setObjectName("boardHeight");
+    boardHeight_->setKeyboardTracking(false);
+    // Applied at once to the last board on a wall: no need to detect it again.
+    connect(boardHeight_, &QDoubleSpinBox::valueChanged, this, [this] { applyBoardHeight(); });
+    connect(boardHeight_, &QDoubleSpinBox::editingFinished, this, [this] { boardHeightKey_ = -1; });
     form->addRow(tr("Board height"), boardHeight_);
+    boardFootButton_ = make_named_button("boardHeightClick", tr("Height from a click"),
+                                         tr("Click a point of the board that touches the floor (a corner "
+                                            "of its lower edge): the board height that puts it there"));
+    connect(boardFootButton_, &QPushButton::clicked, this, [this] { startPicking(Target::BoardFoot); });
+    form->addRow(QString(), boardFootButton_);
     horizonButton_ = make_named_button("boardHorizon", tr("Click horizon"),
                                   tr("Drag along the horizon in the photo (where the floor "
                                      "would meet the sky, or a level line at eye height)"));
@@ -103,6 +112,7 @@ QWidget* CalibrationPanel::makeChessboardPage() {
     form->addRow(QString(), horizonButton_);
     auto enable = [this](int plane) {
         boardHeight_->setEnabled(plane != int(BoardPlane::Ground));
+        boardFootButton_->setEnabled(plane != int(BoardPlane::Ground));
         horizonButton_->setEnabled(plane == int(BoardPlane::WallHorizon));
     };
     connect(boardPlane_, &QComboBox::currentIndexChanged, this, enable);
@@ -129,8 +139,8 @@ ChessboardSpec CalibrationPanel::boardSpec() const {
     return ChessboardSpec{cols_->value(), rows_->value(), square_->value()};
 }
 
-CalibrationResult CalibrationPanel::placeGround(const CalibrationResult& r,
-                                                const std::string& source, QString* ground) {
+CalibrationResult CalibrationPanel::placeGround(const CalibrationResult& r, const std::string& source,
+                                                QString* ground, glm::dvec3* upOut) {
     const auto plane = BoardPlane(boardPlane_->currentIndex());
     if (plane == BoardPlane::Ground) {
         *ground = tr("Ground (y = 0): the board's plane");
@@ -146,6 +156,7 @@ CalibrationResult CalibrationPanel::placeGround(const CalibrationResult& r,
                              "another plane for the board");
         up = up_from_horizon(r.intrinsics, toPhoto(horizon_[0]), toPhoto(horizon_[1]), source);
     }
+    if (upOut) *upOut = up;
     const CalibrationResult g = with_ground_from_up(r, up, boardHeight_->value(), source);
     *ground = tr("Ground (y = 0): level, %1 m below the board's origin corner O (up from %2); "
                  "the board is on a wall, the camera %3 m above the ground")
@@ -153,6 +164,56 @@ CalibrationResult CalibrationPanel::placeGround(const CalibrationResult& r,
                   .arg(plane == BoardPlane::WallCameraUp ? tr("the camera") : tr("the horizon"))
                   .arg(g.pose.position().y, 0, 'f', 2);
     return g;
+}
+
+void CalibrationPanel::applyBoardHeight() {
+    if (!boardFit_ || !(doc_->project().camera == boardFit_->applied)) {
+        if (boardFit_) boardFit_.reset();  // another camera since: the board no longer says where the floor is
+        return;
+    }
+    guarded(tr("Board height failed"), [this] {
+        const CalibrationResult g =
+            with_ground_from_up(boardFit_->pose, boardFit_->up, boardHeight_->value(), boardFit_->source);
+        Project p = doc_->project();
+        p.camera = g.camera_spec();
+        if (boardHeightKey_ < 0) boardHeightKey_ = doc_->newMergeKey();
+        if (!doc_->tryEdit(tr("Board height"), p, boardHeightKey_)) return;
+        boardFit_->applied = p.camera;
+        status_->setText(tr("Ground (y = 0): level, %1 m below the board's origin corner O; the camera %2 m "
+                            "above the ground")
+                             .arg(boardHeight_->value(), 0, 'f', 3)
+                             .arg(g.pose.position().y, 0, 'f', 2));
+    });
+}
+
+void CalibrationPanel::boardHeightFromClick(QPointF px) {
+    guarded(tr("Board height failed"), [&] {
+        if (!boardFit_ || !(doc_->project().camera == boardFit_->applied))
+            throw InputError("chessboard", "board height",
+                             "detect and apply the board on a wall first: the click is read on its plane");
+        const CalibrationResult& r = boardFit_->pose;
+        const ImagePoint q = toPhoto(px);
+        const Ray ray = r.camera().generate_ray(float(q.x), float(q.y));
+        // The board's plane, through its corners (first row and first column).
+        const int cols = boardSpec().cols;
+        if (r.world_points.size() <= size_t(cols)) throw InputError("chessboard", "board height", "no board corners");
+        const glm::dvec3 o = r.world_points[0];
+        const glm::dvec3 n = glm::cross(r.world_points[1] - o, r.world_points[size_t(cols)] - o);
+        const glm::dvec3 org(ray.org), dir(ray.dir);
+        const double denom = glm::dot(n, dir);
+        if (std::abs(denom) < 1e-9 * glm::length(n)) throw InputError("chessboard", "board height", "the board is seen edge-on there");
+        const double t = glm::dot(n, o - org) / denom;
+        if (!(t > 0)) throw InputError("chessboard", "board height", "that point is not on the board's plane");
+        const glm::dvec3 point = org + t * dir;
+        const glm::dvec3 origin = r.world_points.empty() ? glm::dvec3(0.0) : r.world_points.front();
+        const glm::dvec3 up = glm::normalize(glm::transpose(r.pose.R) * boardFit_->up);
+        const double height = glm::dot(origin - point, up);
+        if (height < 0)
+            throw InputError("chessboard", "board height",
+                             "that point is above the board's origin corner O: click where the board meets the floor");
+        boardHeight_->setValue(height);  // applies it (applyBoardHeight)
+        boardHeightKey_ = -1;
+    });
 }
 
 bool CalibrationPanel::applyChessboard() {
@@ -180,10 +241,14 @@ bool CalibrationPanel::applyChessboard() {
                 r = chessboard_single(view, spec);
         }
         QString ground;
-        r = placeGround(r, path, &ground);
+        const CalibrationResult pose = r;
+        glm::dvec3 up(0.0);
+        r = placeGround(r, path, &ground, &up);
         boardOrigin_ = view.corners[0];
         boardPhoto_ = QSize(view.width, view.height);
         apply(tr("chessboard"), r, ground);
+        boardFit_.reset();
+        if (up != glm::dvec3(0.0)) boardFit_ = BoardFit{pose, up, path, doc_->project().camera};
         refreshMarks();
     });
 }

@@ -78,6 +78,7 @@ CalibrationPanel::CalibrationPanel(Document* doc, Viewport* viewport, CameraPane
     });
     connect(doc_, &Document::reloaded, this, [this] {
         boardOrigin_.reset();
+        boardFit_.reset();
         clearPicks();
         status_->clear();  // the last project's result is not this one's
     });
@@ -218,6 +219,10 @@ void CalibrationPanel::startPicking(Target target) {
             pick->start(PickTool::Kind::Point, 2,
                         tr("Click the vertical length's foot on the ground, then its top"));
             break;
+        case Target::BoardFoot:
+            pick->start(PickTool::Kind::Point, 1,
+                        tr("Click a point of the board that touches the floor (a corner on its lower edge)"));
+            break;
         case Target::Horizon:
             horizon_.clear();
             pick->start(PickTool::Kind::Segment, 1,
@@ -244,6 +249,7 @@ void CalibrationPanel::onPoint(QPointF px) {
     if (target_ == Target::Origin) origin_ = {px};
     if (target_ == Target::Distance) distanceEnds_.push_back(px);
     if (target_ == Target::Vertical) verticalEnds_.push_back(px);
+    if (target_ == Target::BoardFoot) boardHeightFromClick(px);
     refreshMarks();
 }
 

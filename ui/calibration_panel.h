@@ -82,7 +82,7 @@ public:
 
 private:
     /// What the pick tool's clicks and drags are for.
-    enum class Target { None, Corners, X, Y, Z, Origin, Distance, Vertical, Horizon };
+    enum class Target { None, Corners, X, Y, Z, Origin, Distance, Vertical, Horizon, BoardFoot };
 
     QWidget* makeChessboardPage();
     QWidget* makeRectanglePage();
@@ -97,9 +97,10 @@ private:
     /// Applies `r` as the project camera and shows its warnings, then `more` (lines).
     void apply(const QString& method, const CalibrationResult& r, const QString& more = {});
     /// `r` (in the board's frame) with the ground the "Board lies on" choice makes; `ground`
-    /// receives a line for the status saying which plane is the ground.
+    /// receives a line for the status saying which plane is the ground; `up`, if given, the up
+    /// (camera coordinates) a wall's board was levelled with (left as it is for the ground).
     CalibrationResult placeGround(const CalibrationResult& r, const std::string& source,
-                                  QString* ground);
+                                  QString* ground, glm::dvec3* up = nullptr);
     /// The board's spec from the page's fields.
     ChessboardSpec boardSpec() const;
     /// On the UI thread once the lens worker is done: applies its result or reports its error.
@@ -123,7 +124,7 @@ private:
     QSpinBox *cols_, *rows_;
     QDoubleSpinBox *square_, *boardFocal_, *boardHeight_;
     QComboBox *focalSource_, *boardPlane_;
-    QPushButton *horizonButton_, *lensButton_;
+    QPushButton *horizonButton_, *lensButton_, *boardFootButton_ = nullptr;
     LensPhotosDialog* lensDialog_ = nullptr;
     QProgressDialog* lensProgress_ = nullptr;
     // Rectangle.
@@ -143,6 +144,21 @@ private:
     /// and the size of the photo it was found in.
     std::optional<ImagePoint> boardOrigin_;
     QSize boardPhoto_;
+    /// The last board applied on a wall: its pose in the board's frame, the up it was levelled
+    /// with (camera coordinates), and the camera that made; a new board height re-levels it at
+    /// once while the project's camera is still that one.
+    struct BoardFit {
+        CalibrationResult pose;
+        glm::dvec3 up{0.0};
+        std::string source;
+        CameraSpec applied;
+    };
+    std::optional<BoardFit> boardFit_;
+    int boardHeightKey_ = -1;  ///< merge key of the board height's edits while the field is held
+    /// Re-levels the last wall board at the board height field's value (one undo step per stroke).
+    void applyBoardHeight();
+    /// The board height that puts the clicked point of the board (render pixels) on the floor.
+    void boardHeightFromClick(QPointF px);
     std::string photoPath_;
     Image photo_;
 

@@ -10,6 +10,7 @@ private Q_SLOTS:
     void chessboardIsFoundInTheOpenCvSamplePhoto();
     void aBoardOnAWallMakesTheFloorBelowItTheGround();
     void aDraggedHorizonSetsTheGroundForABoardOnAWall();
+    void aNewBoardHeightAppliesAtOnceAndAClickOnTheBoardsFootSetsIt();
     void severalPhotosCalibrateTheLensAsTheLibraryDoes();
     void cancellingTheLensCalibrationLeavesTheCameraAsItWas();
 };
@@ -100,6 +101,57 @@ void CalibrationChessboardTest::aBoardOnAWallMakesTheFloorBelowItTheGround() {
     w_->action("undo")->trigger();
     w_->action("undo")->trigger();
     QVERIFY(doc->project() == before);
+}
+
+void CalibrationChessboardTest::aNewBoardHeightAppliesAtOnceAndAClickOnTheBoardsFootSetsIt() {
+    openLeft01OnTheChessboardPage(1);  // "Wall (up from the camera)", board height 1 m
+    Document* doc = w_->document();
+    QTest::mouseClick(child<QPushButton>("chessboardApply"), Qt::LeftButton);
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    const ChessboardView view = detect_chessboard(kLeft01, kSampleBoard);
+    const CalibrationResult board = chessboard_pose(view, kSampleBoard, Intrinsics::centred(640, 480, 536.0));
+    const glm::dvec3 up = up_from_camera(board, kLeft01);
+    QVERIFY(doc->project().camera == with_ground_from_up(board, up, 1.0, kLeft01).camera_spec());
+    const int steps = doc->undoStack()->count();
+
+    // A new height, typed: the camera follows at once, without detecting the board again.
+    QDoubleSpinBox* height = child<QDoubleSpinBox>("boardHeight");
+    height->setFocus();
+    height->selectAll();
+    QTest::keyClicks(height, "1.2");
+    QTest::keyClick(height, Qt::Key_Return);
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    const CalibrationResult at12 = with_ground_from_up(board, up, 1.2, kLeft01);
+    QVERIFY(doc->project().camera == at12.camera_spec());
+    QCOMPARE(doc->undoStack()->count(), steps + 1);
+
+    // A click on the board's last inner corner of its first column, as if that corner stood on
+    // the floor: the height that puts it there.
+    const size_t foot = size_t(kSampleBoard.cols * (kSampleBoard.rows - 1));
+    const glm::dvec3 corner = at12.world_points[foot];
+    // Where the photo shows it, in the viewport's render pixels (pixel edges scale).
+    vec2 q;
+    QVERIFY(board.camera().project(vec3(board.world_points[foot]), q));
+    Viewport* v = w_->viewport();
+    const QSize rs = v->renderSize();
+    const QPointF px((q.x + 0.5) * rs.width() / 640.0 - 0.5, (q.y + 0.5) * rs.height() / 480.0 - 0.5);
+    QTest::mouseClick(child<QPushButton>("boardHeightClick"), Qt::LeftButton);
+    QTest::mouseClick(v, Qt::LeftButton, {}, v->widgetFromRender(px).toPoint());
+    QVERIFY2(reporter_->errors.isEmpty(), qPrintable(reporter_->errors.join("\n")));
+    const double want = 1.2 - corner.y;  // the origin's height above that corner
+    qInfo("board height from a click: %.4f m (the corner is %.4f m below the origin)", height->value(), want);
+    // A click lands on a whole widget pixel, about a photo pixel: 2% of the 0.125 m.
+    QVERIFY2(std::abs(height->value() - want) < 0.02 * want, qPrintable(QString::number(height->value())));
+    const Camera cam = doc->project().camera.build(640, 480);
+    const CalibrationResult after = with_ground_from_up(board, up, height->value(), kLeft01);
+    QVERIFY(doc->project().camera == after.camera_spec());
+    QVERIFY2(std::abs(after.world_points[foot].y) < 0.003, qPrintable(QString::number(after.world_points[foot].y)));
+    QVERIFY(cam.position().y > 0);
+    // Undo takes back the click, then the typed height.
+    w_->action("undo")->trigger();
+    QVERIFY(doc->project().camera == at12.camera_spec());
+    w_->action("undo")->trigger();
+    QVERIFY(doc->project().camera == with_ground_from_up(board, up, 1.0, kLeft01).camera_spec());
 }
 
 void CalibrationChessboardTest::aDraggedHorizonSetsTheGroundForABoardOnAWall() {
