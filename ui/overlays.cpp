@@ -177,16 +177,25 @@ void draw_overlays(QPainter& painter, const Project& project, const Camera& came
     painter.setRenderHint(QPainter::Antialiasing, true);
     painter.setBrush(Qt::NoBrush);
     LineDrawer d(painter, camera, toWidget);
-    // Grid and outlines are drawn as a difference: visible on bright and dark photos alike.
+    // Outlines are drawn as a difference: visible on bright and dark photos alike.
     if (o.grid) {
-        painter.setCompositionMode(QPainter::CompositionMode_Difference);
-        painter.setPen(QPen(QColor(255, 255, 255, 90), 0));
-        for (int i = -10; i <= 10; ++i) {
-            const float k = 0.5f * float(i);
-            d.line(vec3(k, 0, -5), vec3(k, 0, 5), 16);
-            d.line(vec3(-5, 0, k), vec3(5, 0, k), 16);
+        // Its spacing follows what the view shows of the ground: centimetres at a desk.
+        const GroundGrid g = ground_grid(project, camera);
+        // A dark line under a light one: seen on any photo (a difference blend vanished on mid-grey).
+        const float half = g.spacing * float(g.half_lines);
+        for (const QPen& pen : {QPen(QColor(0, 0, 0, 70), 2.0), QPen(QColor(255, 255, 255, 110), 1.0)}) {
+            painter.setPen(pen);
+            for (int i = -g.half_lines; i <= g.half_lines; ++i) {
+                const float k = g.spacing * float(i);
+                d.line(g.centre + vec3(k, 0, -half), g.centre + vec3(k, 0, half), 16);
+                d.line(g.centre + vec3(-half, 0, k), g.centre + vec3(half, 0, k), 16);
+            }
         }
-        painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
+        painter.setPen(QColor(255, 255, 255, 200));
+        const QString label = g.spacing >= 1     ? QStringLiteral("grid %1 m").arg(double(g.spacing))
+                              : g.spacing >= 0.01 ? QStringLiteral("grid %1 cm").arg(double(g.spacing) * 100)
+                                                  : QStringLiteral("grid %1 mm").arg(double(g.spacing) * 1000);
+        painter.drawText(toWidget.map(QPointF(4, camera.height() - 6)), label);
     }
     if (o.proxies) {
         painter.setPen(QPen(QColor(80, 200, 255, 160), 0));

@@ -209,6 +209,31 @@ VisibleGround visible_ground(const Project& project, const Camera& camera) {
     return g;
 }
 
+float grid_spacing(float extent) {
+    if (!(extent > 0) || !std::isfinite(extent)) return 0.5f;
+    const float target = 0.1f * extent;
+    float decade = std::pow(10.0f, std::floor(std::log10(target)));
+    if (10 * decade <= target * 1.0001f) decade *= 10;  // log10 rounded below a whole power
+    if (decade > target * 1.0001f) decade /= 10;
+    for (float m : {5.0f, 2.0f, 1.0f})
+        if (m * decade <= target * 1.0001f) return m * decade;
+    return decade;
+}
+
+GroundGrid ground_grid(const Project& project, const Camera& camera) {
+    GroundGrid g;
+    const VisibleGround v = visible_ground(project, camera);
+    if (!v.valid) return g;  // nothing seen of the ground: half a metre round the origin
+    g.spacing = grid_spacing(v.extent);
+    const vec3 c = view_centre_point(project, camera);
+    g.centre = vec3(std::round(c.x / g.spacing) * g.spacing, 0.0f, std::round(c.z / g.spacing) * g.spacing);
+    // Enough lines to cover what is seen from the centre, not a horizon's worth.
+    const float reach = std::max({std::abs(v.lo.x - g.centre.x), std::abs(v.hi.x - g.centre.x),
+                                  std::abs(v.lo.z - g.centre.z), std::abs(v.hi.z - g.centre.z)});
+    g.half_lines = std::clamp(int(std::ceil(reach / g.spacing)) + 1, 5, 40);
+    return g;
+}
+
 float view_object_size(const Project& project, const Camera& camera) {
     const VisibleGround g = visible_ground(project, camera);
     return g.valid ? std::clamp(0.1f * g.extent, 0.02f, 50.0f) : 0.5f;

@@ -49,6 +49,18 @@ struct VisibleGround {
 };
 VisibleGround visible_ground(const Project& project, const Camera& camera);
 
+/// The ground grid's spacing for a view whose visible ground spans `extent` metres: about a
+/// tenth of it, rounded down to 1, 2 or 5 times a power of ten (a centimetre at a desk, a metre
+/// in a yard).
+float grid_spacing(float extent);
+/// The ground grid the viewport draws: lines every `spacing` on y = 0, `half_lines` each side of
+/// `centre` (the ground under the view centre, on a whole number of spacings).
+struct GroundGrid {
+    vec3 centre{0.0f};
+    float spacing = 0.5f;
+    int half_lines = 10;
+};
+GroundGrid ground_grid(const Project& project, const Camera& camera);
 /// Size (diameter, edge) for a new object in this view: a tenth of the visible ground's
 /// extent, within [0.02, 50] m; 0.5 m when the camera sees no ground.
 float view_object_size(const Project& project, const Camera& camera);
