@@ -99,6 +99,19 @@ ProxyPanel::ProxyPanel(Document* doc, Viewport* viewport, ErrorReporter* reporte
         connect(size_[k], &QDoubleSpinBox::valueChanged, this, [this] { applySize(); });
         sizeForm->addRow(sizeLabels[k], size_[k]);
     }
+    // Where its base stands: a desk top, a shelf, the ground under a raised floor; live, one
+    // undo step per stroke of the field.
+    base_ = metres(0.0, "proxyBase", tr("Height of the selected proxy's lowest point (a plane's own height), "
+                                        "in metres above y = 0"));
+    base_->setRange(-1e5, 1e5);
+    base_->setKeyboardTracking(false);
+    connect(base_, &QDoubleSpinBox::valueChanged, this, [this] { applyBase(); });
+    // One undo step while the field keeps the focus (arrow presses, typed values): a spin box
+    // also finishes editing at each arrow press.
+    connect(qApp, &QApplication::focusChanged, this, [this](QWidget* old, QWidget*) {
+        if (old && (old == base_ || base_->isAncestorOf(old))) baseKey_ = -1;
+    });
+    sizeForm->addRow(tr("Base height"), base_);
     layout->addWidget(size);
     connect(list_, &QListWidget::currentRowChanged, this, [this] { showSize(); });
 
@@ -198,14 +211,19 @@ ProxyPanel::ProxyPanel(Document* doc, Viewport* viewport, ErrorReporter* reporte
 
 void ProxyPanel::refresh() {
     const int row = list_->currentRow();
-    list_->clear();
-    for (const RealProxy& r : doc_->project().real) {
-        QString text = QStringLiteral("%1 (%2)").arg(QString::fromStdString(r.name),
-                                                    shape_kind_name(r.shape.kind));
-        if (r.albedo.kind == Albedo::Kind::Texture) text += tr(", textured");
-        list_->addItem(text);
+    {
+        // Quietly: the emptied list's "no selection" disabled the fields for a moment, and the
+        // field being typed in lost the focus at each edit.
+        QSignalBlocker quiet(list_);
+        list_->clear();
+        for (const RealProxy& r : doc_->project().real) {
+            QString text = QStringLiteral("%1 (%2)").arg(QString::fromStdString(r.name),
+                                                        shape_kind_name(r.shape.kind));
+            if (r.albedo.kind == Albedo::Kind::Texture) text += tr(", textured");
+            list_->addItem(text);
+        }
+        list_->setCurrentRow(std::min(row, list_->count() - 1));
     }
-    list_->setCurrentRow(std::min(row, list_->count() - 1));
     showSize();
     showGloss();
 }
@@ -267,7 +285,31 @@ void ProxyPanel::showSize() {
     }
     size_[0]->setToolTip(kind == Shape::Kind::Sphere ? tr("Radius of the selected sphere")
                                                      : tr("Size of the selected proxy along its own x"));
+    base_->setEnabled(r != nullptr);
+    if (row != shownRow_) baseKey_ = -1;  // another proxy: another stroke
+    shownRow_ = row;
+    if (r) base_->setValue(double(proxy_base(*r)));
     showingSize_ = false;
+}
+
+float ProxyPanel::proxy_base(const RealProxy& r) {
+    const float y = r.transform.translation.y;
+    switch (r.shape.kind) {
+        case Shape::Kind::Box: return y - 0.5f * r.shape.size.y * std::abs(r.transform.scale.y);
+        case Shape::Kind::Sphere: return y - r.shape.radius * std::abs(r.transform.scale.y);
+        default: return y;  // a plane's height; a mesh's origin
+    }
+}
+
+void ProxyPanel::applyBase() {
+    const int row = list_->currentRow();
+    Project p = doc_->project();
+    if (showingSize_ || row < 0 || size_t(row) >= p.real.size()) return;
+    RealProxy& r = p.real[size_t(row)];
+    r.transform.translation.y += float(base_->value()) - proxy_base(r);
+    if (p.real == doc_->project().real) return;
+    if (baseKey_ < 0) baseKey_ = doc_->newMergeKey();
+    doc_->tryEdit(tr("Raise %1").arg(QString::fromStdString(r.name)), p, baseKey_);
 }
 
 void ProxyPanel::applySize() {

@@ -5,6 +5,8 @@
 #include <functional>
 #include <thread>
 
+#include "scene/project.h"
+
 class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
@@ -46,6 +48,10 @@ private:
     void showSize();
     /// Applies the size fields to the selected proxy (a box keeps its base where it was).
     void applySize();
+    /// Moves the selected proxy up or down so that its lowest point is at the base field's height.
+    void applyBase();
+    /// The height of a proxy's lowest point (a plane's own height, a mesh's origin).
+    static float proxy_base(const RealProxy& r);
     /// The gloss fields show / set the selected proxy's gloss (a preset fills both fields).
     void showGloss();
     void applyGloss();
@@ -60,6 +66,9 @@ private:
     QListWidget* list_;
     QDoubleSpinBox *boxHeight_, *wallHeight_, *wallThickness_;
     QDoubleSpinBox* size_[3] = {};  ///< the selected proxy's size along its x, y, z
+    QDoubleSpinBox* base_ = nullptr;  ///< the selected proxy's lowest point's height
+    int baseKey_ = -1;                ///< merge key of the base field's stroke
+    int shownRow_ = -1;               ///< the proxy the fields show
     bool showingSize_ = false;
     QComboBox* glossPreset_ = nullptr;
     QDoubleSpinBox *glossSpecular_ = nullptr, *glossRoughness_ = nullptr;

@@ -17,6 +17,7 @@ private Q_SLOTS:
     void albedoEstimateWritesTheLibrarysTextureNextToTheProject();
     void addGroundPlaneRefitsTheGroundInsteadOfAddingASecond();
     void typedSizesResizeTheSelectedProxyAndABoxKeepsItsBase();
+    void theBaseHeightRaisesTheSelectedProxyAsItChangesInOneUndoStep();
     void probeTiltSlidersTurnTheProbeAboutXAndZ();
 };
 
@@ -342,6 +343,39 @@ void CalibrationTest::albedoEstimateWritesTheLibrarysTextureNextToTheProject() {
     QVERIFY(test::mean_abs_diff(got, want.albedo) < 1e-6);
     w_->action("undo")->trigger();
     QVERIFY(w_->document()->project() == before);
+}
+
+void CalibrationTest::theBaseHeightRaisesTheSelectedProxyAsItChangesInOneUndoStep() {
+    Document* doc = w_->document();
+    w_->findChild<QDockWidget*>("proxyDock")->raise();
+    QListWidget* list = child<QListWidget>("proxyList");
+    QVERIFY(QTest::qWaitForWindowExposed(list));
+    QTest::mouseClick(list->viewport(), Qt::LeftButton, {}, list->visualItemRect(list->item(1)).center());
+    QDoubleSpinBox* base = child<QDoubleSpinBox>("proxyBase");
+    QCOMPARE(base->value(), 0.0);  // the crate stands on the ground
+    const Project before = doc->project();
+    const int steps = doc->undoStack()->count();
+    // The arrow keys move it at once, each press; with a typed value, one undo step in all.
+    base->setFocus();
+    float last = before.real[1].transform.translation.y;
+    for (int i = 0; i < 3; ++i) {
+        QTest::keyClick(base, Qt::Key_Up);
+        const float y = doc->project().real[1].transform.translation.y;
+        QVERIFY2(y > last, qPrintable(QString("press %1: %2 after %3").arg(i).arg(y).arg(last)));
+        last = y;
+    }
+    QCOMPARE(doc->undoStack()->count(), steps + 1);  // three presses, one step
+    base->selectAll();
+    QTest::keyClicks(base, "0.75");
+    QTest::keyClick(base, Qt::Key_Return);
+    const RealProxy& crate = doc->project().real[1];
+    QVERIFY(std::abs(crate.transform.translation.y - 0.5f * crate.shape.size.y - 0.75f) < 1e-5f);
+    QCOMPARE(crate.shape.size, before.real[1].shape.size);
+    QVERIFY(doc->project().real[0] == before.real[0]);
+    QCOMPARE(doc->undoStack()->count(), steps + 1);  // one stroke while the field has the focus
+    w_->action("undo")->trigger();
+    QVERIFY(doc->project() == before);
+    QCOMPARE(base->value(), 0.0);
 }
 
 QTEST_MAIN(CalibrationTest)
