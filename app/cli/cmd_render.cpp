@@ -13,6 +13,7 @@
 #include "common.h"
 #include "image/denoise.h"
 #include "image/image_io.h"
+#include "image/plate_match.h"
 #include "reference/standard_differential.h"
 #include "render/denoise_aovs.h"
 #include "image/noise_blend.h"
@@ -30,7 +31,7 @@ namespace dp::cli {
 namespace {
 
 struct RenderOptions {
-    std::string project, output, pixel, method = "differential", pass_range, adaptive;
+    std::string project, output, pixel, method = "differential", pass_range, adaptive, match_plate;
     int passes = 0, pass = 1, threads = 0, focus_after = 0, samples_per_pass = 1, probe_max_width = 0;
     double time_s = 0;
     int64_t photons = 0;
@@ -137,19 +138,39 @@ Denoised denoise_result(const RenderScene& scene, const RenderUpdate& u, bool wi
     return d;
 }
 
+/// The render given the photo's grain and softness (image/plate_match.h), from `image` (the raw
+/// or denoised composite); says on stderr what was measured.
+PlateMatch plate_matched(const RenderScene& scene, const Image& image, const RenderUpdate& u, uint64_t seed) {
+    const Image& photo = scene.photo();
+    const GrainProfile grain = measure_grain(photo);
+    const float soft = measure_softness(photo);
+    if (grain.empty()) warn("--match-plate: the photo has too few flat patches to measure its grain; none is added");
+    if (soft < 0) warn("--match-plate: the photo has too few edges to measure its softness; nothing is blurred");
+    const vec3 mid = grain.empty() ? vec3(0.0f) : grain.sigma[grain.sigma.size() / 2];
+    std::fprintf(stderr, "plate: grain %.3g (green, at luminance %.3g; %zu levels, correlation %.2f px), softness %.2f px\n",
+                 double(mid.y), grain.empty() ? 0.0 : double(grain.levels[grain.levels.size() / 2]),
+                 grain.levels.size(), double(grain.correlation_px), double(std::max(soft, 0.0f)));
+    return match_plate(image, photo, u.alpha, u.dL, grain, std::max(soft, 0.0f), seed);
+}
+
 void write_result(const RenderOptions& o, ImageKind kind, const LoadedScene& loaded, RenderUpdate& u) {
     const RenderScene& scene = *loaded.scene;
     const ImageWriteOptions options =
         write_options(o.format, render_metadata(loaded.project, o.project, u.stats.passes, loaded.settings.seed));
     std::optional<Denoised> denoised;
     if (o.denoise) denoised = denoise_result(scene, u, kind == ImageKind::Exr);
+    std::optional<PlateMatch> matched;
+    if (o.match_plate == "on" || (o.match_plate.empty() && loaded.project.display.match_plate))
+        matched = plate_matched(scene, denoised ? denoised->image : u.image, u, loaded.settings.seed);
     if (kind == ImageKind::Ldr) {
-        write_image(o.output, denoised ? std::move(denoised->image) : std::move(u.image),
+        write_image(o.output, matched ? std::move(matched->beauty) : denoised ? std::move(denoised->image) : std::move(u.image),
                     output_view(o.format, o.exposure, project_view(loaded.project)), options);
         return;
     }
     std::vector<ExrLayer> extra;
     if (denoised) extra = {{"denoised", &denoised->image}, {"dL_denoised", &denoised->dL}};
+    // The main layer stays the render as rendered; the matched one and its grain beside it.
+    if (matched) extra.insert(extra.end(), {{"matched", &matched->beauty}, {"grain", &matched->grain}});
     if (o.format.bits != 0) throw InputError(o.output, "--bits", "an EXR holds half (--half) or 32-bit floats");
     for (const std::string& w : save_render_exr(o.output, u, scene.photo(), o.layers, extra, options))
         warn(o.output + ": " + w);
@@ -162,7 +183,9 @@ void check_render_output(const RenderOptions& o, ImageKind kind, const Project& 
     int width = 0, height = 0;
     library.photo_size(p, width, height);
     const int channels =
-        kind == ImageKind::Exr ? render_exr_channels(o.layers) + (o.denoise ? 6 : 0) : 3;  // denoised, dL_denoised
+        kind == ImageKind::Exr
+            ? render_exr_channels(o.layers) + (o.denoise ? 6 : 0) + (o.match_plate != "off" ? 6 : 0)  // matched, grain
+            : 3;
     check_outputs({{o.output, "--output", image_output_bytes(o.output, o.format, width, height, channels)}}, inputs,
                   o.force);
 }
@@ -313,6 +336,11 @@ Command add_render_command(CLI::App& app) {
     sub->add_flag("--denoise", o->denoise,
                   "Denoise the change with Open Image Denoise: EXR gets layers denoised and "
                   "dL_denoised beside the raw image; PNG/JPEG is the denoised image");
+    sub->add_option("--match-plate", o->match_plate,
+                    "on/off: give what the render adds the photo's grain and softness (default: the "
+                    "project's display.match_plate); EXR gets layers matched and grain, PNG/JPEG/TIFF "
+                    "is the matched image")
+        ->check(CLI::IsMember({"on", "off"}));
     sub->add_option("--exposure", o->exposure, "PNG/JPEG/TIFF only: exposure in stops")
         ->check(kFinite);
     add_output_format_options(sub, o->format);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "base/rng.h"
 #include "commands.h"
 #include "common.h"
 #include "outputs.h"
@@ -28,6 +29,7 @@ struct TestImageOptions {
     std::vector<float> sky_zenith;
     int checker = 0;
     std::vector<int> box;  ///< x0 y0 x1 y1: a rectangle of value2 over the image
+    float noise = 0;       ///< standard deviation of Gaussian grain added to every channel
     std::vector<float> value2{0.1f, 0.1f, 0.1f};
     size_t nan_pixels = 0;
 };
@@ -82,6 +84,14 @@ int run_make_test_image(const TestImageOptions& o) {
         for (int y = std::max(0, o.box[1]); y < std::min(h, o.box[3]); ++y)
             for (int x = std::max(0, o.box[0]); x < std::min(w, o.box[2]); ++x)
                 img.at(x, y) = vec3(o.value2[0], o.value2[1], o.value2[2]);
+    if (o.noise > 0) {
+        Rng rng(17, 3);
+        for (size_t i = 0; i < img.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                const float u1 = std::max(rng.uniform(), 1e-12f), u2 = rng.uniform();
+                img[i][c] += o.noise * std::sqrt(-2.0f * std::log(u1)) * std::cos(2.0f * kPi * u2);
+            }
+    }
     if (o.nan_pixels > img.size())
         throw InputError(o.output, "--nan", "more NaN pixels than the image has");
     // Deliberately non-finite input: one NaN channel per pixel, spread over the image.
@@ -120,6 +130,8 @@ Command add_make_test_image_command(CLI::App& app) {
     sub->add_option("--checker", o->checker, "A checkerboard of this many cells a side (--value, --value2)")
         ->check(CLI::Range(1, 4096));
     sub->add_option("--value2", o->value2, "The checkerboard's (or the box's) second colour")->expected(3)->check(kFinite);
+    sub->add_option("--noise", o->noise, "Gaussian grain of this standard deviation on every channel (a photo's)")
+        ->check(CLI::Range(0.0f, 1.0f));
     sub->add_option("--box", o->box, "X0 Y0 X1 Y1: a rectangle of --value2 over the image (a board in a photo)")
         ->expected(4);
     sub->add_option("--nan", o->nan_pixels, "Number of pixels whose red channel is NaN");

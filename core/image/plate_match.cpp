@@ -223,6 +223,14 @@ vec3 GrainProfile::sigma_at(float level) const {
 }
 
 GrainProfile measure_grain(const Image& photo, float clip_level) {
+    if (clip_level < 0) {
+        float top = 0;
+        for (size_t i = 0; i < photo.size(); ++i) top = std::max({top, photo[i].x, photo[i].y, photo[i].z});
+        size_t at_top = 0;
+        for (size_t i = 0; i < photo.size(); ++i)
+            at_top += std::max({photo[i].x, photo[i].y, photo[i].z}) >= 0.995f * top;
+        clip_level = at_top >= photo.size() / 1000 + 1 ? 0.995f * top : INFINITY;
+    }
     GrainProfile g;
     const int W = photo.width(), H = photo.height();
     std::vector<PatchStat> stats;
@@ -401,13 +409,16 @@ Image grain_field(const GrainProfile& profile, int width, int height, uint64_t s
 PlateMatch match_plate(const Image& augmented, const Image& photo, const Image& alpha, const Image& dL,
                        const GrainProfile& grain, float blur_px, uint64_t seed) {
     const int W = augmented.width(), H = augmented.height();
-    Image objects(W, H);
+    Image objects(W, H), change(W, H);
     for (size_t i = 0; i < objects.size(); ++i) {
         const float a = alpha[i].x;
-        // alpha objects + (1 - alpha) photo + dL = augmented (render/compositing.h).
+        // alpha objects + (1 - alpha) photo + dL = augmented (render/compositing.h). Where no
+        // object is seen the change is the composite's own (a denoised one's, too).
+        change[i] = a > 0 ? dL[i] : augmented[i] - photo[i];
         objects[i] = a > 0 ? augmented[i] - (1 - a) * photo[i] - dL[i] : vec3(0.0f);
     }
-    const Image ob = gaussian_blur(objects, blur_px), ab = gaussian_blur(alpha, blur_px), db = gaussian_blur(dL, blur_px);
+    const Image ob = gaussian_blur(objects, blur_px), ab = gaussian_blur(alpha, blur_px),
+                db = gaussian_blur(change, blur_px);
     PlateMatch m{Image(W, H), Image(W, H)};
     const Image noise = grain.empty() ? Image() : grain_field(grain, W, H, seed);
     for (size_t i = 0; i < objects.size(); ++i) {

@@ -30,8 +30,10 @@ struct GrainProfile {
 /// fitted to each patch and its residual taken as grain; within a band the patches at the 25th
 /// percentile of residual variance stand for the grain (texture only adds to it), corrected
 /// for that percentile's place in the chi-square spread of pure noise. Pixels at or above
-/// `clip_level` (per channel) are left out. Empty where fewer than 16 flat patches are found.
-GrainProfile measure_grain(const Image& photo, float clip_level = INFINITY);
+/// `clip_level` (per channel) are left out; a negative `clip_level` finds it: the photo's
+/// largest value where at least 0.1% of its pixels reach it (a clipped ceiling), else none.
+/// Empty where fewer than 16 flat patches are found.
+GrainProfile measure_grain(const Image& photo, float clip_level = -1);
 
 /// The photo's softness: the width (pixels) of the Gaussian blur by which its edges are softer
 /// than a sharp edge rendered with a one-pixel box filter (what the renderer's jittered samples
@@ -56,7 +58,9 @@ struct PlateMatch {
 /// The composite `augmented` (= alpha objects + (1 - alpha) photo + dL) with what the render
 /// adds blurred by `blur_px` and the objects given the plate's grain: objects, alpha and dL are
 /// blurred alike, and the grain is added in proportion to the blurred alpha at the objects'
-/// brightness. Where nothing changes within a few blur widths the photo is untouched.
+/// brightness. Where nothing changes within a few blur widths the photo is untouched. `dL` is
+/// read only where alpha > 0: elsewhere the change is augmented - photo, so a denoised composite
+/// keeps its denoised change.
 PlateMatch match_plate(const Image& augmented, const Image& photo, const Image& alpha, const Image& dL,
                        const GrainProfile& grain, float blur_px, uint64_t seed = 1);
 

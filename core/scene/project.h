@@ -277,6 +277,9 @@ struct DisplaySettings {
     /// "Standard" keeps an untouched photo pixel as it came in; "Filmic" for HDR plates.
     std::string view = "Standard";
     std::string look;  ///< "" or an OpenColorIO look
+    /// Give what the render adds the photo's grain and softness (image/plate_match.h), in the
+    /// studio's view and in PNG/JPEG/TIFF renders; EXR renders get it as layers.
+    bool match_plate = false;
     bool operator==(const DisplaySettings&) const = default;
 };
 

@@ -582,6 +582,7 @@ J write_project(const Project& p) {
     doc["display"] = J{{"exposure", num(p.display.exposure)}};
     if (p.display.view != DisplaySettings{}.view) doc["display"]["view"] = p.display.view;
     if (!p.display.look.empty()) doc["display"]["look"] = p.display.look;
+    if (p.display.match_plate) doc["display"]["match_plate"] = true;  // off is left out, as an empty look is
     return doc;
 }
 
@@ -664,11 +665,12 @@ Project parse_project(const json& doc, const std::string& file_for_errors,
          [&](const json& j, const std::string& path) { p.holdouts.push_back(parse_holdout(r, j, path)); });
     if (auto* s = r.optional(doc, "render")) p.render = parse_render(r, *s);
     if (auto* d = r.optional(doc, "display")) {
-        r.object(*d, "display", {"exposure", "view", "look"});
+        r.object(*d, "display", {"exposure", "view", "look", "match_plate"});
         if (auto* e = r.optional(*d, "exposure"))
             p.display.exposure = r.real(*e, "display.exposure");
         if (auto* v = r.optional(*d, "view")) p.display.view = r.string(*v, "display.view");
         if (auto* l = r.optional(*d, "look")) p.display.look = r.string(*l, "display.look");
+        if (auto* m = r.optional(*d, "match_plate")) p.display.match_plate = r.boolean(*m, "display.match_plate");
     }
     return p;
 }
