@@ -172,19 +172,23 @@ vec2 neighbour_correlation(const Image& im, const std::vector<std::pair<int, int
     return lag0 > 0 ? vec2(float(lag1 / lag0), float(lag2 / lag0)) : vec2(0.0f);
 }
 
-/// The quarter of `im`'s 8x8 patches of least luminance residual (how flat patches are picked).
-std::vector<std::pair<int, int>> flattest_quarter(const Image& im) {
+/// The 8x8 patches of a plate of grain alone that measure_grain would take for grain: green
+/// residual variance at most twice its lower quartile.
+std::vector<std::pair<int, int>> grain_like(const Image& im) {
     std::vector<std::pair<double, std::pair<int, int>>> v;
-    for (int y0 = 0; y0 + kPatch <= im.height(); y0 += kPatch)
-        for (int x0 = 0; x0 + kPatch <= im.width(); x0 += kPatch) {
-            float r[3][kPatch * kPatch], lum[kPatch * kPatch];
-            for (int c = 0; c < 3; ++c) plane_residual(im, x0, y0, c, r[c]);
-            luminance_residual(r, lum);
-            v.push_back({variance_of(lum), {x0, y0}});
+    for (int y0 = kPatch / 2; y0 + kPatch <= im.height(); y0 += kPatch)
+        for (int x0 = kPatch / 2; x0 + kPatch <= im.width(); x0 += kPatch) {
+            float r[kPatch * kPatch];
+            plane_residual(im, x0, y0, 1, r);
+            v.push_back({variance_of(r), {x0, y0}});
         }
-    std::sort(v.begin(), v.end());
+    std::vector<double> vars;
+    for (const auto& e : v) vars.push_back(e.first);
+    std::nth_element(vars.begin(), vars.begin() + ptrdiff_t(vars.size() / 4), vars.end());
+    const double limit = 2 * vars[vars.size() / 4];
     std::vector<std::pair<int, int>> out;
-    for (size_t i = 0; i <= v.size() / 4 && i < v.size(); ++i) out.push_back(v[i].second);
+    for (const auto& e : v)
+        if (e.first <= limit) out.push_back(e.second);
     return out;
 }
 
@@ -209,6 +213,38 @@ vec3 quartile_ratio(const GrainProfile& g) {
         q[c] = float(v[v.size() / 4]);
     }
     return q;
+}
+
+/// Replaces the bands' figures by a power law sigma = c L^p per channel, fitted in log-log as
+/// a low quantile (30%) regression: grain grows smoothly with brightness (shot noise: p = 1/2;
+/// noise of constant size in JPEG codes, decoded to linear: about 0.6), while a band whose
+/// patches are all texture (none flat at that brightness: the edges of a checkerboard, the mid
+/// greys of a busy room) only ever lies above it. The best line passes through two bands, so
+/// every pair is tried.
+void fit_power_law(GrainProfile& g) {
+    const size_t n = g.levels.size();
+    if (n < 2) return;
+    constexpr double kTau = 0.3;
+    for (int c = 0; c < 3; ++c) {
+        std::vector<double> x, y;
+        for (size_t i = 0; i < n; ++i)
+            if (g.sigma[i][c] > 0) x.push_back(std::log(g.levels[i])), y.push_back(std::log(g.sigma[i][c]));
+        if (x.size() < 2) continue;
+        double best = INFINITY, p = 0.5, b = y[0] - 0.5 * x[0];
+        for (size_t i = 0; i < x.size(); ++i)
+            for (size_t j = i + 1; j < x.size(); ++j) {
+                if (std::abs(x[j] - x[i]) < 1e-6) continue;
+                const double slope = std::clamp((y[j] - y[i]) / (x[j] - x[i]), 0.0, 1.5);
+                const double icpt = y[i] - slope * x[i];
+                double loss = 0;
+                for (size_t k = 0; k < x.size(); ++k) {
+                    const double r = y[k] - (icpt + slope * x[k]);
+                    loss += r >= 0 ? kTau * r : (kTau - 1) * r;
+                }
+                if (loss < best) best = loss, p = slope, b = icpt;
+            }
+        for (size_t i = 0; i < n; ++i) g.sigma[i][c] = float(std::exp(b + p * std::log(g.levels[i])));
+    }
 }
 
 }  // namespace
@@ -281,13 +317,20 @@ GrainProfile measure_grain(const Image& photo, float clip_level) {
                 var[c] = v[at];
             }
             g.levels.push_back(band[band.size() / 2]->level);
-            g.sigma.push_back(var);  // the raw quartile of variance, corrected below
-            for (size_t k = 0; k <= at; ++k) flat.push_back(band[k]);
+            g.sigma.push_back(glm::sqrt(var));  // the raw quartile, corrected below
         }
         begin = end;
     }
+    if (g.levels.size() < 2) return GrainProfile{};
     // Levels ascend by construction (bands are in order); a band's median may tie another's.
     for (size_t i = 1; i < g.levels.size(); ++i) g.levels[i] = std::max(g.levels[i], g.levels[i - 1] * 1.0001f);
+    fit_power_law(g);
+    // The patches that speak for the grain: no busier than twice the fitted quartile of its
+    // variance there (green, the channel luminance leans on; grain_like picks alike).
+    for (const PatchStat& s : stats) {
+        const float sg = g.sigma_at(s.level).y;
+        if (s.var.y <= 2 * sg * sg) flat.push_back(&s);
+    }
     g.patches = flat.size();
     if (flat.size() < 16) return GrainProfile{};
 
@@ -312,7 +355,7 @@ GrainProfile measure_grain(const Image& photo, float clip_level) {
         GrainProfile sim = g;
         sim.correlation_px = width;
         const Image n = grain_field(sim, 128, 128, 0x5eed);
-        return neighbour_correlation(n, flattest_quarter(n)).x;
+        return neighbour_correlation(n, grain_like(n)).x;
     };
     float lo_w = 0, hi_w = 3;
     g.correlation_px = 0;
@@ -329,7 +372,7 @@ GrainProfile measure_grain(const Image& photo, float clip_level) {
     // more its neighbours are correlated (fewer independent pixels, and a plane takes more of
     // it). Measured on grain of the correlation found, by the same patch statistic.
     const vec3 q = quartile_ratio(g);
-    for (vec3& v : g.sigma) v = glm::sqrt(v / q);
+    for (vec3& v : g.sigma) v /= glm::sqrt(q);
     return g;
 }
 

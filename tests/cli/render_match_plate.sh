@@ -4,7 +4,7 @@
 source "$(dirname "$0")/testlib.bash" "$@"
 make_inputs
 # A grainy photo with edges (a checkerboard), so its grain and softness can be measured.
-run make-test-image photo.exr --size 64 48 --checker 4 --value 0.5 0.5 0.5 --value2 0.2 0.2 0.2 --noise 0.02
+run make-test-image photo.exr --size 160 120 --checker 5 --value 0.5 0.5 0.5 --value2 0.2 0.2 0.2 --noise 0.02
 expect_rc 0 "checker photo"
 write_project scene.json "$BALL" "$FLOOR"
 

@@ -104,6 +104,18 @@ TEST(PlateMatch, TheGrainOfAPlateIsMeasuredAcrossItsBrightness) {
     for (size_t i = 0; i < clean.sigma.size(); ++i) EXPECT_LT(clean.sigma[i].x, 0.01f * clean.levels[i]);
 }
 
+TEST(PlateMatch, BrightnessBandsOfTextureAloneAreNotTakenForGrain) {
+    // A checkerboard of 0.5 and 0.1: every patch of the levels between straddles an edge.
+    const GrainProfile truth = camera_grain(0.6f);
+    Image board(320, 240);
+    for (int y = 0; y < 240; ++y)
+        for (int x = 0; x < 320; ++x) board.at(x, y) = vec3((x / 20 + y / 20) % 2 ? 0.5f : 0.1f);
+    const GrainProfile g = measure_grain(with_grain(board, truth, 21));
+    ASSERT_FALSE(g.empty());
+    for (float level : {0.1f, 0.2f, 0.3f, 0.5f})
+        EXPECT_NEAR(g.sigma_at(level).y / truth.sigma_at(level).y, 1.0f, 0.15f) << "level " << level;
+}
+
 TEST(PlateMatch, TheSoftnessOfAPlateIsTheBlurItHasBeyondARendersEdge) {
     const Image sharp = shapes(400, 320);
     for (float sigma : {0.0f, 1.0f, 2.0f}) {
