@@ -244,6 +244,11 @@ void MainWindow::createActions() {
                                "the photo and the exports stay as rendered"),
                             [this](bool on) { setDenoise(on); });
     denoise->setCheckable(true);
+    QAction* matchPlate = make("matchPlate", tr("&Match Plate"), {},
+                               tr("Give the objects and the change the photo's grain and softness, in the "
+                                  "view and in exports (one undo step)"),
+                               [this](bool on) { setMatchPlate(on); });
+    matchPlate->setCheckable(true);
     QAction* exportExposure = make(
         "exportExposure", tr("Apply Display Exposure to Exports"), {},
         tr("PNG and JPEG exports at the display exposure instead of the render's own 0 EV"), [] {});
@@ -315,6 +320,7 @@ void MainWindow::createMenus() {
     view->addActions(viewGroup_->actions());
     view->addSeparator();
     view->addAction(action("overlays"));
+    view->addAction(action("matchPlate"));
     view->addAction(action("denoise"));
     view->addSeparator();
     view->addAction(action("fit"));

@@ -208,6 +208,8 @@ private:
     void startModal(GizmoMode mode);
     /// The slider and label show the project's display exposure.
     void showDisplaySettings();
+    /// Switches the project's display.match_plate (one undo step).
+    void setMatchPlate(bool on);
     /// The camera new objects are placed for: the viewport's, or the photo's before it has one.
     Camera placementCamera() const;
     void showKeyMap();

@@ -152,6 +152,13 @@ void MainWindow::setDisplayView(const QString& view) {
     doc_->edit(tr("View transform"), p);
 }
 
+void MainWindow::setMatchPlate(bool on) {
+    if (!doc_->isOpen() || doc_->project().display.match_plate == on) return;
+    Project p = doc_->project();
+    p.display.match_plate = on;
+    doc_->edit(on ? tr("Match plate") : tr("Unmatch plate"), p);
+}
+
 float MainWindow::displayExposure() const {
     return doc_->project().display.exposure;
 }
@@ -176,6 +183,8 @@ void MainWindow::showDisplaySettings() {
     view.view = display.view;
     view.look = display.look;
     viewport_->setView(view);
+    viewport_->setMatchPlate(display.match_plate);
+    action("matchPlate")->setChecked(display.match_plate);  // setChecked does not trigger it
     renderer_->setDisplayExposure(stops);  // the noise target is judged at it
 }
 

@@ -15,6 +15,7 @@
 #include <QStatusBar>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "autosave.h"
 #include "assets/read_files.h"
@@ -24,7 +25,9 @@
 #include "geometry/mesh.h"
 #include "image/display_transform.h"
 #include "image/image_io.h"
+#include "image/plate_match.h"
 #include "main_window.h"
+#include "panel_widgets.h"
 #include "mesh_files.h"
 #include "new_project_dialog.h"
 #include "placement.h"
@@ -263,8 +266,17 @@ bool MainWindow::writeExport(const QString& path, const RenderFrame& f) {
     const QString suffix = QFileInfo(path).suffix().toLower();
     std::vector<std::string> warnings;
     try {
+        // Matched to the plate as the view shows it (display.match_plate): the photo measured
+        // here, a second or so for a large one.
+        std::optional<PlateMatch> matched;
+        if (doc_->project().display.match_plate && f.scene) {
+            WaitCursor wait;
+            const Image& photo = f.scene->photo();
+            if (photo.width() == f.update.image.width() && photo.height() == f.update.image.height())
+                matched = match_plate(f.update.image, photo, f.update.alpha, f.update.dL, measure_plate(photo), 1);
+        }
         if (suffix == "png" || suffix == "jpg" || suffix == "jpeg" || suffix == "tif" || suffix == "tiff") {
-            Image image = f.update.image;
+            Image image = matched ? matched->beauty : f.update.image;
             if (const size_t n = replace_non_finite(image))
                 warnings.push_back(std::to_string(n) + " NaN/Inf values replaced by 0");
             for (size_t i = 0; i < image.size(); ++i) image[i] = glm::max(image[i], vec3(0.0f));
@@ -281,7 +293,9 @@ bool MainWindow::writeExport(const QString& path, const RenderFrame& f) {
             save_display_image(path.toStdString(), image, DisplayTransform(view), options);
         } else if (suffix == "exr") {
             RenderUpdate u = f.update;
-            warnings = save_render_exr(path.toStdString(), u, *f.photo, true);
+            std::vector<ExrLayer> extra;
+            if (matched) extra = {{"matched", &matched->beauty}, {"grain", &matched->grain}};
+            warnings = save_render_exr(path.toStdString(), u, *f.photo, true, extra);
         } else {
             throw InputError(path.toStdString(), "export",
                              "unknown format (use .png, .jpg, .tif or .exr)");

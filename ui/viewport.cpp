@@ -8,12 +8,20 @@
 #include <cmath>
 
 #include "document.h"
+#include "plate_match_worker.h"
 #include "placement.h"
 
 namespace dp::ui {
 
 Viewport::Viewport(Document* doc, QWidget* parent)
-    : QWidget(parent), doc_(doc), pick_(new PickTool(this)), matte_(new MatteTool(this)) {
+    : QWidget(parent), doc_(doc), pick_(new PickTool(this)), matte_(new MatteTool(this)),
+      plate_(new PlateMatchWorker(this)) {
+    connect(plate_, &PlateMatchWorker::matched, this,
+            [this](std::shared_ptr<const Image> source, std::shared_ptr<const Image> image) {
+                matchedSource_ = std::move(source);
+                matched_ = std::move(image);
+                rebuildImage();
+            });
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(320, 200);
     setAttribute(Qt::WA_OpaquePaintEvent);
@@ -126,9 +134,32 @@ void Viewport::rebuildImage() {
             image = denoised_.get();
             showingDenoised_ = true;
         }
+        // Matched to the plate: refined pictures only (a drag's or a quick pass's stay raw).
+        showingMatched_ = false;
+        if (matchPlate_ && !frame_->drag && !frame_->preview && !frame_->composited()) {
+            const std::shared_ptr<const Image> source =
+                showingDenoised_ ? denoised_ : std::shared_ptr<const Image>(frame_, &frame_->update.image);
+            if (matched_ && matchedSource_ == source) {
+                image = matched_.get();
+                showingMatched_ = true;
+            } else if (requested_.lock() != source) {
+                requested_ = source;
+                plate_->request(frame_, source);
+            }
+        }
         shown_ = to_display(*image, exposure_, kDisplayMaxWidth, transform_.get());
     }
     update();
+}
+
+void Viewport::setMatchPlate(bool on) {
+    if (matchPlate_ == on) return;
+    matchPlate_ = on;
+    rebuildImage();
+}
+
+QString Viewport::plateSummary() const {
+    return plate_->summary();
 }
 
 QTransform Viewport::imageToWidget() const {

@@ -38,6 +38,14 @@ public:
     void setDenoised(std::shared_ptr<const RenderFrame> frame, std::shared_ptr<const Image> image);
     /// Whether the picture shown is a denoised one.
     bool showingDenoised() const { return showingDenoised_; }
+    /// Gives the refined pictures of the augmented view the photo's grain and softness (on a
+    /// worker; the unmatched picture shows until it is done). Drags and quick passes stay raw.
+    void setMatchPlate(bool on);
+    bool matchPlate() const { return matchPlate_; }
+    /// Whether the picture shown is matched to the plate.
+    bool showingMatched() const { return showingMatched_; }
+    /// What was measured of the photo, for people (empty before the first match).
+    QString plateSummary() const;
     /// Size of the full render in pixels (overlays and picking work in it).
     void setRenderSize(QSize size);
     QSize renderSize() const { return renderSize_; }
@@ -134,6 +142,10 @@ protected:
     bool denoisedPreview_ = false;
     QImage shown_;
     QSize renderSize_;
+    class PlateMatchWorker* plate_;
+    bool matchPlate_ = false, showingMatched_ = false;
+    std::shared_ptr<const Image> matchedSource_, matched_;  ///< the last match, and what it was made from
+    std::weak_ptr<const Image> requested_;                   ///< the picture last sent to be matched
     ViewMode mode_ = ViewMode::Augmented;
     float exposure_ = 0;
     ViewSettings view_;

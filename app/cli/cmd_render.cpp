@@ -141,16 +141,11 @@ Denoised denoise_result(const RenderScene& scene, const RenderUpdate& u, bool wi
 /// The render given the photo's grain and softness (image/plate_match.h), from `image` (the raw
 /// or denoised composite); says on stderr what was measured.
 PlateMatch plate_matched(const RenderScene& scene, const Image& image, const RenderUpdate& u, uint64_t seed) {
-    const Image& photo = scene.photo();
-    const GrainProfile grain = measure_grain(photo);
-    const float soft = measure_softness(photo);
-    if (grain.empty()) warn("--match-plate: the photo has too few flat patches to measure its grain; none is added");
-    if (soft < 0) warn("--match-plate: the photo has too few edges to measure its softness; nothing is blurred");
-    const vec3 mid = grain.empty() ? vec3(0.0f) : grain.sigma[grain.sigma.size() / 2];
-    std::fprintf(stderr, "plate: grain %.3g (green, at luminance %.3g; %zu levels, correlation %.2f px), softness %.2f px\n",
-                 double(mid.y), grain.empty() ? 0.0 : double(grain.levels[grain.levels.size() / 2]),
-                 grain.levels.size(), double(grain.correlation_px), double(std::max(soft, 0.0f)));
-    return match_plate(image, photo, u.alpha, u.dL, grain, std::max(soft, 0.0f), seed);
+    const PlateFigures figures = measure_plate(scene.photo());
+    if (figures.grain.empty()) warn("--match-plate: the photo has too few flat patches to measure its grain; none is added");
+    if (figures.softness_px < 0) warn("--match-plate: the photo has too few edges to measure its softness; nothing is blurred");
+    std::fprintf(stderr, "plate: %s\n", figures.summary().c_str());
+    return match_plate(image, scene.photo(), u.alpha, u.dL, figures, seed);
 }
 
 void write_result(const RenderOptions& o, ImageKind kind, const LoadedScene& loaded, RenderUpdate& u) {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <numeric>
 
 #include <opencv2/imgproc.hpp>
@@ -476,6 +477,30 @@ PlateMatch match_plate(const Image& augmented, const Image& photo, const Image& 
         m.beauty[i] = ob[i] + (1 - a) * photo[i] + db[i] + g;
     }
     return m;
+}
+
+PlateFigures measure_plate(const Image& photo) {
+    return PlateFigures{measure_grain(photo), measure_softness(photo)};
+}
+
+std::string PlateFigures::summary() const {
+    char line[200];
+    if (grain.empty()) {
+        std::snprintf(line, sizeof line, "no grain measured (too few flat patches), softness %.2f px",
+                      double(std::max(softness_px, 0.0f)));
+    } else {
+        const size_t mid = grain.levels.size() / 2;
+        std::snprintf(line, sizeof line, "grain %.3g at luminance %.3g (green; %zu levels, correlation %.2f px), softness %.2f px%s",
+                      double(grain.sigma[mid].y), double(grain.levels[mid]), grain.levels.size(),
+                      double(grain.correlation_px), double(std::max(softness_px, 0.0f)),
+                      softness_px < 0 ? " (too few edges to measure)" : "");
+    }
+    return line;
+}
+
+PlateMatch match_plate(const Image& augmented, const Image& photo, const Image& alpha, const Image& dL,
+                       const PlateFigures& figures, uint64_t seed) {
+    return match_plate(augmented, photo, alpha, dL, figures.grain, std::max(figures.softness_px, 0.0f), seed);
 }
 
 std::vector<double> noise_power_bands(const Image& image, int x0, int y0, int size, int bands) {

@@ -2,6 +2,7 @@
 // Matching what a render adds to the photograph's own grain and softness: a clean, sharp
 // object on a grainy, slightly soft plate looks pasted on (docs/plate-match.md).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "image/image.h"
@@ -63,6 +64,19 @@ struct PlateMatch {
 /// keeps its denoised change.
 PlateMatch match_plate(const Image& augmented, const Image& photo, const Image& alpha, const Image& dL,
                        const GrainProfile& grain, float blur_px, uint64_t seed = 1);
+
+/// What a photo's plate match needs, measured once per photo.
+struct PlateFigures {
+    GrainProfile grain;
+    float softness_px = -1;  ///< measure_softness (-1: too few edges; nothing is blurred)
+    /// One line for people: the grain at mid brightness, its correlation, the softness.
+    std::string summary() const;
+};
+PlateFigures measure_plate(const Image& photo);
+
+/// match_plate with `figures`' grain and softness.
+PlateMatch match_plate(const Image& augmented, const Image& photo, const Image& alpha, const Image& dL,
+                       const PlateFigures& figures, uint64_t seed = 1);
 
 /// The noise power spectrum of a patch, radially averaged into `bands` bands of spatial
 /// frequency (0 to the Nyquist frequency), after removing a fitted plane: the figure by which
