@@ -6,6 +6,8 @@
 #include <QApplication>
 #include <QCheckBox>
 #include <QDockWidget>
+#include <QHBoxLayout>
+#include <QButtonGroup>
 #include <QKeySequence>
 #include <QComboBox>
 #include <QLabel>
@@ -14,6 +16,7 @@
 #include <QMessageBox>
 #include <QProgressBar>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSettings>
 #include <QSlider>
 #include <QStandardPaths>
@@ -35,6 +38,7 @@
 #include "probe_align_panel.h"
 #include "probe_panel.h"
 #include "holdout_panel.h"
+#include "scene_view.h"
 #include "proxy_panel.h"
 #include "project_edit.h"
 #include "denoise_worker.h"
@@ -338,6 +342,10 @@ void MainWindow::createDocks() {
         auto* scroll = new QScrollArea;
         scroll->setWidget(w);
         scroll->setWidgetResizable(true);
+        // Never narrower than the panel's fields: a horizontal scroll bar hid half of them.
+        scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+        scroll->setMinimumWidth(w->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width() +
+                                2 * scroll->frameWidth());
         auto* d = new QDockWidget(title, this);
         d->setObjectName(name);
         d->setWidget(scroll);
@@ -384,6 +392,38 @@ void MainWindow::createDocks() {
     QDockWidget* camera = dock("cameraDock", tr("Camera"), cameraPanel_, Qt::LeftDockWidgetArea);
     QDockWidget* proxies =
         dock("proxyDock", tr("Real Proxies"), proxyPanel_, Qt::LeftDockWidgetArea);
+    // A second view of the scene, below the object list: where things stand in depth.
+    auto* sceneViewBox = new QWidget;
+    auto* sceneViewCol = new QVBoxLayout(sceneViewBox);
+    sceneViewCol->setContentsMargins(0, 0, 0, 0);
+    auto* viewRow = new QHBoxLayout;
+    auto* sceneView = new SceneView(doc_);
+    sceneView->setMinimumHeight(220);
+    const std::pair<const char*, SceneView::View> views[] = {{"sceneViewTop", SceneView::View::Top},
+                                                             {"sceneViewFront", SceneView::View::Front},
+                                                             {"sceneViewSide", SceneView::View::Side},
+                                                             {"sceneViewFree", SceneView::View::Orbit}};
+    const QString viewLabels[] = {tr("Top"), tr("Front"), tr("Side"), tr("Free")};
+    auto* viewGroup = new QButtonGroup(sceneViewBox);
+    for (int k = 0; k < 4; ++k) {
+        auto* b = new QToolButton;
+        b->setObjectName(views[k].first);
+        b->setText(viewLabels[k]);
+        b->setCheckable(true);
+        b->setChecked(k == 0);
+        b->setToolTip(tr("Look at the scene from here: drag the selection to move it, elsewhere to "
+                         "pan (or orbit, in the free view); the wheel zooms"));
+        viewGroup->addButton(b);
+        const SceneView::View v = views[k].second;
+        connect(b, &QToolButton::clicked, sceneView, [sceneView, v] { sceneView->setView(v); });
+        viewRow->addWidget(b);
+    }
+    viewRow->addStretch(1);
+    sceneViewCol->addLayout(viewRow);
+    sceneViewCol->addWidget(sceneView, 1);
+    connect(sceneView, &SceneView::dragStarted, this, [this] { beginInteraction(); });
+    connect(sceneView, &SceneView::dragFinished, this, [this] { endInteraction(); });
+    dock("sceneViewDock", tr("Scene View"), sceneViewBox, Qt::RightDockWidgetArea);
     tabifyDockWidget(render, probe);
     tabifyDockWidget(probe, camera);
     QDockWidget* holdouts = dock("holdoutDock", tr("Holdouts"), new HoldoutPanel(doc_, viewport_, reporter_),

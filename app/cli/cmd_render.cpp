@@ -179,7 +179,8 @@ void check_render_output(const RenderOptions& o, ImageKind kind, const Project& 
     library.photo_size(p, width, height);
     const int channels =
         kind == ImageKind::Exr
-            ? render_exr_channels(o.layers) + (o.denoise ? 6 : 0) + (o.match_plate != "off" ? 6 : 0)  // matched, grain
+            ? render_exr_channels(o.layers) + (o.denoise ? 6 : 0) +
+                  (o.match_plate == "on" || (o.match_plate.empty() && p.display.match_plate) ? 6 : 0)  // matched, grain
             : 3;
     check_outputs({{o.output, "--output", image_output_bytes(o.output, o.format, width, height, channels)}}, inputs,
                   o.force);
