@@ -20,6 +20,8 @@
 #include "calibration/ground_frame.h"
 #include "calibration/undistort.h"
 #include "calibration_panel.h"
+
+#include <optional>
 #include "document.h"
 #include "error_reporter.h"
 #include "image/image_io.h"
@@ -73,10 +75,10 @@ QWidget* CalibrationPanel::makeChessboardPage() {
     focalSource_ = new QComboBox;
     focalSource_->setObjectName("boardFocalSource");
     focalSource_->addItems(
-        {tr("From EXIF"), tr("Given focal length"), tr("Estimate from the board")});
+        {tr("From EXIF, else the board"), tr("Given focal length"), tr("Estimate from the board")});
     focalSource_->setToolTip(
-        tr("Where the focal length comes from: the photo's EXIF data, the "
-           "field below, or the board's perspective (a tilted board)"));
+        tr("Where the focal length comes from: the photo's EXIF data (the board's perspective "
+           "where the photo has none), the field below, or the board's perspective (a tilted board)"));
     form->addRow(tr("Focal length"), focalSource_);
     boardFocal_ = make_number_field(0, 1e5, 1000, 1, tr(" px"), tr("Focal length in pixels of the photo"));
     boardFocal_->setObjectName("boardFocal");
@@ -224,11 +226,23 @@ bool CalibrationPanel::applyChessboard() {
         const ChessboardSpec spec = boardSpec();
         const ChessboardView view = detect_chessboard(img, spec, path);
         CalibrationResult r;
+        QString focalNote;
         switch (focalSource_->currentIndex()) {
             case 0: {
-                const ExifFocal e = read_exif_focal(path);
-                const double f = e.focal_px * double(img.width()) / e.width;
-                r = chessboard_pose(view, spec, Intrinsics::centred(img.width(), img.height(), f));
+                // A photo without EXIF (a scan, a webcam's, an edited one) is not an error here: a
+                // new user's first try should work. The board's perspective gives the focal length.
+                std::optional<ExifFocal> e;
+                try {
+                    e = read_exif_focal(path);
+                } catch (const InputError&) {
+                    focalNote = tr("No EXIF focal length in the photo: estimated from the board.");
+                }
+                if (e) {
+                    const double f = e->focal_px * double(img.width()) / e->width;
+                    r = chessboard_pose(view, spec, Intrinsics::centred(img.width(), img.height(), f));
+                } else {
+                    r = chessboard_single(view, spec);
+                }
                 break;
             }
             case 1:
@@ -246,7 +260,7 @@ bool CalibrationPanel::applyChessboard() {
         r = placeGround(r, path, &ground, &up);
         boardOrigin_ = view.corners[0];
         boardPhoto_ = QSize(view.width, view.height);
-        apply(tr("chessboard"), r, ground);
+        apply(tr("chessboard"), r, focalNote.isEmpty() ? ground : focalNote + "\n" + ground);
         boardFit_.reset();
         if (up != glm::dvec3(0.0)) boardFit_ = BoardFit{pose, up, path, doc_->project().camera};
         refreshMarks();

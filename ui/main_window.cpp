@@ -342,10 +342,7 @@ void MainWindow::createDocks() {
         auto* scroll = new QScrollArea;
         scroll->setWidget(w);
         scroll->setWidgetResizable(true);
-        // Never narrower than the panel's fields: a horizontal scroll bar hid half of them.
-        scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-        scroll->setMinimumWidth(w->minimumSizeHint().width() + scroll->verticalScrollBar()->sizeHint().width() +
-                                2 * scroll->frameWidth());
+
         auto* d = new QDockWidget(title, this);
         d->setObjectName(name);
         d->setWidget(scroll);
@@ -431,7 +428,7 @@ void MainWindow::createDocks() {
     tabifyDockWidget(camera, proxies);
     tabifyDockWidget(proxies, holdouts);
     render->raise();
-    // The viewport gets most of the width; the panels only what their fields need.
+    // The viewport gets most of the width; the panels what their fields need (fitDocks).
     resizeDocks({render, findChild<QDockWidget*>("sceneDock")}, {300, 440}, Qt::Horizontal);
     connect(materialPanel_, &MaterialPanel::strokeStarted, this, [this] { beginInteraction(); });
     connect(materialPanel_, &MaterialPanel::strokeFinished, this, [this] { endInteraction(); });
@@ -446,6 +443,47 @@ void MainWindow::createDocks() {
         o.outlines = cameraPanel_->outlinesBox()->isChecked();
         viewport_->setOverlays(o);
     });
+}
+
+int MainWindow::dockNeed(Qt::DockWidgetArea area) const {
+    int need = 0;
+    for (QDockWidget* d : findChildren<QDockWidget*>()) {
+        if (dockWidgetArea(d) != area || d->isFloating() || !d->isVisible()) continue;
+        auto* scroll = qobject_cast<QScrollArea*>(d->widget());
+        if (!scroll || !scroll->widget()) continue;
+        need = std::max(need, scroll->widget()->minimumSizeHint().width() +
+                                  scroll->verticalScrollBar()->sizeHint().width() + 2 * scroll->frameWidth() + 4);
+    }
+    return need;
+}
+
+void MainWindow::fitDocks() {
+    // The docks as wide as their panels' fields need where the window has room for that and
+    // the viewport keeps half of it (the docks kept their first width and clipped their fields
+    // even on a maximised window); narrower otherwise, scrolling across.
+    QDockWidget* left = nullptr;
+    QDockWidget* right = nullptr;
+    for (QDockWidget* d : findChildren<QDockWidget*>()) {
+        if (d->isFloating() || !d->isVisible()) continue;
+        if (!left && dockWidgetArea(d) == Qt::LeftDockWidgetArea) left = d;
+        if (!right && dockWidgetArea(d) == Qt::RightDockWidgetArea) right = d;
+    }
+    int needLeft = left ? dockNeed(Qt::LeftDockWidgetArea) : 0, needRight = right ? dockNeed(Qt::RightDockWidgetArea) : 0;
+    const int budget = width() / 2;
+    if (needLeft + needRight > budget && needLeft + needRight > 0) {
+        const double k = double(budget) / double(needLeft + needRight);
+        needLeft = int(needLeft * k), needRight = int(needRight * k);
+    }
+    QList<QDockWidget*> docks;
+    QList<int> sizes;
+    if (left) docks << left, sizes << needLeft;
+    if (right) docks << right, sizes << needRight;
+    if (!docks.isEmpty()) resizeDocks(docks, sizes, Qt::Horizontal);
+}
+
+void MainWindow::resizeEvent(QResizeEvent* e) {
+    QMainWindow::resizeEvent(e);
+    fitDocks();
 }
 
 void MainWindow::createToolbar() {

@@ -163,6 +163,7 @@ public:
 
 protected:
     void closeEvent(QCloseEvent*) override;
+    void resizeEvent(QResizeEvent*) override;
     /// Swallows status tips: hovering a menu or a button would hide the render's status line
     /// and wipe a message the user has not read yet. The same words are in the tooltips.
     bool event(QEvent* e) override;
@@ -208,6 +209,11 @@ private:
     void startModal(GizmoMode mode);
     /// The slider and label show the project's display exposure.
     void showDisplaySettings();
+    /// The widest minimum of the panels docked in `area` (visible ones), scroll bar included.
+    int dockNeed(Qt::DockWidgetArea area) const;
+    /// Sizes the left and right docks to their panels' needs while the viewport keeps half the
+    /// window; scaled down together where it would not.
+    void fitDocks();
     /// Switches the project's display.match_plate (one undo step).
     void setMatchPlate(bool on);
     /// The camera new objects are placed for: the viewport's, or the photo's before it has one.
