@@ -418,6 +418,7 @@ void MainWindow::createDocks() {
     viewRow->addStretch(1);
     sceneViewCol->addLayout(viewRow);
     sceneViewCol->addWidget(sceneView, 1);
+    connect(viewport_, &Viewport::gizmoModeChanged, sceneView, &SceneView::setGizmoMode);
     connect(sceneView, &SceneView::dragStarted, this, [this] { beginInteraction(); });
     connect(sceneView, &SceneView::dragFinished, this, [this] { endInteraction(); });
     dock("sceneViewDock", tr("Scene View"), sceneViewBox, Qt::RightDockWidgetArea);

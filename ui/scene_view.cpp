@@ -7,7 +7,6 @@
 #include <cmath>
 
 #include "document.h"
-#include "gizmo.h"
 #include "overlays.h"
 #include "photo_geometry.h"
 #include "placement.h"
@@ -146,9 +145,9 @@ void SceneView::paintEvent(QPaintEvent*) {
 
 Transform SceneView::dragged(const Transform& start, bool light, vec2 from, vec2 to) const {
     const Camera& cam = dragCamera_;
-    if (view_ == View::Top || view_ == View::Orbit)
-        return light ? light_drag_transform(GizmoMode::Translate, start, cam, from, to, -1)
-                     : drag_transform(GizmoMode::Translate, start, cam, from, to, &doc_->project());
+    if (mode_ != GizmoMode::Translate || view_ == View::Top || view_ == View::Orbit)
+        return light ? light_drag_transform(mode_, start, cam, from, to, -1)
+                     : drag_transform(mode_, start, cam, from, to, &doc_->project());
     // Front and side: across and up in the view's plane, by the metres a pixel spans there.
     const vec3 right = glm::normalize(glm::cross(cam.forward(), vec3(0, 1, 0)));
     const float depth = glm::dot(start.translation - cam.position(), cam.forward());

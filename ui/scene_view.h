@@ -2,6 +2,7 @@
 #include <QWidget>
 
 #include "camera/camera.h"
+#include "gizmo.h"
 #include "scene/project.h"
 
 namespace dp::ui {
@@ -12,9 +13,10 @@ class Document;
 /// stand in depth: from the top, the front, the side, or orbiting freely. It draws the photo's
 /// camera as its frustum, the ground grid, the real proxies, the objects and the lights as the
 /// viewport's overlays do. A click selects (a light's glyph before the object behind it);
-/// dragging the selection moves it (from the top or orbiting: over the ground, onto real
-/// surfaces, as the viewport's gizmo does; from the front or the side: across and up), one
-/// undo step per drag; dragging elsewhere orbits (free view) or pans, and the wheel zooms.
+/// dragging the selection applies the toolbar's mode as the viewport's gizmo does (a move from
+/// the top or orbiting goes over the ground and onto real surfaces; from the front or the side
+/// across and up), one undo step per drag; dragging elsewhere orbits (free view) or pans, and
+/// the wheel zooms.
 class SceneView : public QWidget {
     Q_OBJECT
 public:
@@ -23,6 +25,8 @@ public:
 
     void setView(View view);
     View view() const { return view_; }
+    /// What dragging the selection does: the viewport's toolbar mode (move, rotate, scale).
+    void setGizmoMode(GizmoMode mode) { mode_ = mode; }
     /// The camera this view draws with, at the widget's size (pixel centres at integers).
     Camera camera() const;
     /// Widget position of a world point; false if behind the view.
@@ -52,6 +56,7 @@ private:
 
     Document* doc_;
     View view_ = View::Top;
+    GizmoMode mode_ = GizmoMode::Translate;
     float azimuth_ = 30, elevation_ = 25;  ///< the free view's direction, degrees
     float zoom_ = 1;
     vec3 pan_{0.0f};

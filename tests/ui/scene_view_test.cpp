@@ -76,6 +76,16 @@ void SceneViewTest::aBallDraggedUpInTheFrontViewRisesAndTheViewportShowsIt() {
     QVERIFY(test::wait_refined(w));
     const QRgb was = v->shownImage().pixel(int(px.x), int(px.y));
     QVERIFY2(there != was, "the ball's old bottom looks the same after it rose");
+
+    // The toolbar's Rotate: a drag across the top view turns the ball about the vertical.
+    w.action("gizmoRotate")->trigger();
+    QTest::mouseClick(w.findChild<QToolButton*>("sceneViewTop"), Qt::LeftButton);
+    QVERIFY(view->widgetPosition(before.transform.translation, ball));
+    test::drag(view, ball + QPointF(0, 0), ball + QPointF(60, 0), 20);
+    const VirtualObject turned = doc->project().objects[0];
+    qInfo("turned %.1f deg", turned.transform.rotation_deg.y);
+    QVERIFY(std::abs(turned.transform.rotation_deg.y - before.transform.rotation_deg.y) > 10);
+    QVERIFY(glm::length(turned.transform.translation - before.transform.translation) < 1e-5f);
     doc->undoStack()->setClean();
 }
 
