@@ -17,6 +17,24 @@ void check_sizes(const Image& a, const Image& b, const char* what) {
 
 float coverage(const Image& alpha, size_t i) { return std::clamp(alpha[i].x, 0.0f, 1.0f); }
 
+/// The catcher of pixel `i`: per channel the light on the real surface with the objects over
+/// the light without them; 1 where there is no ratio (a black photo channel, a pixel the objects
+/// cover), never negative.
+/// `held`, if given, says whether any channel had to be held (no ratio, or a negative one).
+vec3 catcher_at(const Image& photo, const Image& alpha, const Image& dL, size_t i, bool* held = nullptr) {
+    const float a = coverage(alpha, i);
+    vec3 out(1.0f);
+    if (held) *held = a >= kFullyCovered;
+    if (a >= kFullyCovered) return out;
+    for (int c = 0; c < 3; ++c) {
+        const float p = photo[i][c];
+        const float r = p > 0 ? (p + dL[i][c] / (1.0f - a)) / p : NAN;
+        if (held) *held |= !(std::isfinite(r) && r >= 0) && dL[i][c] != 0;
+        if (p > 0) out[c] = std::isfinite(r) ? std::max(r, 0.0f) : 1.0f;
+    }
+    return out;
+}
+
 }  // namespace
 
 Image objects_premultiplied(const Image& augmented, const Image& photo, const Image& alpha, const Image& dL) {
@@ -25,11 +43,13 @@ Image objects_premultiplied(const Image& augmented, const Image& photo, const Im
     check_sizes(augmented, dL, "dL");
     Image out(augmented.width(), augmented.height());
     for (size_t i = 0; i < out.size(); ++i) {
+        // What the catcher's plate leaves of the beauty: the recipe gives the beauty back
+        // exactly, wherever the catcher had to be held (at 0, or at 1 for lack of a ratio).
+        bool held = false;
+        const vec3 c = catcher_at(photo, alpha, dL, i, &held);
         const float a = coverage(alpha, i);
-        if (a == 0) continue;
-        const vec3 v = augmented[i] - (1.0f - a) * photo[i] - dL[i];
-        // The objects' light is never negative; noise in dL can make the difference so.
-        out[i] = glm::max(v, vec3(0.0f));
+        if (a == 0 && !held) continue;  // nothing of the objects: exactly 0
+        out[i] = augmented[i] - (1.0f - a) * photo[i] * c;
     }
     return out;
 }
@@ -37,17 +57,8 @@ Image objects_premultiplied(const Image& augmented, const Image& photo, const Im
 Image shadow_catcher(const Image& photo, const Image& alpha, const Image& dL) {
     check_sizes(photo, alpha, "alpha");
     check_sizes(photo, dL, "dL");
-    Image out(photo.width(), photo.height(), vec3(1.0f));
-    for (size_t i = 0; i < out.size(); ++i) {
-        const float a = coverage(alpha, i);
-        if (a >= kFullyCovered) continue;
-        for (int c = 0; c < 3; ++c) {
-            const float p = photo[i][c];
-            if (!(p > 0)) continue;
-            const float r = (p + dL[i][c] / (1.0f - a)) / p;
-            out[i][c] = std::isfinite(r) ? std::max(r, 0.0f) : 1.0f;
-        }
-    }
+    Image out(photo.width(), photo.height());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = catcher_at(photo, alpha, dL, i);
     return out;
 }
 

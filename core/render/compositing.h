@@ -5,9 +5,14 @@
 
 namespace dp {
 
-/// The virtual objects alone, premultiplied by their coverage: augmented - (1 - alpha) photo -
-/// dL (a pixel's render is alpha obj + (1 - alpha) photo + dL, dL being the real surfaces' change
-/// averaged over all its samples). Where alpha is 0 it is exactly 0. Same sizes required.
+/// The virtual objects alone, premultiplied by their coverage: what the beauty keeps beyond the
+/// plate times the catcher, augmented - (1 - alpha) photo catcher, so that the recipe
+/// objects + (1 - alpha) photo catcher gives the beauty back to float rounding. Where the
+/// catcher is the real surfaces' own ratio this is augmented - (1 - alpha) photo - dL (a
+/// pixel's render is alpha obj + (1 - alpha) photo + dL); where it had to be held (at 0 in a
+/// noisy shadow, at 1 on a black photo channel or a fully covered pixel) the rest of dL is here,
+/// so a noisy pixel may be slightly negative, as its beauty's noise is. Where alpha is 0 and the
+/// catcher is the surfaces' own ratio it is exactly 0. Same sizes required.
 Image objects_premultiplied(const Image& augmented, const Image& photo, const Image& alpha, const Image& dL);
 
 /// Blender's multiplicative shadow catcher, per channel: the light on the real surface with the

@@ -55,6 +55,40 @@ TEST(Compositing, ObjectsPlusThePlateTimesTheCatcherRebuildTheBeauty) {
     EXPECT_EQ(checked, r.image.size());
 }
 
+TEST(Compositing, TheRecipeGivesANoisyBeautyBackExactlyWhereTheCatcherIsHeld) {
+    // Few photons, one pass: dL is noisy; a black ball's edge and a black photo channel (no ratio:
+    // the catcher held at 1) are where the old recipe missed.
+    SunProbe sun;
+    Project p = look_at_project(vec3(0, 1.5f, 4), vec3(0, 0.3f, 0), 45);
+    p.real.push_back(ground_plane(vec3(0.5f, 0.0f, 0.4f)));
+    // A nearly black ball: at its edge the noise of dL outweighs its own light.
+    p.objects.push_back(sphere(vec3(-0.5f, 0.4f, 0), 0.4f, diffuse(vec3(0.01f))));
+    p.objects.push_back(sphere(vec3(0.6f, 0.3f, 0.3f), 0.3f, glass(1.5f)));  // caustics: noisy dL
+    const Image photo = analytic_ground_photo(p, 96, 64, sun, vec3(0.5f, 0.0f, 0.4f));
+    ProgressiveRenderer pr(build(p, photo, sun.image()), settings(1500, 5));
+    ASSERT_TRUE(pr.render_pass());
+    const Image image = pr.image(), dL = pr.dL_layer(), alpha = pr.alpha_layer();
+    const Image objects = objects_premultiplied(image, photo, alpha, dL);
+    const Image catcher = shadow_catcher(photo, alpha, dL);
+    const Image again = recomposite(objects, alpha, photo, catcher);
+    // Guard: pixels where the catcher is held and the old recipe (objects = beauty - plate - dL,
+    // held at 0) would have missed the beauty.
+    size_t held = 0;
+    for (size_t i = 0; i < image.size(); ++i) {
+        const vec3 old_objects = alpha[i].x > 0 ? glm::max(image[i] - (1 - alpha[i].x) * photo[i] - dL[i], vec3(0.0f)) : vec3(0.0f);
+        const vec3 old = old_objects + (1 - alpha[i].x) * photo[i] * catcher[i];
+        held += glm::length(old - image[i]) > 1e-3f;
+    }
+    EXPECT_GT(held, 5u);
+    for (size_t i = 0; i < again.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(again[i][c], image[i][c], 1e-6f * std::max(1.0f, std::abs(image[i][c]))) << "pixel " << i;
+    // Where nothing of the objects is and the catcher is the true ratio, the objects are exactly 0.
+    size_t zero = 0;
+    for (size_t i = 0; i < image.size(); ++i) zero += alpha[i].x == 0 && objects[i] == vec3(0.0f);
+    EXPECT_GT(zero, image.size() / 2);
+}
+
 TEST(Compositing, TheCatcherDarkensTheShadowKeepsColourAndLeavesTheRestAtOne) {
     const Rendered r = render_balls();
     const Image catcher = shadow_catcher(r.photo, r.alpha, r.dL);
