@@ -99,7 +99,7 @@ void add_output_format_options(CLI::App* sub, OutputFormat& f) {
     sub->add_option("--view", f.view,
                     "View transform of PNG/JPEG/TIFF outputs: Standard (exact sRGB, the default), Raw, or a "
                     "view of the OpenColorIO config (Filmic, Filmic Log, False Color with Blender's)");
-    sub->add_option("--look", f.look, "OpenColorIO look applied before the view (e.g. \"Filmic - High Contrast\")");
+    sub->add_option("--look", f.look, "OpenColorIO look applied before the view (e.g. \"High Contrast\")");
     sub->add_option("--bits", f.bits, "Bits per channel: PNG 8 or 16, TIFF 8, 16 or 32 (32: linear float)")
         ->check(CLI::IsMember({8, 16, 32}));
     sub->add_flag("--half", f.half, "EXR outputs in half floats (16 bits) instead of 32-bit floats");

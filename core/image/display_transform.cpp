@@ -102,9 +102,16 @@ DisplayTransform::DisplayTransform(const ViewSettings& settings) : settings_(set
     if (!std::isfinite(settings.exposure)) throw InputError("", "exposure", "must be a finite number of stops");
     const bool built_in = settings.view == "Standard" || settings.view == "Raw";
     const auto c = config();
-    if (!settings.look.empty()) {
+    std::string look_name = settings.look;
+    if (!look_name.empty()) {
         const std::vector<std::string> looks = available_looks();
-        if (std::find(looks.begin(), looks.end(), settings.look) == looks.end())
+        auto known = [&](const std::string& n) { return std::find(looks.begin(), looks.end(), n) != looks.end(); };
+        // Blender's menu shows a look with its view's name before it ("Filmic - High Contrast")
+        // where the config names it alone ("High Contrast"): both spellings are taken.
+        const std::string prefix = settings.view + " - ";
+        if (!known(look_name) && look_name.rfind(prefix, 0) == 0 && known(look_name.substr(prefix.size())))
+            look_name = look_name.substr(prefix.size());
+        if (!known(look_name))
             throw InputError("", "look",
                              "unknown look \"" + settings.look + "\"" +
                                  (looks.empty() ? std::string(" (no OpenColorIO config offers looks)")
@@ -120,7 +127,7 @@ DisplayTransform::DisplayTransform(const ViewSettings& settings) : settings_(set
             auto look = OCIO::LookTransform::Create();
             look->setSrc(OCIO::ROLE_SCENE_LINEAR);
             look->setDst(OCIO::ROLE_SCENE_LINEAR);
-            look->setLooks(settings.look.c_str());
+            look->setLooks(look_name.c_str());
             group->appendTransform(look);
         }
         auto view = OCIO::DisplayViewTransform::Create();

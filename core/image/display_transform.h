@@ -13,7 +13,9 @@ struct ViewSettings {
     /// as the code it was read from), "Raw" (built in: no curve), or a view of the OpenColorIO
     /// config's default display ("Filmic", "Filmic Log", "False Color" in Blender's).
     std::string view = "Standard";
-    std::string look;     ///< "" or a look of the config ("Filmic - High Contrast", ...)
+    /// "" or a look of the config ("High Contrast"), also as Blender's menu spells it with its
+    /// view's name before it ("Filmic - High Contrast").
+    std::string look;
     float exposure = 0;   ///< stops applied before the view
     bool operator==(const ViewSettings&) const = default;
 };

@@ -114,4 +114,16 @@ std::string image_extension_for_content(const void* bytes, size_t size) {
     return format ? std::string(format->extensions[0]).substr(1) : std::string();
 }
 
+void check_extension_for_content(const std::string& path, const std::string& field, const void* bytes, size_t size) {
+    const auto* actual = image_io_detail::format_by_content(static_cast<const unsigned char*>(bytes), size);
+    if (!actual) return;
+    const auto* named = image_io_detail::format_by_extension(path);
+    if (named == actual) return;
+    const std::filesystem::path p(path);
+    const std::string suggestion = (p.parent_path() / (p.stem().string() + actual->extensions[0])).string();
+    throw InputError(path, field,
+                     "the image is " + std::string(actual->a_name) + " file and is written as it is: name it " +
+                         suggestion);
+}
+
 }  // namespace dp

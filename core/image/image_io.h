@@ -82,6 +82,10 @@ bool read_image_size(const std::string& path, int& width, int& height);
 /// number starts `bytes`, "" for none: the name a texture embedded in a mesh file is decoded
 /// under, whatever format the mesh file claims for it.
 std::string image_extension_for_content(const void* bytes, size_t size);
+/// Throws InputError naming `path` and `field` where `path`'s extension is not that of the image
+/// whose encoded bytes are given (their first bytes decide): bytes written as they are would
+/// carry one format under another's name. An unrecognised content passes.
+void check_extension_for_content(const std::string& path, const std::string& field, const void* bytes, size_t size);
 
 /// The largest image file load_image opens: 8 GiB, more than any file within the pixel limit
 /// needs (an 8192 x 4096 multilayer EXR of 40 float channels is 5.4 GB).

@@ -154,7 +154,8 @@ const std::vector<float>& srgb_table() {
 }
 
 /// The layer `wanted` names ("" for the plain R, G, B one, or a lone "...Combined" layer when
-/// there is none); throws InputError listing the layers when there is no such one.
+/// there is none); throws InputError listing the layers when there is no such one, or the
+/// Combined ones when there are several and none is named.
 const LayerChannels& choose_layer(const std::vector<std::pair<std::string, LayerChannels>>& layers,
                                   const std::string& wanted, const std::string& path, const std::string& field,
                                   std::string& chosen_name) {
@@ -172,12 +173,25 @@ const LayerChannels& choose_layer(const std::vector<std::pair<std::string, Layer
         return *chosen;
     }
     if (const LayerChannels* plain = find("")) return *plain;
-    // A Blender multilayer render: its picture is the "<view layer>.Combined" pass.
-    for (const auto& [n, l] : layers)
-        if (l.colour() && n.size() >= 8 && n.compare(n.size() - 8, 8, "Combined") == 0) {
-            chosen_name = n;
-            return l;
-        }
+    // A Blender multilayer render: its picture is the "<view layer>.Combined" pass. Two of them
+    // (two view layers, or a Composite beside one) are a choice the file cannot make.
+    std::vector<const std::pair<std::string, LayerChannels>*> combined;
+    for (const auto& entry : layers) {
+        const std::string& n = entry.first;
+        if (entry.second.colour() && n.size() >= 8 && n.compare(n.size() - 8, 8, "Combined") == 0)
+            combined.push_back(&entry);
+    }
+    if (combined.size() == 1) {
+        chosen_name = combined[0]->first;
+        return combined[0]->second;
+    }
+    if (combined.size() > 1) {
+        std::string names;
+        for (const auto* e : combined) names += (names.empty() ? "\"" : ", \"") + e->first + "\"";
+        throw InputError(path, field,
+                         "has " + std::to_string(combined.size()) + " Combined layers (" + names +
+                             "); say which is the photo with its \"layer\"");
+    }
     throw InputError(path, field,
                      "has no R, G, B or Y channels of its own; choose one of its layers (" + layer_list(layers) +
                          ") as the photo's \"layer\"");
@@ -232,6 +246,9 @@ void decode_codes(ImageInput& in, const ChannelSpan& s, const ImageSpec& spec, c
     const std::vector<uint16_t> buf = read_span<uint16_t>(in, s.subimage, s.lo, s.hi, TypeDesc::UINT16, spec, path, field);
     const std::vector<float>& srgb = srgb_table();
     const bool linear = space == "linear", named = !(space.empty() || space == "auto" || space == "srgb" || linear);
+    // A colour space the project names wins over the file's profile: the profile is read only
+    // when the space is left automatic.
+    const bool use_icc = icc && (space.empty() || space == "auto");
     const size_t n = data.size(), span = size_t(s.hi - s.lo);
     for (size_t i = 0; i < n; ++i) {
         bool clipped = false;
@@ -239,11 +256,11 @@ void decode_codes(ImageInput& in, const ChannelSpan& s, const ImageSpec& spec, c
             const uint16_t code = s.channels[c] >= 0 ? buf[i * span + size_t(s.channels[c] - s.lo)] : 0;
             clipped |= code == 65535;
             const float v = float(code) / 65535.0f;
-            data[i][c] = icc && !linear && !named ? icc->decode(c, v) : (linear || named) ? v : srgb[code];
+            data[i][c] = use_icc ? icc->decode(c, v) : (linear || named) ? v : srgb[code];
         }
         report.clipped += clipped;
     }
-    if (icc && !linear && !named) {
+    if (use_icc) {
         const glm::dmat3 m = icc->to_rec709;
         for (size_t i = 0; i < n; ++i) data[i] = vec3(m * glm::dvec3(data[i]));
         report.icc_converted = true;

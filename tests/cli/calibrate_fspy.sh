@@ -34,6 +34,11 @@ expect_stdout "forward: 0.0000 0.0000 -1.0000" "viewing direction"
 expect_stdout "rms_px n/a" "fSpy stores no residual"
 expect_stdout "cx 399.500 cy 299.500" "centred principal point"
 grep -q '"path": "photo.png"' new.json || fail "the new project does not name the extracted photo"
+# The photo is written byte for byte: a name of another format is refused, before anything is written.
+expect_refused "a PNG extracted under a .jpg name" "--extract-photo" calibrate fspy other.json scene.fspy --extract-photo photo.jpg
+expect_stderr "name it photo.png" "the right name suggested"
+[ -e photo.jpg ] && fail "a refused --extract-photo wrote photo.jpg"
+[ -e other.json ] && fail "a refused --extract-photo wrote the project"
 
 # Portrait, 600x900: fSpy's relative focal length 2 is two half heights, 900 px; its
 # "horizontal" field of view, 2 atan(1/2), is across the height too. No unit: no unknown unit.

@@ -1,6 +1,8 @@
 // Outputs: view transforms, 16-bit and half-float files, JPEG quality and metadata carried over.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
@@ -124,6 +126,28 @@ TEST(ImageOutputs, FilmicRollsOffHighlightsThatStandardClips) {
     EXPECT_LT(out[0].x, out[1].x);       // still rising above 1.0 ...
     EXPECT_LT(out[1].x, out[2].x);
     EXPECT_LT(out[2].x, 1.0f);           // ... and not yet white at 16
+}
+
+TEST(ImageOutputs, ALookIsTakenAsTheConfigNamesItAndAsBlendersMenuDoes) {
+    if (ocio_config_path().empty()) GTEST_SKIP() << "no OpenColorIO config (Blender's or $OCIO)";
+    const std::vector<std::string> looks = available_looks();
+    if (std::find(looks.begin(), looks.end(), "High Contrast") == looks.end()) GTEST_SKIP() << "no \"High Contrast\" look";
+    ViewSettings config, menu, none;
+    config.view = menu.view = none.view = "Filmic";
+    config.look = "High Contrast";
+    menu.look = "Filmic - High Contrast";
+    const vec3 in[2] = {vec3(0.05f), vec3(0.5f)};
+    vec3 a[2], b[2], c[2];
+    DisplayTransform(config).apply(in, a, 2);
+    DisplayTransform(menu).apply(in, b, 2);
+    DisplayTransform(none).apply(in, c, 2);
+    EXPECT_EQ(a[0], b[0]);
+    EXPECT_EQ(a[1], b[1]);
+    EXPECT_NE(a[1], c[1]);  // guard: the look does something
+    // Another view's prefix is not taken.
+    ViewSettings other = menu;
+    other.look = "Standard - High Contrast";
+    EXPECT_THROW(DisplayTransform{other}, InputError);
 }
 
 TEST(ImageOutputs, AnUnknownViewOrLookIsRefusedWithTheChoices) {

@@ -108,6 +108,27 @@ TEST(ImagePlates, ABlenderMultilayerRenderLoadsItsCombinedPassOrTheLayerAskedFor
     }
 }
 
+TEST(ImagePlates, APlateWithTwoCombinedLayersIsRefusedUnlessOneIsNamed) {
+    TempDir dir;
+    const std::string path = dir.file("two.exr");
+    const std::vector<std::string> channels = {"Composite.Combined.R", "Composite.Combined.G", "Composite.Combined.B",
+                                               "ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B"};
+    std::vector<float> pixels;
+    for (int i = 0; i < 4; ++i) pixels.insert(pixels.end(), {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f});
+    write_exr(path, 2, 2, channels, pixels);
+    try {
+        load_image(path, "photo.path");
+        FAIL() << "two Combined layers were not refused";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_EQ(e.field(), "photo.path");
+        EXPECT_NE(what.find("2 Combined layers (\"Composite.Combined\", \"ViewLayer.Combined\")"), std::string::npos) << what;
+    }
+    ImageLoadOptions options;
+    options.layer = "ViewLayer.Combined";
+    EXPECT_EQ(load_image(path, "photo", nullptr, options).at(1, 1), vec3(0.4f, 0.5f, 0.6f));
+}
+
 TEST(ImagePlates, ADisplayP3PhotoIsConvertedToLinearRec709ByItsIccProfile) {
     TempDir dir;
     const uint8_t red[3] = {255, 0, 0};
@@ -121,6 +142,27 @@ TEST(ImagePlates, ADisplayP3PhotoIsConvertedToLinearRec709ByItsIccProfile) {
     EXPECT_NEAR(image.at(0, 0).x, 1.2249f, 3e-3f);
     EXPECT_NEAR(image.at(0, 0).y, -0.0421f, 3e-3f);
     EXPECT_NEAR(image.at(0, 0).z, -0.0196f, 3e-3f);
+}
+
+TEST(ImagePlates, AColourSpaceGivenForAPhotoWinsOverItsIccProfile) {
+    TempDir dir;
+    const uint8_t colour[3] = {200, 97, 13};
+    write_png(dir.file("p3.png"), 2, 2, colour, make_icc_rgb_profile("Display P3", kP3, kD65, true, 0));
+    write_png(dir.file("plain.png"), 2, 2, colour);
+    for (const char* space : {"srgb", "linear"}) {
+        ImageLoadOptions options;
+        options.colorspace = space;
+        ImageLoadReport report;
+        const Image given = load_image(dir.file("p3.png"), "photo", &report, options);
+        // Check: read as the space says, exactly as the untagged file is, not by the profile.
+        EXPECT_FALSE(report.icc_converted) << space;
+        EXPECT_EQ(report.colorspace, space);
+        EXPECT_TRUE(dp::test::bit_identical(given, load_image(dir.file("plain.png"), "photo", nullptr, options))) << space;
+    }
+    // Left automatic, the profile is read (guard: the two readings differ).
+    ImageLoadReport report;
+    load_image(dir.file("p3.png"), "photo", &report);
+    EXPECT_TRUE(report.icc_converted);
 }
 
 TEST(ImagePlates, AnSrgbTaggedPhotoLoadsExactlyAsAnUntaggedOne) {
