@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <system_error>
 
 #include "assets/file_materials.h"
@@ -279,6 +280,22 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
     SceneAssets a;
     if (photo_width >= 0) a.photo = *photo_at(project, photo_width, photo_height);  // < 0: warnings only
     if (with_probe) a.probe_latlong = *probe(project);
+    // The width the camera sees at a point's distance (0 behind it, or without a camera).
+    std::optional<Camera> view;
+    auto view_width_at = [&](const vec3& at) -> float {
+        if (!view) {
+            int pw = 0, ph = 0;
+            try {
+                photo_size(project, pw, ph);
+                view = project.camera.build(pw, ph);
+            } catch (const std::exception&) {
+                view = Camera();  // a photo or camera that cannot be read is said elsewhere
+            }
+        }
+        if (view->width() <= 0 || !(view->fx() > 0)) return 0.0f;
+        const float depth = glm::dot(at - view->position(), view->forward());
+        return depth > 0 ? depth * float(view->width()) / view->fx() : 0.0f;
+    };
     auto load_list = [&](auto const& list, const char* name, std::vector<TriangleMesh>& meshes,
                          std::vector<Image>& textures, auto albedo_of) {
         meshes.resize(list.size());
@@ -294,8 +311,14 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
                 // Said on every load: the size depends on the transform, which edits change.
                 const float size =
                     placed_mesh_size(mesh->bounds_lo, mesh->bounds_hi, list[i].shape, list[i].transform);
-                const std::string why = mesh_size_warning(indexed(name, i, "shape.unit_scale"), list[i].name, size,
-                                                          list[i].shape.unit_scale);
+                std::string why = mesh_size_warning(indexed(name, i, "shape.unit_scale"), list[i].name, size,
+                                                    list[i].shape.unit_scale);
+                // Within what things can be, but not for where it stands in the view: a 30 cm
+                // vase modelled in centimetres, 30 m tall on a desk 3 m away.
+                if (why.empty())
+                    if (const float width = view_width_at(list[i].transform.translation); width > 0)
+                        why = mesh_view_warning(indexed(name, i, "shape.unit_scale"), list[i].name, size,
+                                                list[i].shape.unit_scale, width);
                 if (!why.empty()) a.warnings.push_back(why);
             }
             const Albedo& alb = albedo_of(list[i]);

@@ -39,4 +39,30 @@ std::string mesh_size_warning(const std::string& field, const std::string& name,
     return text + ": set unit_scale " + suggestion;
 }
 
+std::string mesh_view_warning(const std::string& field, const std::string& name, float size, float unit_scale,
+                              float view_width) {
+    if (!std::isfinite(size) || !(view_width > 0) || (size <= kViewTooLarge * view_width && size >= view_width / kViewTooSmall))
+        return "";
+    const bool large = size > kViewTooLarge * view_width;
+    const float candidates[2] = {large ? 0.01f : 100.0f, large ? 0.001f : 1000.0f};
+    const float aim = 0.25f * view_width;
+    const float factor = std::abs(std::log(size * candidates[0] / aim)) <= std::abs(std::log(size * candidates[1] / aim))
+                             ? candidates[0]
+                             : candidates[1];
+    char figures[160];
+    const double ratio = double(size) / double(view_width);
+    if (large)
+        std::snprintf(figures, sizeof figures, "%.3g m across once placed, %.0f times the view's width at its distance (%.3g m)",
+                      double(size), ratio, double(view_width));
+    else
+        std::snprintf(figures, sizeof figures, "%.3g m across once placed, 1/%.0f of the view's width at its distance (%.3g m)",
+                      double(size), 1.0 / ratio, double(view_width));
+    std::string text = field + ": " + (name.empty() ? std::string("the mesh") : "'" + name + "'") + " is " + figures;
+    if (large && unit_scale == 1.0f)
+        text += std::string(": its file looks like ") + (factor == 0.01f ? "centimetres" : "millimetres");
+    char suggestion[32];
+    std::snprintf(suggestion, sizeof(suggestion), "%.6g", double(unit_scale) * double(factor));
+    return text + ": set unit_scale " + suggestion;
+}
+
 }  // namespace dp

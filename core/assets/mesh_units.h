@@ -27,4 +27,16 @@ float placed_mesh_size(const vec3& lo, const vec3& hi, const Shape& shape, const
 /// centimetres: set unit_scale 0.01".
 std::string mesh_size_warning(const std::string& field, const std::string& name, float size, float unit_scale);
 
+/// Above this many times the width the camera sees at a mesh's distance, it is said to look too
+/// large for its place; below 1/kViewTooSmall of it, too small (a few pixels).
+inline constexpr float kViewTooLarge = 5.0f, kViewTooSmall = 100.0f;
+
+/// The warning for a mesh `size` metres across once placed where the camera's view is
+/// `view_width` metres wide (at the mesh's distance), or "" when it fits a photograph there: as
+/// mesh_size_warning, with the factor (of the unit mix-ups) that brings it nearest a quarter of
+/// the view, e.g. "objects[0].shape.unit_scale: 'vase' is 30 m across once placed, 11 times the
+/// view's width at its distance (2.7 m): its file looks like centimetres: set unit_scale 0.01".
+std::string mesh_view_warning(const std::string& field, const std::string& name, float size, float unit_scale,
+                              float view_width);
+
 }  // namespace dp

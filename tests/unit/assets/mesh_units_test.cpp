@@ -102,3 +102,51 @@ TEST(MeshUnits, TheAssetLibrarySaysItForObjectsAndProxiesOnEveryLoad) {
                      "too small: set unit_scale 0.01"));
     fs::remove_all(dir);
 }
+
+TEST(MeshUnits, AMeshTooLargeOrSmallForItsPlaceInTheViewIsSaid) {
+    // A 30 cm vase modelled in centimetres: 30 m, within what things can be, but on a desk 1.2 m
+    // from the camera, where the view is about 1 m wide.
+    EXPECT_EQ(mesh_view_warning("f", "vase", 0.3f, 1.0f, 1.0f), "");
+    EXPECT_EQ(mesh_view_warning("objects[0].shape.unit_scale", "vase", 30.0f, 1.0f, 1.04f),
+              "objects[0].shape.unit_scale: 'vase' is 30 m across once placed, 29 times the view's width at its "
+              "distance (1.04 m): its file looks like centimetres: set unit_scale 0.01");
+    EXPECT_EQ(mesh_view_warning("f", "pin", 0.0003f, 1.0f, 1.0f),
+              "f: 'pin' is 0.0003 m across once placed, 1/3333 of the view's width at its distance (1 m): set "
+              "unit_scale 1000");
+
+    const fs::path dir = fs::temp_directory_path() / ("dp_mesh_view_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const Image photo(16, 12, vec3(0.5f)), probe(32, 16, vec3(1.0f));
+    save_exr((dir / "photo.exr").string(), {{"", &photo}});
+    save_exr((dir / "probe.exr").string(), {{"", &probe}});
+    std::ofstream(dir / "m.obj") << "v 0 0 0\nv 30 0 0\nv 0 30 0\nf 1 2 3\n";
+    Project p;
+    p.base_dir = dir;
+    p.photo.path = "photo.exr";
+    p.probe.path = "probe.exr";
+    p.camera.eye = vec3(0, 0.8f, 1.2f);
+    p.camera.target = vec3(0, 0.7f, 0);
+    p.camera.vfov_deg = 40;
+    VirtualObject o;
+    o.name = "vase";
+    o.shape = mesh_shape();
+    o.transform.translation = vec3(0, 0.7f, 0);
+    p.objects.push_back(o);
+    AssetLibrary library;
+    auto said = [&](const std::string& text) {
+        for (const std::string& w : library.warnings(p))
+            if (w.find(text) != std::string::npos) return true;
+        return false;
+    };
+    EXPECT_TRUE(said("objects[0].shape.unit_scale: 'vase' is 30 m across once placed, "));
+    EXPECT_TRUE(said("set unit_scale 0.01"));
+    // Its unit given: nothing said.
+    p.objects[0].shape.unit_scale = 0.01f;
+    EXPECT_FALSE(said("vase"));
+    // Behind the camera, nothing to judge by.
+    p.objects[0].shape.unit_scale = 1.0f;
+    p.objects[0].transform.translation = vec3(0, 0.7f, 5);
+    EXPECT_FALSE(said("vase"));
+    fs::remove_all(dir);
+}
