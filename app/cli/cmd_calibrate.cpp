@@ -162,12 +162,10 @@ int run_fspy(const FspyOptions& o) {
     ReadSet read;
     read.add(o.file, "the fSpy file being read");
     std::vector<Output> extra;
-    if (!o.extract.empty()) {
-        // The embedded photo is written byte for byte: its name must say its format.
-        check_extension_for_content(o.extract, "--extract-photo", f.image.data(), f.image.size());
-        extra.push_back({o.extract, "--extract-photo", double(f.image.size())});
-    }
+    if (!o.extract.empty()) extra.push_back({o.extract, "--extract-photo", double(f.image.size())});
     check_camera_outputs(o.project, extra, read, o.force);
+    // The embedded photo is written byte for byte: its name must say its format.
+    if (!o.extract.empty()) check_extension_for_content(o.extract, "--extract-photo", f.image.data(), f.image.size());
     if (f.from_json_export)
         std::printf("fspy: exported camera parameters (no distance unit)\n");
     else
