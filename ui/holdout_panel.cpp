@@ -7,9 +7,12 @@
 #include <QPushButton>
 #include <QSpinBox>
 #include <QToolButton>
+#include <QApplication>
+#include <QPointer>
 #include <QVBoxLayout>
 #include <algorithm>
 
+#include "assets/asset_library.h"
 #include "base/error.h"
 #include "document.h"
 #include "error_reporter.h"
@@ -299,13 +302,15 @@ void HoldoutPanel::setDepth(double metres, const QString& text) {
 }
 
 bool HoldoutPanel::cut(QRect rect) {
-    return guarded(tr("Cut failed"), [&] {
+    std::vector<MatteLabel> labels;
+    int W = 0, H = 0;
+    const bool ok = guarded(tr("Cut failed"), [&] {
+        if (cutter_.joinable()) throw InputError("", "", "a cut is already running");
         MatteTool* matte = viewport_->matteTool();
-        QImage mask = matte->mask();
+        const QImage& mask = matte->mask();
         if (mask.isNull() || rect.isEmpty()) throw InputError("", "", "drag a rectangle around the occluder first");
-        const int W = mask.width(), H = mask.height();
-        std::vector<MatteLabel> labels = matte_labels_from_rect(W, H, rect.left(), rect.top(), rect.right() + 1,
-                                                                rect.bottom() + 1);
+        W = mask.width(), H = mask.height();
+        labels = matte_labels_from_rect(W, H, rect.left(), rect.top(), rect.right() + 1, rect.bottom() + 1);
         if (rect == matte->cutRect()) {
             const QImage& strokes = matte->cutStrokes();
             for (int y = 0; y < H; ++y)
@@ -315,11 +320,44 @@ bool HoldoutPanel::cut(QRect rect) {
                     if (s == 2) labels[size_t(y) * W + x] = MatteLabel::Background;
                 }
         }
+    });
+    if (!ok) return false;
+    // A second or so of GrabCut: on a worker, the result laid into the mask on the UI thread.
+    const std::shared_ptr<AssetLibrary> assets = doc_->assetLibrary();
+    const Project project = doc_->project();
+    const int row = list_->currentRow();
+    QPointer<HoldoutPanel> self(this);
+    status_->setText(tr("Cutting the occluder out of the photo…"));
+    modes_[3]->setEnabled(false);
+    recut_->setEnabled(false);
+    cutter_ = std::thread([=, labels = std::move(labels)] {
         std::vector<uint8_t> cut;
-        {
-            WaitCursor wait;
-            const auto photo = doc_->assets().photo_at(doc_->project(), W, H);
-            cut = grabcut_matte(*photo, labels);
+        std::string error;
+        try {
+            cut = grabcut_matte(*assets->photo_at(project, W, H), labels);
+        } catch (const std::exception& e) {
+            error = e.what();
+        }
+        QMetaObject::invokeMethod(qApp, [self, rect, row, W, H, cut = std::move(cut), error] {
+            if (!self) return;
+            self->cutter_.join();
+            self->modes_[3]->setEnabled(true);
+            self->refresh();
+            self->applyCut(rect, row, W, H, cut, error);
+        }, Qt::QueuedConnection);
+    });
+    return true;
+}
+
+void HoldoutPanel::applyCut(QRect rect, int row, int W, int H, const std::vector<uint8_t>& cut, const std::string& error) {
+    guarded(tr("Cut failed"), [&] {
+        if (!error.empty()) throw InputError("", "", error);
+        MatteTool* matte = viewport_->matteTool();
+        QImage mask = matte->mask();
+        // Another holdout chosen, or another project, while it ran: the cut is not this mask's.
+        if (row != list_->currentRow() || mask.width() != W || mask.height() != H) {
+            status_->clear();
+            return;
         }
         size_t covered = 0;
         for (int y = std::max(rect.top(), 0); y <= std::min(rect.bottom(), H - 1); ++y)
@@ -333,6 +371,10 @@ bool HoldoutPanel::cut(QRect rect) {
                              .arg(covered));
         refresh();
     });
+}
+
+HoldoutPanel::~HoldoutPanel() {
+    if (cutter_.joinable()) cutter_.join();
 }
 
 }  // namespace dp::ui

@@ -2,6 +2,9 @@
 #include <QImage>
 #include <QWidget>
 #include <functional>
+#include <string>
+#include <thread>
+#include <vector>
 
 class QLabel;
 class QListWidget;
@@ -26,11 +29,13 @@ class HoldoutPanel : public QWidget {
     Q_OBJECT
 public:
     HoldoutPanel(Document* doc, Viewport* viewport, ErrorReporter* reporter, QWidget* parent = nullptr);
+    ~HoldoutPanel() override;
     QListWidget* list() const { return list_; }
     /// Adds a holdout with an empty mask and selects it; false (reported) if it cannot.
     bool addHoldout();
     /// Cuts the occluder inside `rect` (render pixels) out of the photo, with the strokes made
-    /// since the last rectangle as sure labels, into the selected holdout's mask.
+    /// since the last rectangle as sure labels, into the selected holdout's mask: GrabCut runs on
+    /// a worker and the result is one undo step when it is done. False if refused at once.
     bool cut(QRect rect);
 
 private:
@@ -41,6 +46,8 @@ private:
     bool commit(const QString& text);
     void startTool(int mode);
     void setDepth(double metres, const QString& text);
+    /// Lays a finished cut into the mask of holdout `row` (if it is still the one shown).
+    void applyCut(QRect rect, int row, int W, int H, const std::vector<uint8_t>& cut, const std::string& error);
     bool guarded(const QString& title, const std::function<void()>& f);
 
     Document* doc_;
@@ -54,6 +61,7 @@ private:
     QLabel* status_;
     bool picking_ = false;  ///< the pick tool is taking this panel's depth click
     QString shownMask_;     ///< the mask file the matte tool holds
+    std::thread cutter_;    ///< the GrabCut in flight, if any
 };
 
 }  // namespace dp::ui
