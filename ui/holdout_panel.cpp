@@ -322,7 +322,8 @@ bool HoldoutPanel::cut(QRect rect) {
         }
     });
     if (!ok) return false;
-    // A second or so of GrabCut: on a worker, the result laid into the mask on the UI thread.
+    // GrabCut on a worker (its time grows with the photo), the result laid into the mask on the
+    // UI thread.
     const std::shared_ptr<AssetLibrary> assets = doc_->assetLibrary();
     const Project project = doc_->project();
     const int row = list_->currentRow();

@@ -267,7 +267,7 @@ bool MainWindow::writeExport(const QString& path, const RenderFrame& f) {
     std::vector<std::string> warnings;
     try {
         // Matched to the plate as the view shows it (display.match_plate): the photo measured
-        // here, a second or so for a large one.
+        // here, under a wait cursor.
         std::optional<PlateMatch> matched;
         if (doc_->project().display.match_plate && f.scene) {
             WaitCursor wait;

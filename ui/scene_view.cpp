@@ -75,6 +75,10 @@ Camera SceneView::camera() const {
     vec3 centre;
     float radius;
     sceneBounds(centre, radius);
+    return cameraFor(centre, radius);
+}
+
+Camera SceneView::cameraFor(vec3 centre, float radius) const {
     centre += pan_;
     const int w = std::max(width(), 2), h = std::max(height(), 2);
     const float fit = 1.25f * radius / zoom_;  // half the view's height, in metres
@@ -106,7 +110,17 @@ void SceneView::paintEvent(QPaintEvent*) {
     QPainter painter(this);
     painter.fillRect(rect(), QColor(38, 40, 44));
     if (!doc_->isOpen()) return;
-    const Camera cam = camera();
+    // The scene's bounds once a paint: they read the photo's camera and cast rays.
+    vec3 centre;
+    float radius;
+    sceneBounds(centre, radius);
+    const Camera cam = cameraFor(centre, radius);
+    auto at = [&](const vec3& world, QPointF& out) {
+        vec2 px;
+        if (!cam.project(world, px)) return false;
+        out = QPointF(px.x + 0.5, px.y + 0.5);
+        return true;
+    };
     const QTransform toWidget = QTransform::fromTranslate(0.5, 0.5);
     OverlayOptions o;
     o.selected = doc_->selected();
@@ -115,16 +129,13 @@ void SceneView::paintEvent(QPaintEvent*) {
     // The photo's camera: its eye and the frustum out to what it looks at.
     try {
         const Camera photo = photo_camera(doc_->assets(), doc_->project());
-        vec3 centre;
-        float radius;
-        sceneBounds(centre, radius);
         const float depth = std::max(glm::length(centre - photo.position()), radius);
         const float corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
         QPointF eye, far[4];
-        bool ok = widgetPosition(photo.position(), eye);
+        bool ok = at(photo.position(), eye);
         for (int k = 0; k < 4; ++k) {
             const Ray r = photo.generate_ray(corners[k][0] * float(photo.width() - 1), corners[k][1] * float(photo.height() - 1));
-            ok = ok && widgetPosition(r.org + r.dir * (depth / std::max(glm::dot(r.dir, photo.forward()), 1e-3f)), far[k]);
+            ok = ok && at(r.org + r.dir * (depth / std::max(glm::dot(r.dir, photo.forward()), 1e-3f)), far[k]);
         }
         if (ok) {
             painter.setRenderHint(QPainter::Antialiasing);

@@ -51,6 +51,8 @@ private:
     /// The middle and the size of what is to be seen: the photo's camera, the objects, the
     /// lights and the near part of the proxies.
     void sceneBounds(vec3& centre, float& radius) const;
+    /// The view's camera for those bounds.
+    Camera cameraFor(vec3 centre, float radius) const;
     /// The selection's transform moved by the drag from `from` to `to` (camera pixels).
     Transform dragged(const Transform& start, bool light, vec2 from, vec2 to) const;
 

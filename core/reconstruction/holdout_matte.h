@@ -21,8 +21,8 @@ std::vector<MatteLabel> matte_labels_from_rect(int width, int height, int x0, in
 
 /// Cuts the occluder out of `photo` (linear, judged as sRGB, as people see it) by OpenCV's
 /// GrabCut from `labels` (one per photo pixel; strokes already marked surely one or the other).
-/// Photos over `max_pixels` are cut at a reduced size and the result scaled back, so a cut takes
-/// about a second. Returns one byte per pixel, 1 for the occluder. Throws std::invalid_argument
+/// Photos over `max_pixels` are cut at a reduced size and the result scaled back (GrabCut's
+/// time grows with the pixels). Returns one byte per pixel, 1 for the occluder. Throws std::invalid_argument
 /// for labels of another size, or when the labels hold no possible occluder or no background.
 std::vector<uint8_t> grabcut_matte(const Image& photo, const std::vector<MatteLabel>& labels,
                                    double max_pixels = 400000, int iterations = 5);
