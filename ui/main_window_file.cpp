@@ -328,9 +328,8 @@ bool MainWindow::importMesh(const QString& path) {
     // triangles without one (and to switch back to).
     if (mesh.has_file_materials()) o.material_source = MaterialSource::File;
     o.shape.mesh_path = QFileInfo(path).absoluteFilePath().toStdString();
-    // An FBX file's up axis, where it names one of ours (its unit is applied on load).
-    for (const auto& [axis_name, axis] : kUpAxes)
-        if (mesh.declared_up == axis_name) o.shape.up_axis = axis;
+    // An FBX file's up axis applies by itself (Shape::up_axis left absent); its unit is applied
+    // on load.
     const vec3 extent = mesh.bounds_hi - mesh.bounds_lo;
     const float size = std::max({extent.x, extent.y, extent.z, 1e-9f});
     Project p = doc_->project();

@@ -112,7 +112,11 @@ bool local_bounds(const Project& project, const VirtualObject& o, vec3& lo, vec3
             break;
     }
     // Meshes are read on the UI thread only; a path's bounds do not change while it is open.
-    static std::map<std::string, std::pair<vec3, vec3>> cache;
+    struct FileBounds {
+        vec3 lo, hi;
+        UpAxis declared_up;
+    };
+    static std::map<std::string, FileBounds> cache;
     const std::string path = project.resolve(o.shape.mesh_path).string();
     auto it = cache.find(path);
     if (it == cache.end()) {
@@ -120,16 +124,16 @@ bool local_bounds(const Project& project, const VirtualObject& o, vec3& lo, vec3
             const LoadedMesh m = load_mesh(path, "mesh");
             vec3 a, b;
             if (!m.mesh.bounds(a, b)) return false;
-            it = cache.emplace(path, std::make_pair(a, b)).first;
+            it = cache.emplace(path, FileBounds{a, b, declared_up_axis(m.declared_up)}).first;
         } catch (const std::exception&) {
             return false;
         }
     }
     // The file's bounds in the shape's frame: its up axis turned to +Y and its unit applied.
-    const glm::mat4 frame = o.shape.file_frame();
+    const glm::mat4 frame = o.shape.file_frame(it->second.declared_up);
     lo = vec3(INFINITY);
     hi = vec3(-INFINITY);
-    for (const vec3& c : corners(it->second.first, it->second.second)) {
+    for (const vec3& c : corners(it->second.lo, it->second.hi)) {
         const vec3 p = vec3(frame * glm::vec4(c, 1.0f));
         lo = glm::min(lo, p);
         hi = glm::max(hi, p);

@@ -49,7 +49,9 @@ import sys
 
 
 def hand_off_args():
-    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    # After `--` (blender -b --python SCRIPT -- ARGS), or after the script's name where Blender
+    # is a Python module (python SCRIPT ARGS).
+    argv = script_args(__file__ if "__file__" in globals() else "")
     ap = argparse.ArgumentParser(
         prog="blender -b --python " + os.path.basename(__file__ if "__file__" in globals() else "scene.py") + " --",
         description="Builds the diffphoton project " + PROJECT_FILE + " as a Cycles scene.")
@@ -65,6 +67,11 @@ def hand_off_args():
 
 def hand_off():
     args = hand_off_args()
+    if bpy.app.version < (3, 4, 0):
+        print(f"error: this script needs Blender 3.4 or later (4.2 LTS, 5.x); this is Blender "
+              f"{bpy.app.version_string}", file=sys.stderr, flush=True)
+        sys.exit(2)
+    print(f"building {PROJECT_FILE} in Blender {bpy.app.version_string}", flush=True)
     try:
         cs = CyclesScene(PROJECT_FILE, mode="catcher", threads=args.threads, project=PROJECT)
     except ConversionError as e:
@@ -78,10 +85,14 @@ def hand_off():
     # An artist previews in the viewport: a few samples there, the full count in renders.
     c.preview_samples = min(c.samples, 32)
     if args.blend:
-        bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.blend))
+        # Absolute paths, as docs/cycles.md says: Blender's default remaps them relative to
+        # the .blend, which breaks when the .blend moves without the photo and probe.
+        bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(args.blend), relative_remap=False)
         print(f"saved {os.path.abspath(args.blend)}", flush=True)
     if args.render:
         settings = scene.render.image_settings
+        if hasattr(settings, "media_type"):  # Blender 5: multilayer is a media type of its own
+            settings.media_type = "MULTI_LAYER_IMAGE"
         settings.file_format = "OPEN_EXR_MULTILAYER"
         settings.color_mode = "RGBA"
         bpy.ops.render.render(write_still=False)

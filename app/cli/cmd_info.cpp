@@ -32,7 +32,7 @@ std::string shape_text(const Shape& s, const TriangleMesh* mesh) {
         case Shape::Kind::Mesh: {
             std::string t = "mesh '" + s.mesh_path + "'";
             if (mesh) t += " (" + std::to_string(mesh->triangle_count()) + " triangles)";
-            if (s.up_axis != UpAxis::Y) t += std::string(", up axis ") + up_axis_name(s.up_axis);
+            if (s.up_axis && *s.up_axis != UpAxis::Y) t += std::string(", up axis ") + up_axis_name(*s.up_axis);
             if (s.unit_scale != 1.0f) {
                 std::snprintf(buf, sizeof(buf), ", unit_scale %g", double(s.unit_scale));
                 t += buf;

@@ -53,66 +53,95 @@ def _read_cstr(buf, pos):
     return buf[pos:end].decode(), end + 1
 
 
-def read_exr(path, layer="", channels="RGB"):
-    """(width, height, floats interleaved as `channels`, rows top-down) of one layer ("" = R, G,
-    B) of a scanline EXR with no, ZIPS or ZIP compression and half or float channels."""
-    with open(path, "rb") as f:
-        buf = f.read()
-    if struct.unpack_from("<I", buf, 0)[0] != 20000630:
-        raise ValueError(f"{path}: not an EXR file")
-    pos, attrs = 8, {}
+def _read_header(buf, pos):
+    """The attributes of one EXR header from `pos` and the position after it."""
+    attrs = {}
     while True:
         name, pos = _read_cstr(buf, pos)
         if not name:
-            break
+            return attrs, pos
         kind, pos = _read_cstr(buf, pos)
         size = struct.unpack_from("<i", buf, pos)[0]
         attrs[name] = (kind, buf[pos + 4:pos + 4 + size])
         pos += 4 + size
-    stored, data = [], attrs["channels"][1]
-    p = 0
+
+
+def _channels(attrs):
+    stored, data, p = [], attrs["channels"][1], 0
     while data[p] != 0:
         name, p = _read_cstr(data, p)
-        ptype = struct.unpack_from("<i", data, p)[0]
-        stored.append((name, ptype))
+        stored.append((name, struct.unpack_from("<i", data, p)[0]))
         p += 16
-    compression = attrs["compression"][1][0]
-    if compression not in (0, 2, 3):
-        raise ValueError(f"{path}: compression {compression} is not supported here (none, ZIPS, ZIP)")
-    xmin, ymin, xmax, ymax = struct.unpack("<4i", attrs["dataWindow"][1])
-    w, h = xmax - xmin + 1, ymax - ymin + 1
-    lines = 16 if compression == 3 else 1
-    chunks = (h + lines - 1) // lines
-    offsets = struct.unpack_from(f"<{chunks}Q", buf, pos)
+    return stored
+
+
+def read_exr(path, layer="", channels="RGB"):
+    """(width, height, floats interleaved as `channels`, rows top-down) of one layer ("" = R, G,
+    B) of a scanline EXR with no, ZIPS or ZIP compression and half or float channels; single-part
+    (Blender 3.4) or multi-part (Blender 5 writes a part per layer)."""
+    with open(path, "rb") as f:
+        buf = f.read()
+    if struct.unpack_from("<I", buf, 0)[0] != 20000630:
+        raise ValueError(f"{path}: not an EXR file")
+    multipart = bool(struct.unpack_from("<I", buf, 4)[0] & 0x1000)
+    headers, pos = [], 8
+    while True:
+        attrs, pos = _read_header(buf, pos)
+        headers.append(attrs)
+        if not multipart or buf[pos] == 0:
+            break
+    pos += 1 if multipart else 0
     want = [layer + "." + c if layer else c for c in channels]
-    names = [c[0] for c in stored]
+    # The offset tables follow the headers, one per part, each as long as the part's chunks.
+    tables = []
+    for attrs in headers:
+        xmin, ymin, xmax, ymax = struct.unpack("<4i", attrs["dataWindow"][1])
+        lines = 16 if attrs["compression"][1][0] == 3 else 1
+        chunks = (ymax - ymin + 1 + lines - 1) // lines
+        tables.append(struct.unpack_from(f"<{chunks}Q", buf, pos))
+        pos += 8 * chunks
+    names = [c[0] for attrs in headers for c in _channels(attrs)]
+    planes = {}
+    for attrs, offsets in zip(headers, tables):
+        stored = _channels(attrs)
+        if not any(name in want for name, _ in stored):
+            continue
+        compression = attrs["compression"][1][0]
+        if compression not in (0, 2, 3):
+            raise ValueError(f"{path}: compression {compression} is not supported here (none, ZIPS, ZIP)")
+        xmin, ymin, xmax, ymax = struct.unpack("<4i", attrs["dataWindow"][1])
+        w, h = xmax - xmin + 1, ymax - ymin + 1
+        lines = 16 if compression == 3 else 1
+        for name, _ in stored:
+            if name in want:
+                planes[name] = array.array("f", bytes(4 * w * h))
+        for off in offsets:
+            off += 4 if multipart else 0  # a multi-part chunk starts with its part number
+            y, size = struct.unpack_from("<ii", buf, off)
+            raw = buf[off + 8:off + 8 + size]
+            n_lines = min(lines, ymax - y + 1)
+            expected = sum(w * (2 if t == 1 else 4) for _, t in stored) * n_lines
+            if compression and size < expected:
+                t = bytearray(zlib.decompress(raw))
+                for i in range(1, len(t)):
+                    t[i] = (t[i - 1] + t[i] - 128) & 0xFF
+                half = (len(t) + 1) // 2
+                out = bytearray(len(t))
+                out[0::2] = t[:half]
+                out[1::2] = t[half:]
+                raw = bytes(out)
+            p = 0
+            for ly in range(n_lines):
+                row = y - ymin + ly
+                for name, ptype in stored:
+                    nbytes = w * (2 if ptype == 1 else 4)
+                    if name in planes:
+                        fmt = f"<{w}e" if ptype == 1 else (f"<{w}f" if ptype == 2 else f"<{w}I")
+                        planes[name][row * w:(row + 1) * w] = array.array("f", struct.unpack_from(fmt, raw, p))
+                    p += nbytes
     for c in want:
-        if c not in names:
+        if c not in planes:
             raise ValueError(f"{path}: no channel {c} (channels: {', '.join(names)})")
-    planes = {c: array.array("f", bytes(4 * w * h)) for c in want}
-    for off in offsets:
-        y, size = struct.unpack_from("<ii", buf, off)
-        raw = buf[off + 8:off + 8 + size]
-        n_lines = min(lines, ymax - y + 1)
-        expected = sum(w * (2 if t == 1 else 4) for _, t in stored) * n_lines
-        if compression and size < expected:
-            t = bytearray(zlib.decompress(raw))
-            for i in range(1, len(t)):
-                t[i] = (t[i - 1] + t[i] - 128) & 0xFF
-            half = (len(t) + 1) // 2
-            out = bytearray(len(t))
-            out[0::2] = t[:half]
-            out[1::2] = t[half:]
-            raw = bytes(out)
-        p = 0
-        for ly in range(n_lines):
-            row = y - ymin + ly
-            for name, ptype in stored:
-                nbytes = w * (2 if ptype == 1 else 4)
-                if name in planes:
-                    fmt = f"<{w}e" if ptype == 1 else (f"<{w}f" if ptype == 2 else f"<{w}I")
-                    planes[name][row * w:(row + 1) * w] = array.array("f", struct.unpack_from(fmt, raw, p))
-                p += nbytes
     out = array.array("f", bytes(4 * len(want) * w * h))
     for k, c in enumerate(want):
         out[k::len(want)] = planes[c]

@@ -16,9 +16,9 @@ conventions it maps, and how each was checked, are in docs/cycles.md:
   glossy (mirror) or sharp glass (Blender 3.4's SHARP distribution, GGX at roughness 0 in
   Blender 4 and later, which dropped SHARP and treats roughness 0 as a perfect reflection);
   principled: Principled BSDF (glTF's material; its inputs by the names of Blender 3.4 or 4+;
-  its emission lights the real proxies, as ours does); meshes from OBJ, PLY or glTF 2.0 (Blender's
-  glTF importer, its Y-up conversion undone), a glTF's own materials kept for
-  "material_source": "file";
+  its emission lights the real proxies, as ours does); meshes from OBJ, PLY, STL, FBX (in
+  metres from its declared unit) or glTF 2.0 (Blender's glTF importer, its Y-up conversion
+  undone), the file's own materials kept for "material_source": "file";
 - lights: point and spot (radius 0) and area lights (rectangle, disk or ellipse) of the same
   power in watts, turned from ours' local -Y to Blender's local -Z (LIGHT_FROM_BLENDER);
 - one composite per render: Combined + (1 - Combined.alpha) * photo * ShadowCatcher.
@@ -457,8 +457,12 @@ def import_mesh(path, name, file, field):
         bpy.ops.import_mesh.ply(filepath=path)  # Blender 3.4's Python add-on: no axes, no normals
     elif ext in (".gltf", ".glb"):
         import_gltf(path, file, field)
+    elif ext == ".fbx":
+        import_fbx(path, file, field)
+    elif ext == ".stl":
+        import_stl(path, file, field)
     else:
-        raise ConversionError(file, field, f"{path}: Cycles meshes are read from OBJ, PLY or glTF 2.0 only")
+        raise ConversionError(file, field, f"{path}: Cycles meshes are read from OBJ, PLY, STL, FBX or glTF 2.0 only")
     new = [o for o in bpy.data.objects if o not in before]
     objs = [o for o in new if o.type == "MESH"]
     if not objs:
@@ -474,7 +478,10 @@ def import_mesh(path, name, file, field):
         o.data.transform(undo @ world)  # bake any importer placement into the vertices
         o.matrix_world = Matrix.Identity(4)
         o.name = name
-        if not o.data.has_custom_normals:
+        if ext == ".stl":  # ours shades an STL's facets flat, by the normals the file gives them
+            for poly in o.data.polygons:
+                poly.use_smooth = False
+        elif not o.data.has_custom_normals:
             smooth_normals_like_ours(o.data)
     for o in new:  # the importer's empties, cameras and lights: not ours
         if o.type != "MESH":
@@ -491,11 +498,7 @@ def import_gltf(path, file, field):
     and 5.0), which builds each glTF material as a Principled BSDF node tree with its textures
     (base colour sRGB; metallic-roughness and normal maps non-colour, a tangent-space Normal
     Map node), as ours reads the file's materials where material_source is "file"."""
-    try:
-        bpy.ops.import_scene.gltf.get_rna_type()
-    except (KeyError, AttributeError):  # the add-on is not enabled (a bare bpy module)
-        import addon_utils
-        addon_utils.enable("io_scene_gltf2", default_set=True)
+    enable_addon("io_scene_gltf2", bpy.ops.import_scene.gltf)
     # Debian's Blender 3.4 importer uses numpy's aliases np.bool etc., which NumPy 1.24 removed
     # (AttributeError in set_poly_smoothing); the builtins they stood for take their place.
     import numpy as np
@@ -506,6 +509,46 @@ def import_gltf(path, file, field):
         bpy.ops.import_scene.gltf(filepath=path)
     except (RuntimeError, AttributeError) as e:
         raise ConversionError(file, field, f"{path}: Blender's glTF importer failed: {e}")
+
+
+def enable_addon(module, operator):
+    """Blender's bundled importer add-on `module` (a bare bpy module starts with none enabled)."""
+    try:
+        operator.get_rna_type()
+    except (KeyError, AttributeError):
+        import addon_utils
+        addon_utils.enable(module, default_set=True)
+
+
+def import_fbx(path, file, field):
+    """An FBX file by Blender's bundled importer, in the file's own axes (the identity
+    orientation, as for OBJ; the project's or the file's up axis is applied by file_frame) and
+    in metres from the unit the file declares, as ours reads it."""
+    enable_addon("io_scene_fbx", bpy.ops.import_scene.fbx)
+    try:
+        bpy.ops.import_scene.fbx(filepath=path, use_manual_orientation=True, axis_forward="Y", axis_up="Z",
+                                 global_scale=1.0, use_custom_normals=True,
+                                 use_image_search=False, use_anim=False)
+    except (RuntimeError, AttributeError) as e:
+        raise ConversionError(file, field, f"{path}: Blender's FBX importer failed: {e}")
+
+
+def import_stl(path, file, field):
+    """An STL file in its own axes: Blender 4.1 and later have a built-in importer, 3.4 a Python
+    add-on."""
+    try:
+        bpy.ops.wm.stl_import.get_rna_type()
+        bpy.ops.wm.stl_import(filepath=path, forward_axis="Y", up_axis="Z", global_scale=1.0)
+        return
+    except KeyError:
+        pass
+    except RuntimeError as e:
+        raise ConversionError(file, field, f"{path}: Blender's STL importer failed: {e}")
+    enable_addon("io_mesh_stl", bpy.ops.import_mesh.stl)
+    try:
+        bpy.ops.import_mesh.stl(filepath=path, axis_forward="Y", axis_up="Z", global_scale=1.0)
+    except RuntimeError as e:
+        raise ConversionError(file, field, f"{path}: Blender's STL importer failed: {e}")
 
 
 def ply_importer():

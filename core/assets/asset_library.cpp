@@ -297,8 +297,9 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
         return depth > 0 ? depth * float(view->width()) / view->fx() : 0.0f;
     };
     auto load_list = [&](auto const& list, const char* name, std::vector<TriangleMesh>& meshes,
-                         std::vector<Image>& textures, auto albedo_of) {
+                         std::vector<UpAxis>& ups, std::vector<Image>& textures, auto albedo_of) {
         meshes.resize(list.size());
+        ups.assign(list.size(), UpAxis::Y);
         textures.resize(list.size());
         for (size_t i = 0; i < list.size(); ++i) {
             if (list[i].shape.kind == Shape::Kind::Mesh) {
@@ -308,9 +309,10 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
                                                [&](Entry&) { return load_mesh(path.string(), field); });
                 a.degenerate_triangles_dropped += mesh->dropped_degenerate;
                 meshes[i] = mesh->mesh;
+                ups[i] = declared_up_axis(mesh->declared_up);
                 // Said on every load: the size depends on the transform, which edits change.
                 const float size =
-                    placed_mesh_size(mesh->bounds_lo, mesh->bounds_hi, list[i].shape, list[i].transform);
+                    placed_mesh_size(mesh->bounds_lo, mesh->bounds_hi, list[i].shape, list[i].transform, ups[i]);
                 std::string why = mesh_size_warning(indexed(name, i, "shape.unit_scale"), list[i].name, size,
                                                     list[i].shape.unit_scale);
                 // Within what things can be, but not for where it stands in the view: a 30 cm
@@ -336,9 +338,9 @@ SceneAssets AssetLibrary::load(const Project& project, int photo_width, int phot
             }
         }
     };
-    load_list(project.real, "real", a.real_meshes, a.real_textures,
+    load_list(project.real, "real", a.real_meshes, a.real_mesh_up, a.real_textures,
               [](const RealProxy& r) -> const Albedo& { return r.albedo; });
-    load_list(project.objects, "objects", a.object_meshes, a.object_textures,
+    load_list(project.objects, "objects", a.object_meshes, a.object_mesh_up, a.object_textures,
               [](const VirtualObject& o) -> const Albedo& { return o.material.albedo; });
     a.object_metallic_roughness.resize(project.objects.size());
     a.object_normal_maps.resize(project.objects.size());

@@ -7,9 +7,10 @@
 
 namespace dp {
 
-float placed_mesh_size(const vec3& lo, const vec3& hi, const Shape& shape, const Transform& transform) {
+float placed_mesh_size(const vec3& lo, const vec3& hi, const Shape& shape, const Transform& transform,
+                       UpAxis file_up) {
     // The file frame is a rotation by quarter turns and a uniform scale: it permutes the extents.
-    const vec3 extent = glm::abs(glm::mat3(shape.file_frame()) * (hi - lo)) * glm::abs(transform.scale);
+    const vec3 extent = glm::abs(glm::mat3(shape.file_frame(file_up)) * (hi - lo)) * glm::abs(transform.scale);
     return std::max({extent.x, extent.y, extent.z});
 }
 

@@ -16,8 +16,9 @@ inline constexpr float kMeshTooSmall = 0.01f;
 
 /// The largest extent (metres) of a mesh whose file bounds are `lo`, `hi` once placed by
 /// `shape` (its up axis and unit_scale) and `transform` (its scale; the rotation is left out,
-/// so the figure does not change as the object turns).
-float placed_mesh_size(const vec3& lo, const vec3& hi, const Shape& shape, const Transform& transform);
+/// so the figure does not change as the object turns); `file_up` is the axis the file declares.
+float placed_mesh_size(const vec3& lo, const vec3& hi, const Shape& shape, const Transform& transform,
+                       UpAxis file_up = UpAxis::Y);
 
 /// The warning for a mesh `size` metres across once placed, given its `unit_scale`, or "" when
 /// the size lies within kMeshTooSmall to kMeshTooLarge. It names `field` (the shape's

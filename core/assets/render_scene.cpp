@@ -20,8 +20,8 @@ bool is_uniform(const vec3& s) {
 
 /// Places a proxy's or object's shape in the world: an exact sphere when the scale is
 /// uniform, otherwise a triangle mesh stored in `mesh_slot`.
-void place_shape(const Shape& shape, const Transform& transform, const TriangleMesh* loaded, Surface& s,
-                 TriangleMesh& mesh_slot) {
+void place_shape(const Shape& shape, const Transform& transform, const TriangleMesh* loaded, UpAxis file_up,
+                 Surface& s, TriangleMesh& mesh_slot) {
     glm::mat4 m = transform.matrix();
     if (shape.kind == Shape::Kind::Sphere && is_uniform(transform.scale)) {
         s.analytic_sphere = true;
@@ -38,7 +38,7 @@ void place_shape(const Shape& shape, const Transform& transform, const TriangleM
             if (loaded) mesh = *loaded;
             break;
     }
-    mesh.transform(m * shape.file_frame());  // a mesh file's axes and unit first
+    mesh.transform(m * shape.file_frame(file_up));  // a mesh file's axes and unit first
     mesh_slot = std::move(mesh);
     s.mesh = &mesh_slot;
 }
@@ -301,7 +301,8 @@ void RenderScene::place_surfaces() {
             s.normal_map = &assets_->object_normal_maps[i];
         s.normal_scale = o.material.principled.normal_scale;
         const TriangleMesh* loaded = i < assets_->object_meshes.size() ? &assets_->object_meshes[i] : nullptr;
-        place_shape(o.shape, o.transform, loaded, s, (*virtual_world_meshes_)[i]);
+        const UpAxis up = i < assets_->object_mesh_up.size() ? assets_->object_mesh_up[i] : UpAxis::Y;
+        place_shape(o.shape, o.transform, loaded, up, s, (*virtual_world_meshes_)[i]);
         // A mesh drawn with its file's materials: a part per material, found per triangle.
         if (o.material_source == MaterialSource::File && s.mesh &&
             !s.mesh->triangle_materials.empty() && i < assets_->object_file_materials.size()) {
@@ -333,7 +334,8 @@ void RenderScene::place_surfaces() {
         if (i < assets_->real_textures.size() && !assets_->real_textures[i].empty())
             s.texture = &assets_->real_textures[i];
         const TriangleMesh* loaded = i < assets_->real_meshes.size() ? &assets_->real_meshes[i] : nullptr;
-        place_shape(r.shape, r.transform, loaded, s, (*real_world_meshes_)[i]);
+        const UpAxis up = i < assets_->real_mesh_up.size() ? assets_->real_mesh_up[i] : UpAxis::Y;
+        place_shape(r.shape, r.transform, loaded, up, s, (*real_world_meshes_)[i]);
         real_surfaces_.push_back(s);
     }
 }
@@ -347,12 +349,12 @@ void check_placement(const Project& project, int width, int height) {
     std::vector<TriangleMesh> meshes(real.size() + virt.size());
     for (size_t i = 0; i < real.size(); ++i) {
         real[i].index = int(i);
-        place_shape(project.real[i].shape, project.real[i].transform, nullptr, real[i], meshes[i]);
+        place_shape(project.real[i].shape, project.real[i].transform, nullptr, UpAxis::Y, real[i], meshes[i]);
     }
     for (size_t i = 0; i < virt.size(); ++i) {
         virt[i].is_virtual = true;
         virt[i].index = int(i);
-        place_shape(project.objects[i].shape, project.objects[i].transform, nullptr, virt[i], meshes[real.size() + i]);
+        place_shape(project.objects[i].shape, project.objects[i].transform, nullptr, UpAxis::Y, virt[i], meshes[real.size() + i]);
     }
     const Camera camera = project.camera.build(width, height);
     check_extent_of(project, real, virt, camera);

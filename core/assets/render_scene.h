@@ -35,6 +35,9 @@ struct SceneAssets {
     Image probe_latlong;
     std::vector<TriangleMesh> real_meshes;    ///< one per project.real entry (empty for spheres)
     std::vector<TriangleMesh> object_meshes;  ///< one per project.objects entry (empty for spheres)
+    /// One per entry: the up axis its mesh file declares (Y for none, and for other shapes),
+    /// which applies where the project gives no shape.up_axis (Shape::file_frame).
+    std::vector<UpAxis> real_mesh_up, object_mesh_up;
     std::vector<Image> real_textures;         ///< one per real entry (empty unless Texture)
     std::vector<Image> object_textures;       ///< one per object (empty unless Texture)
     /// One per object: its principled material's metallic-roughness texture and normal map,

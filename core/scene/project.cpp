@@ -16,12 +16,12 @@ glm::mat4 Transform::matrix() const {
     return glm::scale(m, scale);
 }
 
-glm::mat4 Shape::file_frame() const {
+glm::mat4 Shape::file_frame(UpAxis file_up) const {
     if (kind != Kind::Mesh) return glm::mat4(1.0f);
     // Columns are the images of the file's x, y and z axes; each is a proper rotation (a file
     // with +Z up has its front, -Y, turned towards +Z as exporters to +Y up do).
     glm::mat3 r(1.0f);
-    switch (up_axis) {
+    switch (effective_up(file_up)) {
         case UpAxis::Y: break;
         case UpAxis::Z: r = glm::mat3(vec3(1, 0, 0), vec3(0, 0, -1), vec3(0, 1, 0)); break;
         case UpAxis::NegY: r = glm::mat3(vec3(1, 0, 0), vec3(0, -1, 0), vec3(0, 0, -1)); break;

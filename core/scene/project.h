@@ -35,11 +35,15 @@ struct Shape {
     vec3 size{1.0f};
     float radius = 1.0f;
     std::string mesh_path;   ///< as written in the project (relative to the project file)
-    UpAxis up_axis = UpAxis::Y;  ///< mesh: the file's up axis
+    /// mesh: the file's up axis as the project says it; absent, the axis the file declares
+    /// (`file_up` below), else +Y. The project's word wins over the file's.
+    std::optional<UpAxis> up_axis;
     float unit_scale = 1.0f;     ///< mesh: metres per file unit (beyond what an FBX file declares)
-    /// The mesh file's coordinates to the shape's local frame: a rotation that takes `up_axis`
-    /// to +Y, then `unit_scale`. The identity for the other kinds.
-    glm::mat4 file_frame() const;
+    /// The up axis in effect for a file that declares `file_up` (Y for a file that declares none).
+    UpAxis effective_up(UpAxis file_up = UpAxis::Y) const { return up_axis.value_or(file_up); }
+    /// The mesh file's coordinates to the shape's local frame: a rotation that takes the up axis
+    /// in effect to +Y, then `unit_scale`. The identity for the other kinds.
+    glm::mat4 file_frame(UpAxis file_up = UpAxis::Y) const;
     bool operator==(const Shape&) const = default;
 };
 
@@ -48,6 +52,13 @@ inline constexpr std::pair<const char*, UpAxis> kUpAxes[] = {
     {"y", UpAxis::Y}, {"z", UpAxis::Z}, {"-y", UpAxis::NegY}, {"-z", UpAxis::NegZ}};
 /// "y", "z", "-y" or "-z".
 inline const char* up_axis_name(UpAxis axis) { return kUpAxes[int(axis)].first; }
+/// The up axis a mesh file declares (LoadedMesh::declared_up: "z", "-y"...) as one of ours; Y
+/// for none, or for one we have no rotation for (an FBX with X up).
+inline UpAxis declared_up_axis(const std::string& declared) {
+    for (const auto& [name, axis] : kUpAxes)
+        if (declared == name) return axis;
+    return UpAxis::Y;
+}
 
 /// The shape kinds by the names the project file, the CLI and the studio use.
 inline constexpr std::pair<const char*, Shape::Kind> kShapeKinds[] = {

@@ -423,11 +423,13 @@ J write_shape(const Shape& s) {
             return J{{"type", shape_kind_name(s.kind)}, {"size", vec<J>(s.size)}};
         case Shape::Kind::Sphere:
             return J{{"type", shape_kind_name(s.kind)}, {"radius", num(s.radius)}};
-        case Shape::Kind::Mesh:
-            return J{{"type", shape_kind_name(s.kind)},
-                     {"path", s.mesh_path},
-                     {"up_axis", up_axis_name(s.up_axis)},
-                     {"unit_scale", num(s.unit_scale)}};
+        case Shape::Kind::Mesh: {
+            J j{{"type", shape_kind_name(s.kind)}, {"path", s.mesh_path}};
+            // Absent stays absent: the file's own axis then applies, whatever file it becomes.
+            if (s.up_axis) j["up_axis"] = up_axis_name(*s.up_axis);
+            j["unit_scale"] = num(s.unit_scale);
+            return j;
+        }
     }
     return J();
 }

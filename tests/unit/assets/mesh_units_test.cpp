@@ -9,6 +9,7 @@
 #include "assets/asset_library.h"
 #include "assets/mesh_units.h"
 #include "image/image_io.h"
+#include "../fbx_quad.h"
 
 using namespace dp;
 namespace fs = std::filesystem;
@@ -148,5 +149,46 @@ TEST(MeshUnits, AMeshTooLargeOrSmallForItsPlaceInTheViewIsSaid) {
     p.objects[0].shape.unit_scale = 1.0f;
     p.objects[0].transform.translation = vec3(0, 0.7f, 5);
     EXPECT_FALSE(said("vase"));
+    fs::remove_all(dir);
+}
+
+TEST(MeshUnits, AFilesDeclaredUpAxisTurnsItWhereTheProjectSaysNoneAndTheProjectsWordWins) {
+    const fs::path dir = fs::temp_directory_path() / ("dp_mesh_up_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    // A 2 x 1 quad in the file's xy plane, the file saying Z is up: a rug lying on the floor.
+    const std::string fbx = test::fbx_quad(dir, "100", "2");
+    if (fbx.empty()) GTEST_SKIP() << "this Assimp has no FBX exporter";
+    std::ofstream(dir / "rug.fbx") << fbx;
+    const Image photo(16, 12, vec3(0.5f)), probe(32, 16, vec3(1.0f));
+    save_exr((dir / "photo.exr").string(), {{"", &photo}});
+    save_exr((dir / "probe.exr").string(), {{"", &probe}});
+    Project p;
+    p.base_dir = dir;
+    p.photo.path = "photo.exr";
+    p.probe.path = "probe.exr";
+    p.camera.eye = vec3(0, 1.5f, 4);
+    p.camera.target = vec3(0, 0, 0);
+    VirtualObject o;
+    o.name = "rug";
+    o.shape.kind = Shape::Kind::Mesh;
+    o.shape.mesh_path = "rug.fbx";
+    p.objects.push_back(o);
+
+    AssetLibrary library;
+    auto extent = [&] {
+        const auto scene = build_scene(library, p);
+        vec3 lo, hi;
+        EXPECT_TRUE(scene->virtual_surfaces()[0].mesh->bounds(lo, hi));
+        return hi - lo;
+    };
+    vec3 e = extent();  // the file's word: flat, 1 m deep
+    EXPECT_NEAR(e.y, 0.0f, 1e-5f);
+    EXPECT_NEAR(e.x, 2.0f, 1e-5f);
+    EXPECT_NEAR(e.z, 1.0f, 1e-5f);
+    p.objects[0].shape.up_axis = UpAxis::Y;  // the project's word: standing, 1 m tall
+    e = extent();
+    EXPECT_NEAR(e.y, 1.0f, 1e-5f);
+    EXPECT_NEAR(e.z, 0.0f, 1e-5f);
     fs::remove_all(dir);
 }

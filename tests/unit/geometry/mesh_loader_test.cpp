@@ -18,6 +18,7 @@
 #include "base/error.h"
 #include "geometry/mesh.h"
 #include "mesh_checks.h"
+#include "../fbx_quad.h"
 
 using namespace dp;
 using namespace dp::test;
@@ -338,33 +339,9 @@ TEST_F(MeshLoader, RefusesGltfBuffersThatDeclareMoreBytesThanTheyHold) {
     EXPECT_NE(message.find("malformed glTF"), std::string::npos) << message;
 }
 
-namespace {
-
-/// An ASCII FBX of a 2 x 1 quad (x 0..2, y 0..1) written by Assimp's own exporter, its global
-/// settings then edited: `unit_cm` centimetres per unit, `up_axis` 0/1/2 for X/Y/Z. Empty where
-/// this Assimp was built without its FBX exporter.
-std::string fbx_quad(const fs::path& dir, const std::string& unit_cm, const std::string& up_axis) {
-    const fs::path obj = dir / "quad_for_fbx.obj", fbx = dir / "quad_for_fbx.fbx";
-    std::ofstream(obj) << "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4\n";
-    Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFile(obj.string(), 0);
-    Assimp::Exporter exporter;
-    if (!scene || exporter.Export(scene, "fbxa", fbx.string()) != aiReturn_SUCCESS) return "";
-    std::ifstream in(fbx);
-    std::string text((std::istreambuf_iterator<char>(in)), {}), out, line;
-    std::istringstream lines(text);
-    while (std::getline(lines, line)) {
-        if (line.find("P: \"UnitScaleFactor\"") != std::string::npos) line = line.substr(0, line.rfind(',') + 1) + unit_cm;
-        if (line.find("P: \"UpAxis\"") != std::string::npos) line = line.substr(0, line.rfind(',') + 1) + up_axis;
-        out += line + "\n";
-    }
-    return out;
-}
-
-}  // namespace
 
 TEST_F(MeshLoader, AnFbxFileIsBroughtToMetresFromTheUnitItDeclaresAndItsUpAxisIsReported) {
-    const std::string metres = fbx_quad(dir_, "100", "2");  // 100 cm per unit, Z up
+    const std::string metres = test::fbx_quad(dir_, "100", "2");  // 100 cm per unit, Z up
     if (metres.empty()) GTEST_SKIP() << "this Assimp has no FBX exporter";
     LoadedMesh m = load_mesh(write("metres.fbx", metres));
     EXPECT_FLOAT_EQ(m.declared_unit_m, 1.0f);
@@ -372,14 +349,14 @@ TEST_F(MeshLoader, AnFbxFileIsBroughtToMetresFromTheUnitItDeclaresAndItsUpAxisIs
     EXPECT_NEAR(m.bounds_hi.x - m.bounds_lo.x, 2.0f, 1e-5f);
 
     // The same numbers in centimetres: a quad 2 cm wide.
-    m = load_mesh(write("centimetres.fbx", fbx_quad(dir_, "1", "1")));
+    m = load_mesh(write("centimetres.fbx", test::fbx_quad(dir_, "1", "1")));
     EXPECT_FLOAT_EQ(m.declared_unit_m, 0.01f);
     EXPECT_EQ(m.declared_up, "y");
     EXPECT_NEAR(m.bounds_hi.x - m.bounds_lo.x, 0.02f, 1e-7f);
     EXPECT_NEAR(m.bounds_hi.y - m.bounds_lo.y, 0.01f, 1e-7f);
 
     const std::string message =
-        input_error_text([&] { load_mesh(write("zero.fbx", fbx_quad(dir_, "0", "1")), "objects[0].shape.path"); });
+        input_error_text([&] { load_mesh(write("zero.fbx", test::fbx_quad(dir_, "0", "1")), "objects[0].shape.path"); });
     EXPECT_NE(message.find("objects[0].shape.path"), std::string::npos) << message;
     EXPECT_NE(message.find("UnitScaleFactor"), std::string::npos) << message;
 }

@@ -47,8 +47,11 @@ TEST_F(ProjectIo, RichProjectLoadsWithEveryField) {
     EXPECT_EQ(p.real[2].albedo.kind, Albedo::Kind::Texture);
     EXPECT_EQ(p.real[2].albedo.texture_path, "wood.png");
     EXPECT_EQ(p.real[2].shape.mesh_path, "/abs/table.obj");
-    // A mesh's axes and unit: as written, or +Y up in metres where left out.
-    EXPECT_EQ(p.real[2].shape.up_axis, UpAxis::Y);
+    // A mesh's axes and unit: as written; left out, the up axis is the file's (else +Y) and
+    // the unit metres.
+    EXPECT_FALSE(p.real[2].shape.up_axis.has_value());
+    EXPECT_EQ(p.real[2].shape.effective_up(UpAxis::Z), UpAxis::Z);
+    EXPECT_EQ(p.real[2].shape.effective_up(), UpAxis::Y);
     EXPECT_EQ(p.real[2].shape.unit_scale, 1.0f);
     EXPECT_EQ(p.objects[2].shape.up_axis, UpAxis::Z);
     EXPECT_EQ(p.objects[2].shape.unit_scale, 0.01f);
@@ -369,6 +372,12 @@ TEST_F(ProjectIo, EveryUpAxisAndAUnitScaleRoundTripAndAreWrittenForMeshesOnly) {
         EXPECT_FALSE(doc["objects"][0]["shape"].contains("unit_scale"));
         EXPECT_EQ(parse_project(doc, "memory", dir_), a);
     }
+    // Absent stays absent, so that the file's own up axis keeps applying after a save.
+    a.objects[2].shape.up_axis.reset();
+    const nlohmann::json doc = to_json(a);
+    EXPECT_FALSE(doc["objects"][2]["shape"].contains("up_axis"));
+    EXPECT_EQ(parse_project(doc, "memory", dir_), a);
+    EXPECT_EQ(a.objects[2].shape.effective_up(UpAxis::NegZ), UpAxis::NegZ);
 }
 
 TEST_F(ProjectIo, TheMaterialSourceRoundTripsAndIsWrittenForMeshesOnly) {
