@@ -12,26 +12,18 @@
 
 #include "base/error.h"
 #include "image/image_io.h"
+#include "forged_headers.h"
 #include "image_test_util.h"
 
 using namespace dp;
 using dp::test::TempDir;
+using namespace dp::test;
 
 namespace {
 
 void write_bytes(const std::string& path, const std::string& bytes) {
     std::ofstream out(path, std::ios::binary);
     out << bytes;
-}
-
-std::string be32(uint32_t v) {
-    return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
-}
-
-/// A PNG signature and IHDR chunk claiming width x height, and no pixel data.
-std::string png_header(uint32_t width, uint32_t height) {
-    return std::string("\x89PNG\r\n\x1a\n", 8) + be32(13) + "IHDR" + be32(width) + be32(height) +
-           std::string("\x08\x02\x00\x00\x00", 5) + be32(0);
 }
 
 /// An EXR's magic number, version and header declaring width x height, and no pixels.
@@ -61,7 +53,7 @@ void expect_refused(const std::string& path, const std::string& size_text) {
 TEST(ImageSizeLimit, APngBombIsRefusedFromItsHeader) {
     TempDir dir;
     const std::string path = dir.file("bomb.png");
-    write_bytes(path, png_header(100000, 100000));
+    write_bytes(path, png_declaring(100000, 100000, 16));
     expect_refused(path, "100000 x 100000 pixels");
 }
 
@@ -90,11 +82,11 @@ TEST(ImageSizeLimit, ALargeValidProbeIsRefusedWithItsFigure) {
 TEST(ImageSizeLimit, HeadersGiveTheSizeOfEveryFormat) {
     TempDir dir;
     int w = 0, h = 0;
-    write_bytes(dir.file("a.png"), png_header(640, 480));
+    write_bytes(dir.file("a.png"), png_declaring(640, 480, 16));
     ASSERT_TRUE(read_image_size(dir.file("a.png"), w, h));
     EXPECT_EQ(w, 640);
     EXPECT_EQ(h, 480);
-    write_bytes(dir.file("a.hdr"), "#?RGBE\nEXPOSURE=1\n\n-Y 17 +X 33\n");
+    write_bytes(dir.file("a.hdr"), "#?RGBE\nFORMAT=32-bit_rle_rgbe\nEXPOSURE=1\n\n-Y 17 +X 33\n");
     ASSERT_TRUE(read_image_size(dir.file("a.hdr"), w, h));
     EXPECT_EQ(w, 33);
     EXPECT_EQ(h, 17);
@@ -123,7 +115,7 @@ TEST(ImageSizeLimit, AHeaderThatGivesNoSizeIsRefusedBeforeDecoding) {
                                   "\x01\x22\x00\x02\x11\x01\x03\x11\x01\xFF\xD9",
                                   23));
     const std::string png = dir.file("zero_width.png");
-    write_bytes(png, png_header(0, 480));
+    write_bytes(png, png_declaring(0, 480, 16));
     for (const std::string& path : {jpeg, png}) {
         try {
             load_image(path, "photo.path");
