@@ -7,6 +7,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
   libexiv2-dev  # EXIF focal length for camera calibration
   libopenimageio-dev libopencolorio-dev  # image files (layers, windows, ICC, metadata) and view transforms
+  liblcms2-dev  # Little CMS: the photos' embedded ICC profiles
   openimageio-tools  # OpenImageIO's CMake targets name its command-line tools (/usr/bin/iconvert...)
   opencv-doc    # OpenCV's chessboard photographs, used by the calibration tests
   blender-data  # the CC0 light probes the sample project and benchmarks use

@@ -1,7 +1,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -9,33 +9,41 @@
 
 namespace dp {
 
-/// An RGB matrix/TRC ICC profile (v2 or v4), the kind cameras and phones embed (sRGB, Display
-/// P3, Adobe RGB): three tone curves and the primaries. LUT-based profiles are not read.
-struct IccRgbProfile {
-    std::string description;  ///< the profile's 'desc' text ("Display P3", "sRGB IEC61966-2.1")
-    /// Per channel, the curve from code value [0, 1] to linear light, sampled at 4096 points.
-    std::array<std::vector<float>, 3> curves;
-    /// Linear RGB of the profile -> linear Rec.709 / sRGB primaries (D65), through XYZ D50
-    /// and Bradford adaptation, as colour-managed viewers show it.
-    glm::dmat3 to_rec709{1.0};
+/// An embedded ICC profile of an RGB image, read by Little CMS 2: any kind cameras, phones and
+/// scanners embed (matrix/TRC such as sRGB, Display P3 and Adobe RGB, or LUT-based camera and
+/// scanner profiles; ICC v2 or v4), with the transform from its codes to linear Rec.709.
+class IccProfile {
+public:
+    /// The profile in `data`; null with `why` set where it is not an RGB profile (a grey or
+    /// CMYK one) or Little CMS cannot read it.
+    static std::unique_ptr<IccProfile> read(const uint8_t* data, size_t size, std::string& why);
+    ~IccProfile();
+    IccProfile(const IccProfile&) = delete;
+    IccProfile& operator=(const IccProfile&) = delete;
 
-    /// Linear light of a code value in [0, 1] for channel c (linear interpolation).
-    float decode(int c, float code) const;
-    /// True when converting is a no-op within rounding: sRGB primaries and the sRGB curve.
+    /// The profile's description ("Display P3", "sRGB IEC61966-2.1"), "" where it has none.
+    const std::string& description() const { return description_; }
+    /// `pixels` interleaved RGB codes in [0, 1] to linear Rec.709 / sRGB primaries (D65), in
+    /// place: relative colorimetric through the profile's connection space (Bradford-adapted
+    /// white), as colour-managed viewers show it, unbounded where the profile is a matrix one
+    /// (Display P3's red comes out with negative green and blue).
+    void to_linear_rec709(float* rgb, size_t pixels) const;
+    /// True when converting is a no-op within rounding: sRGB by another name.
     bool is_srgb() const;
-};
 
-/// Parses an embedded ICC profile; nullopt with `why` set when it is not an RGB matrix/TRC
-/// profile (a LUT profile, a grey or CMYK one, or corrupt bytes).
-std::optional<IccRgbProfile> parse_icc_rgb_profile(const uint8_t* data, size_t size, std::string& why);
+private:
+    IccProfile() = default;
+    void* transform_ = nullptr;  ///< cmsHTRANSFORM (kept out of this header)
+    std::string description_;
+};
 
 /// Just the description of any ICC profile ("" if none is readable), for messages.
 std::string icc_description(const uint8_t* data, size_t size);
 
-/// Builds a matrix/TRC profile's bytes (v2, 'para' curves of the sRGB kind with `gamma`, or a
-/// pure gamma when `srgb_curve` is false) from primaries and white in xy: what tests and
-/// tools need to tag a file (Display P3 is sRGB's curve with P3 primaries).
+/// A matrix/TRC profile's bytes (ICC v2 unless `version` says otherwise) from primaries and white
+/// in xy, with sRGB's curve or, when `srgb_curve` is false, a pure `gamma`: what tests and tools
+/// need to tag a file (Display P3 is sRGB's curve with P3 primaries). Written by Little CMS.
 std::vector<uint8_t> make_icc_rgb_profile(const std::string& description, const std::array<glm::dvec2, 3>& primaries,
-                                          glm::dvec2 white, bool srgb_curve, double gamma);
+                                          glm::dvec2 white, bool srgb_curve, double gamma, double version = 2.1);
 
 }  // namespace dp

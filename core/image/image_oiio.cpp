@@ -200,15 +200,15 @@ const LayerChannels& choose_layer(const std::vector<std::pair<std::string, Layer
 /// The embedded ICC profile of integer data, named in `report` (float data is linear by
 /// definition); none where it is sRGB by another name or cannot be read (then warned about
 /// where the colour space is automatic).
-std::optional<IccRgbProfile> read_icc(const ImageSpec& spec, const std::string& space, ImageLoadReport& report) {
+std::unique_ptr<IccProfile> read_icc(const ImageSpec& spec, const std::string& space, ImageLoadReport& report) {
     const OIIO::ParamValue* p = spec.find_attribute("ICCProfile");
-    if (!p) return std::nullopt;
+    if (!p) return nullptr;
     const auto* bytes = static_cast<const uint8_t*>(p->data());
     const size_t size = size_t(p->type().size()) * size_t(p->nvalues());
     report.icc_profile = icc_description(bytes, size);
     if (report.icc_profile.empty()) report.icc_profile = "unnamed";
     std::string why;
-    std::optional<IccRgbProfile> icc = parse_icc_rgb_profile(bytes, size, why);
+    std::unique_ptr<IccProfile> icc = IccProfile::read(bytes, size, why);
     if ((space.empty() || space == "auto") && !icc)
         report.warnings.push_back("its ICC profile \"" + report.icc_profile + "\" is " + why +
                                   ": it is read as sRGB, so its colours may be off");
@@ -240,7 +240,7 @@ ChannelSpan channel_span(const LayerChannels& l, const ImageSpec& spec) {
 /// Integer codes to linear values in `data`: by the ICC profile, as sRGB, or as they are
 /// ("linear" or a named colour space, converted later); clipped pixels counted.
 void decode_codes(ImageInput& in, const ChannelSpan& s, const ImageSpec& spec, const std::string& space,
-                  const std::optional<IccRgbProfile>& icc, const std::string& path, const std::string& field,
+                  const IccProfile* icc, const std::string& path, const std::string& field,
                   Image& data, ImageLoadReport& report) {
     // 8-bit codes arrive scaled exactly to 16 bits (v * 257), so one table serves both.
     const std::vector<uint16_t> buf = read_span<uint16_t>(in, s.subimage, s.lo, s.hi, TypeDesc::UINT16, spec, path, field);
@@ -256,13 +256,12 @@ void decode_codes(ImageInput& in, const ChannelSpan& s, const ImageSpec& spec, c
             const uint16_t code = s.channels[c] >= 0 ? buf[i * span + size_t(s.channels[c] - s.lo)] : 0;
             clipped |= code == 65535;
             const float v = float(code) / 65535.0f;
-            data[i][c] = use_icc ? icc->decode(c, v) : (linear || named) ? v : srgb[code];
+            data[i][c] = use_icc || linear || named ? v : srgb[code];
         }
         report.clipped += clipped;
     }
     if (use_icc) {
-        const glm::dmat3 m = icc->to_rec709;
-        for (size_t i = 0; i < n; ++i) data[i] = vec3(m * glm::dvec3(data[i]));
+        icc->to_linear_rec709(&data[0].x, n);
         report.icc_converted = true;
     }
     report.linear_source = linear;
@@ -333,7 +332,7 @@ Image load_with_oiio(const std::string& path, const std::string& field, const Im
                 for (int c = 0; c < 3; ++c) data[i][c] = data[i][c] >= 0 ? srgb_to_linear(data[i][c]) : data[i][c];
     } else {
         // ICC profiles matter for encoded (integer) data only.
-        decode_codes(*in, s, spec, space, read_icc(spec, space, report), path, field, data, report);
+        decode_codes(*in, s, spec, space, read_icc(spec, space, report).get(), path, field, data, report);
     }
     if (!space.empty() && space != "auto" && space != "srgb" && space != "linear")
         convert_colorspace_to_linear(data, space, field.empty() ? "colorspace" : field);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
+#include <lcms2.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -53,6 +54,48 @@ void write_png(const std::string& path, int w, int h, const uint8_t rgb[3], cons
 const std::array<glm::dvec2, 3> kP3 = {glm::dvec2(0.680, 0.320), glm::dvec2(0.265, 0.690), glm::dvec2(0.150, 0.060)};
 const std::array<glm::dvec2, 3> kRec709 = {glm::dvec2(0.64, 0.33), glm::dvec2(0.30, 0.60), glm::dvec2(0.15, 0.06)};
 const glm::dvec2 kD65(0.3127, 0.3290);
+
+/// A LUT-based input profile (ICC v4, A2B0 a 17^3 grid from RGB codes to PCS Lab) sampled from
+/// the matrix profile `matrix`: the kind camera and scanner vendors ship.
+std::vector<uint8_t> lut_profile_sampling(const std::vector<uint8_t>& matrix, const char* description) {
+    cmsHPROFILE src = cmsOpenProfileFromMem(matrix.data(), cmsUInt32Number(matrix.size()));
+    cmsHPROFILE lab = cmsCreateLab4Profile(nullptr);
+    cmsHTRANSFORM to_lab = cmsCreateTransform(src, TYPE_RGB_16, lab, TYPE_Lab_16, INTENT_RELATIVE_COLORIMETRIC, 0);
+    cmsHPROFILE out = cmsCreateProfilePlaceholder(nullptr);
+    cmsSetProfileVersion(out, 4.3);
+    cmsSetDeviceClass(out, cmsSigInputClass);
+    cmsSetColorSpace(out, cmsSigRgbData);
+    cmsSetPCS(out, cmsSigLabData);
+    cmsPipeline* lut = cmsPipelineAlloc(nullptr, 3, 3);
+    cmsStage* grid = cmsStageAllocCLut16bit(nullptr, 17, 3, 3, nullptr);  // in one JPEG APP2 segment
+    cmsStageSampleCLut16bit(
+        grid,
+        [](const cmsUInt16Number in[], cmsUInt16Number result[], void* t) -> cmsInt32Number {
+            cmsDoTransform(static_cast<cmsHTRANSFORM>(t), in, result, 1);
+            return TRUE;
+        },
+        to_lab, 0);
+    // lutAtoBType's layout: A curves, the grid, B curves (both the identity here).
+    cmsPipelineInsertStage(lut, cmsAT_END, cmsStageAllocToneCurves(nullptr, 3, nullptr));
+    cmsPipelineInsertStage(lut, cmsAT_END, grid);
+    cmsPipelineInsertStage(lut, cmsAT_END, cmsStageAllocToneCurves(nullptr, 3, nullptr));
+    cmsWriteTag(out, cmsSigAToB0Tag, lut);
+    cmsWriteTag(out, cmsSigMediaWhitePointTag, cmsD50_XYZ());
+    cmsMLU* mlu = cmsMLUalloc(nullptr, 1);
+    cmsMLUsetASCII(mlu, "en", "US", description);
+    cmsWriteTag(out, cmsSigProfileDescriptionTag, mlu);
+    cmsUInt32Number size = 0;
+    cmsSaveProfileToMem(out, nullptr, &size);
+    std::vector<uint8_t> bytes(size);
+    cmsSaveProfileToMem(out, bytes.data(), &size);
+    cmsMLUfree(mlu);
+    cmsPipelineFree(lut);
+    cmsDeleteTransform(to_lab);
+    cmsCloseProfile(out);
+    cmsCloseProfile(lab);
+    cmsCloseProfile(src);
+    return bytes;
+}
 
 }  // namespace
 
@@ -225,4 +268,39 @@ TEST(ImagePlates, AnOpenColorIoColourSpaceIsConvertedToSceneLinear) {
     EXPECT_NEAR(image.at(0, 0).z, -0.024f, 0.01f);
     options.colorspace = "Not A Space";
     EXPECT_THROW(load_image(path, "photo", nullptr, options), InputError);
+}
+
+TEST(ImagePlates, AVersion4ProfileReadsAsItsVersion2Twin) {
+    TempDir dir;
+    const uint8_t colour[3] = {200, 97, 13};
+    write_png(dir.file("v2.png"), 2, 2, colour, make_icc_rgb_profile("Display P3", kP3, kD65, true, 0, 2.1));
+    write_png(dir.file("v4.png"), 2, 2, colour, make_icc_rgb_profile("Display P3", kP3, kD65, true, 0, 4.3));
+    ImageLoadReport report;
+    const vec3 v4 = load_image(dir.file("v4.png"), "photo", &report).at(0, 0);
+    EXPECT_TRUE(report.icc_converted);
+    const vec3 v2 = load_image(dir.file("v2.png"), "photo").at(0, 0);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(v4[c], v2[c], 1e-4f) << c;
+}
+
+TEST(ImagePlates, ALutBasedCameraProfileIsReadLikeTheMatrixProfileItSamples) {
+    TempDir dir;
+    const uint8_t colour[3] = {200, 97, 13};
+    // JPEG: libpng drops a profile whose connection space is Lab; JPEG carries any.
+    const std::vector<uint8_t> matrix = make_icc_rgb_profile("Display P3", kP3, kD65, true, 0);
+    write_png(dir.file("matrix.jpg"), 2, 2, colour, matrix);
+    write_png(dir.file("lut.jpg"), 2, 2, colour, lut_profile_sampling(matrix, "Camera LUT"));
+    ImageLoadReport report;
+    const vec3 lut = load_image(dir.file("lut.jpg"), "photo", &report).at(0, 0);
+    EXPECT_EQ(report.icc_profile, "Camera LUT");
+    EXPECT_TRUE(report.icc_converted);
+    EXPECT_TRUE(report.warnings.empty()) << report.warnings[0];
+    const vec3 by_matrix = load_image(dir.file("matrix.jpg"), "photo").at(0, 0);
+    const vec3 as_srgb = load_image(dir.file("matrix.jpg"), "photo", nullptr, [] {
+        ImageLoadOptions o;
+        o.colorspace = "srgb";
+        return o;
+    }()).at(0, 0);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(lut[c], by_matrix[c], 5e-3f) << c;
+    // Guard: read as sRGB (what a LUT profile fell back to before) the pixel differs by more.
+    EXPECT_GT(glm::length(as_srgb - by_matrix), 0.05f);
 }
