@@ -169,13 +169,17 @@ bool MainWindow::takeDiskVersion(const QString& path) {
 bool MainWindow::newProject(const QString& photo, const QString& probe, bool mirrorBall) {
     std::string layer;
     try {
-        ImageLoadReport plate;
-        load_image(photo.toStdString(), "photograph", &plate);
-        if (plate.layers.size() > 1) {
-            // A multilayer plate (a Blender or Nuke render): the user says which layer is the photo.
+        // A multilayer plate (a Blender or Nuke render): the user says which layer is the photo,
+        // from its headers, before the loader (which refuses a choice the file cannot make).
+        const std::vector<std::string> layers = read_image_layers(photo.toStdString());
+        if (layers.size() > 1) {
             QStringList names;
-            for (const std::string& l : plate.layers) names << (l.empty() ? tr("(main)") : QString::fromStdString(l));
-            const int current = int(std::find(plate.layers.begin(), plate.layers.end(), plate.layer) - plate.layers.begin());
+            for (const std::string& l : layers) names << (l.empty() ? tr("(main)") : QString::fromStdString(l));
+            // Offered first: the plain layer, else the first Combined pass.
+            auto first = std::find(layers.begin(), layers.end(), "");
+            if (first == layers.end())
+                first = std::find_if(layers.begin(), layers.end(), [](const std::string& l) { return l.ends_with("Combined"); });
+            const int current = first == layers.end() ? 0 : int(first - layers.begin());
             bool ok = false;
             const QString chosen = QInputDialog::getItem(this, tr("Layer of the photo"),
                                                          tr("%1 holds several layers; which is the photo?")
@@ -183,8 +187,11 @@ bool MainWindow::newProject(const QString& photo, const QString& probe, bool mir
                                                          names, current, false, &ok);
             if (!ok) return false;
             const int index = int(names.indexOf(chosen));
-            layer = index >= 0 ? plate.layers[size_t(index)] : plate.layer;
+            if (index >= 0) layer = layers[size_t(index)];
         }
+        ImageLoadOptions chosen_layer;
+        chosen_layer.layer = layer;
+        load_image(photo.toStdString(), "photograph", nullptr, chosen_layer);
         ImageLoadReport report;
         load_image(probe.toStdString(), "light probe", &report);
         if (!report.linear_source)

@@ -72,6 +72,11 @@ struct ExrLayer {
 /// EXIF exposure, lens, date) as name/value pairs, from its header alone; empty if unreadable.
 std::vector<std::pair<std::string, std::string>> read_image_metadata(const std::string& path);
 
+/// The layers with colour channels an image holds ("" for the plain R, G, B one), in file
+/// order, from its headers alone: what a user chooses the photo from when a multilayer plate
+/// holds several Combined layers. Empty for an unreadable file.
+std::vector<std::string> read_image_layers(const std::string& path);
+
 /// Reads an image's size from its header (EXR, PNG, JPEG, HDR, BMP, TIFF) without decoding it,
 /// as load_image returns the picture (a JPEG's or TIFF's EXIF orientation 5 to 8 swaps width
 /// and height); false for other content, an unreadable header, or a path that is not a regular

@@ -362,6 +362,19 @@ std::vector<std::pair<std::string, std::string>> read_image_metadata(const std::
     return report.metadata;
 }
 
+std::vector<std::string> read_image_layers(const std::string& path) {
+    std::vector<std::string> names;
+    try {
+        const image_io_detail::ImageFormat& format = image_io_detail::check_image_format(path, "");
+        std::string why;
+        if (auto in = image_io_detail::open_input(path, format, why))
+            for (const auto& [name, l] : image_io_detail::list_layers(*in))
+                if (l.colour()) names.push_back(name);
+    } catch (const std::exception&) {  // an unreadable file has no layers to choose from
+    }
+    return names;
+}
+
 Image load_exr_layer(const std::string& path, const std::string& layer) {
     const image_io_detail::ImageFormat& format = image_io_detail::check_image_format(path, "");
     image_io_detail::check_declared_size(path, "");
