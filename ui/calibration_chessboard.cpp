@@ -394,6 +394,7 @@ void CalibrationPanel::finishLens() {
 CalibrationPanel::~CalibrationPanel() {
     if (lensJob_) lensJob_->cancel = true;
     if (lensWorker_.joinable()) lensWorker_.join();
+    if (detector_.joinable()) detector_.join();
 }
 
 bool CalibrationPanel::exportUndistortedPhoto(const QString& path) {

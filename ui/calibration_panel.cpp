@@ -148,6 +148,17 @@ QWidget* CalibrationPanel::makeVanishingPage() {
     row2->addWidget(origin);
     row2->addWidget(clear);
     form->addRow(row2);
+    auto* row3 = new QHBoxLayout;
+    detectButton_ = make_named_button("vanishingDetect", tr("Detect lines"),
+                                      tr("Find the photo's lines and propose them as X, Z and vertical lines with an "
+                                         "origin; drop the wrong ones, add missing ones, then Apply"));
+    QPushButton* drop = make_named_button("vanishingDrop", tr("Drop lines"),
+                                          tr("Click drawn lines to remove them (Esc ends)"));
+    connect(detectButton_, &QPushButton::clicked, this, [this] { detectLines(); });
+    connect(drop, &QPushButton::clicked, this, [this] { startPicking(Target::Drop); });
+    row3->addWidget(detectButton_);
+    row3->addWidget(drop);
+    form->addRow(row3);
     cameraHeight_ = make_number_field(0.01, 1000, 1.6, 3, tr(" m"), tr("Camera height above the ground (scale)"));
     cameraHeight_->setObjectName("vanishingHeight");
     form->addRow(tr("Camera height"), cameraHeight_);
@@ -223,6 +234,9 @@ void CalibrationPanel::startPicking(Target target) {
             pick->start(PickTool::Kind::Point, 1,
                         tr("Click a point of the board that touches the floor (a corner on its lower edge)"));
             break;
+        case Target::Drop:
+            pick->start(PickTool::Kind::Point, 0, tr("Click the lines to drop; Esc ends"));
+            break;
         case Target::Horizon:
             horizon_.clear();
             pick->start(PickTool::Kind::Segment, 1,
@@ -250,6 +264,7 @@ void CalibrationPanel::onPoint(QPointF px) {
     if (target_ == Target::Distance) distanceEnds_.push_back(px);
     if (target_ == Target::Vertical) verticalEnds_.push_back(px);
     if (target_ == Target::BoardFoot) boardHeightFromClick(px);
+    if (target_ == Target::Drop) dropLineNear(px);
     refreshMarks();
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "calibration/auto_lines.h"
 #include "calibration/calibration.h"
 #include "calibration/chessboard.h"
 #include "image/image.h"
@@ -61,6 +62,11 @@ public:
     bool applyChessboard();
     bool applyRectangle();
     bool applyVanishing();
+    /// Finds lines in the photo on a worker thread and proposes them as the X, Z and vertical
+    /// lines with an origin (calibrate_from_lines), for the user to drop, add to and Apply.
+    /// False (after reporting) when it cannot start; detecting() tells when it is done.
+    bool detectLines();
+    bool detecting() const { return detector_.joinable(); }
     /// Adds the ground (y = 0) as a real plane proxy covering what the camera sees of it.
     bool addGroundPlane();
 
@@ -82,7 +88,7 @@ public:
 
 private:
     /// What the pick tool's clicks and drags are for.
-    enum class Target { None, Corners, X, Y, Z, Origin, Distance, Vertical, Horizon, BoardFoot };
+    enum class Target { None, Corners, X, Y, Z, Origin, Distance, Vertical, Horizon, BoardFoot, Drop };
 
     QWidget* makeChessboardPage();
     QWidget* makeRectanglePage();
@@ -91,6 +97,10 @@ private:
     void onPoint(QPointF px);
     void onSegment(QPointF a, QPointF b);
     void refreshMarks();
+    /// On the UI thread once the detector is done: the proposal as the drawn lines.
+    void showDetected(const AutoLinesResult& r, QSize photo, const std::string& path);
+    /// Removes the drawn line nearest `px` (render pixels), within a few pixels.
+    void dropLineNear(QPointF px);
     void clearPicks();
     /// Runs `f`, reporting any error under `title`; returns false after an error.
     bool guarded(const QString& title, const std::function<void()>& f);
@@ -134,6 +144,8 @@ private:
     QDoubleSpinBox *cameraHeight_, *distance_, *vertical_, *vanFocal_;
     QCheckBox* freePrincipal_;
     QLabel* lineCount_;
+    QPushButton* detectButton_ = nullptr;
+    std::thread detector_;  ///< the line detection in flight, if any
 
     Target target_ = Target::None;
     QVector<QPointF> corners_;

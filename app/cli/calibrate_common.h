@@ -73,5 +73,7 @@ nlohmann::json& last_result_json();
 
 /// `calibrate rectangle`, `points` and `vanishing` (cmd_calibrate_points.cpp).
 std::vector<Command> add_calibrate_point_commands(CLI::App& calibrate);
+/// `calibrate auto` (cmd_calibrate_auto.cpp).
+Command add_calibrate_auto_command(CLI::App& calibrate);
 
 }  // namespace dp::cli

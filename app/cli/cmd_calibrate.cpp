@@ -234,6 +234,7 @@ std::vector<Command> add_calibrate_camera_commands(CLI::App& calibrate) {
         out.push_back({sub, [o] { return run_fspy(*o); }});
     }
     for (Command& c : add_calibrate_point_commands(calibrate)) out.push_back(std::move(c));
+    out.push_back(add_calibrate_auto_command(calibrate));
     return out;
 }
 
