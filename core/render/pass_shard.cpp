@@ -211,7 +211,12 @@ std::string range(const ShardHeader& h) { return std::to_string(h.pass_begin) + 
 }  // namespace
 
 ProjectFingerprint fingerprint_project(const Project& project) {
-    nlohmann::json doc = to_json(project);
+    // The settings without the paths as spelt: each file counts below by its contents under the
+    // field that names it, so the same project reached by other paths (a shared folder mounted
+    // elsewhere, a bundle unpacked on a worker) gives mergeable shards.
+    Project settings = project;
+    for_each_input(settings, [](const InputRef& ref, std::string& path) { path = "<" + ref.field + ">"; });
+    nlohmann::json doc = to_json(settings);
     // What does not change a pass's samples, or what the shard's header states apart.
     if (doc.contains("render"))
         for (const char* key :

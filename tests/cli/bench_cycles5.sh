@@ -112,7 +112,9 @@ for m in ("cycles5", "cycles5-artist"):
         for k in ("seconds", "rmse", "rel_rmse", "rel_rmse_changed"):
             assert math.isfinite(r[k]) and r[k] >= 0, (k, r)
         assert r["samples_per_pixel"] == r["passes"], r
-    assert rows[-1]["seconds"] >= 2, rows[-1]
+    # It stops at the budget, or where the samples reach their most (2^20): adaptive sampling
+    # stops a tiny scene's pixels long before, so more samples cost no more time there.
+    assert rows[-1]["seconds"] >= 2 or rows[-1]["passes"] >= 2 ** 20, rows[-1]
     assert rows[-1]["rel_rmse_changed"] < rows[0]["rel_rmse_changed"], (rows[0], rows[-1])
 assert [r["method"] for r in doc["runs"]] == ["cycles5", "cycles5-artist"], doc["runs"]
 PY

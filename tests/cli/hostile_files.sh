@@ -67,12 +67,23 @@ write_project bomb_jpg.json "$BALL" "$FLOOR" bomb.jpg
 within 3 2 "a 1 kB JPEG declaring 16000 x 16000" "bomb.jpg: field 'photo.path': " info bomb_jpg.json
 expect_stderr "16000 x 16000 pixels" "the JPEG's declared size"
 grep -q "more than the limit\|a complete JPEG of that size takes at least" stderr.txt || fail "the JPEG bomb's limit is not given"
-# A TIFF whose first IFD declares 100000 x 100000.
-{ printf 'II*\x00\x08\x00\x00\x00\x02\x00'
-  printf '\x00\x01\x04\x00\x01\x00\x00\x00\xa0\x86\x01\x00'
-  printf '\x01\x01\x04\x00\x01\x00\x00\x00\xa0\x86\x01\x00\x00\x00\x00\x00'; } >bomb.tif
+# A TIFF whose first IFD (complete: one uncompressed grey strip) declares 100000 x 100000.
+python3 - <<'PY'
+import struct
+def entry(tag, typ, value):
+    return struct.pack("<HHI", tag, typ, 1) + (struct.pack("<HH", value, 0) if typ == 3 else struct.pack("<I", value))
+tags = [(256, 4, 100000), (257, 4, 100000), (258, 3, 8), (259, 3, 1), (262, 3, 1), (273, 4, 130), (277, 3, 1),
+        (278, 4, 100000), (279, 4, 1 << 31)]
+ifd = struct.pack("<H", len(tags)) + b"".join(entry(*t) for t in tags) + struct.pack("<I", 0)
+open("bomb.tif", "wb").write(b"II*\0" + struct.pack("<I", 8) + ifd)
+PY
 within 3 2 "a TIFF declaring 100000 x 100000" "the image is 100000 x 100000 pixels" convert bomb.tif out/a.png
 expect_stderr "more than the limit" "the TIFF bomb's limit"
+# One whose IFD lacks the tags a reader needs is refused as corrupt, from its header alone.
+{ printf 'II*\x00\x08\x00\x00\x00\x02\x00'
+  printf '\x00\x01\x04\x00\x01\x00\x00\x00\xa0\x86\x01\x00'
+  printf '\x01\x01\x04\x00\x01\x00\x00\x00\xa0\x86\x01\x00\x00\x00\x00\x00'; } >broken.tif
+within 3 2 "a TIFF with an incomplete IFD" "corrupt image: its header gives no valid size" convert broken.tif out/a.png
 
 # ---- FIFOs, devices and folders, wherever they are named. ----
 mkfifo pipe.bin pipe.mtl pipe.png pipe.dpp

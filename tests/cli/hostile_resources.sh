@@ -68,7 +68,12 @@ run info unclipped.json
 grep -q "clipped" stderr.txt && fail "a photo without clipping was warned about"
 
 # Decompression bombs: a few bytes declaring 10^10 pixels, refused from the header.
-printf '\x89PNG\r\n\x1a\n\x00\x00\x00\x0dIHDR\x00\x01\x86\xa0\x00\x01\x86\xa0\x08\x02\x00\x00\x00\x00\x00\x00\x00' >bomb.png
+python3 - <<'PY'
+import struct, zlib
+ihdr = b"IHDR" + struct.pack(">II", 100000, 100000) + bytes([8, 2, 0, 0, 0])
+open("bomb.png", "wb").write(b"\x89PNG\r\n\x1a\n" + struct.pack(">I", 13) + ihdr + struct.pack(">I", zlib.crc32(ihdr)) +
+                            struct.pack(">I", 16) + b"IDAT" + bytes(16))
+PY
 write_project bomb.json "$BALL" "$FLOOR" bomb.png
 expect_refused "a PNG bomb as the photo" "100000 x 100000 pixels" info bomb.json
 expect_stderr "of memory, more than the limit" "the PNG bomb's limit"

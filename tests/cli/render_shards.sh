@@ -74,6 +74,27 @@ write_project other.json "$BALL" "$FLOOR"
 run render other.json --pass-range 5:12 -o other.dpp
 expect_rc 0 "shard of another project"
 refused "another project" "belongs to another project" shard-0-5.dpp other.dpp
+
+# The same project reached by other paths (its own folder, the photo by an absolute path, the
+# probe through a symbolic link, as a shared folder mounted elsewhere or an unpacked bundle
+# would give) merges with these shards bit for bit: files count by their contents.
+mkdir -p elsewhere
+ln -s "$PWD" linked
+sed "s|\"photo.exr\"|\"$PWD/photo.exr\"|; s|\"probe.exr\"|\"../linked/probe.exr\"|" scene.json >elsewhere/scene.json
+grep -q linked/probe.exr elsewhere/scene.json || fail "elsewhere/scene.json was not written"
+run render elsewhere/scene.json --pass-range 5:12 -o spelt.dpp
+expect_rc 0 "shard of the project spelt otherwise"
+run merge shard-0-5.dpp spelt.dpp -o spelt.exr --project scene.json
+expect_rc 0 "merge of shards from two spellings of one project"
+same single1.exr spelt.exr "shards from two spellings of one project"
+# ...and a changed input does not: the probe copied and brightened under the same name.
+mkdir -p brighter
+sed 's|"probe.exr"|"../brighter/probe.exr"|; s|"photo.exr"|"../photo.exr"|' scene.json >brighter/scene.json
+run make-test-image brighter/probe.exr --size 32 16 --value 2 2 2
+expect_rc 0 "make-test-image brighter probe"
+run render brighter/scene.json --pass-range 5:12 -o brighter.dpp
+expect_rc 0 "shard of the project with another probe"
+refused "another probe under the same name" "was rendered from other files than" shard-0-5.dpp brighter.dpp
 head -c 2000 shard-5-12.dpp > truncated.dpp
 refused "a truncated shard" "truncated" shard-0-5.dpp truncated.dpp
 cp shard-5-12.dpp damaged.dpp

@@ -25,6 +25,20 @@ Shape mesh_shape(UpAxis up = UpAxis::Y, float unit_scale = 1.0f) {
     return s;
 }
 
+/// A fresh folder `dir` holding a flat photo and probe, and a project in it naming them.
+Project project_in(const fs::path& dir) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const Image photo(16, 12, vec3(0.5f)), probe(32, 16, vec3(1.0f));
+    save_exr((dir / "photo.exr").string(), {{"", &photo}});
+    save_exr((dir / "probe.exr").string(), {{"", &probe}});
+    Project p;
+    p.base_dir = dir;
+    p.photo.path = "photo.exr";
+    p.probe.path = "probe.exr";
+    return p;
+}
+
 }  // namespace
 
 TEST(MeshUnits, ThePlacedSizeTakesTheUnitTheAxesAndTheTransformsScaleButNotItsRotation) {
@@ -67,17 +81,9 @@ TEST(MeshUnits, ASmallMeshIsSaidToBe100Or1000TimesTooSmall) {
 
 TEST(MeshUnits, TheAssetLibrarySaysItForObjectsAndProxiesOnEveryLoad) {
     const fs::path dir = fs::temp_directory_path() / ("dp_mesh_units_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    const Image photo(16, 12, vec3(0.5f)), probe(32, 16, vec3(1.0f));
-    save_exr((dir / "photo.exr").string(), {{"", &photo}});
-    save_exr((dir / "probe.exr").string(), {{"", &probe}});
+    Project p = project_in(dir);
     // A triangle 180 units across: a 1.8 m thing modelled in centimetres.
     std::ofstream(dir / "m.obj") << "v 0 0 0\nv 180 0 0\nv 0 90 0\nf 1 2 3\n";
-    Project p;
-    p.base_dir = dir;
-    p.photo.path = "photo.exr";
-    p.probe.path = "probe.exr";
     VirtualObject o;
     o.name = "statue";
     o.shape = mesh_shape();
@@ -116,16 +122,8 @@ TEST(MeshUnits, AMeshTooLargeOrSmallForItsPlaceInTheViewIsSaid) {
               "unit_scale 1000");
 
     const fs::path dir = fs::temp_directory_path() / ("dp_mesh_view_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    const Image photo(16, 12, vec3(0.5f)), probe(32, 16, vec3(1.0f));
-    save_exr((dir / "photo.exr").string(), {{"", &photo}});
-    save_exr((dir / "probe.exr").string(), {{"", &probe}});
+    Project p = project_in(dir);
     std::ofstream(dir / "m.obj") << "v 0 0 0\nv 30 0 0\nv 0 30 0\nf 1 2 3\n";
-    Project p;
-    p.base_dir = dir;
-    p.photo.path = "photo.exr";
-    p.probe.path = "probe.exr";
     p.camera.eye = vec3(0, 0.8f, 1.2f);
     p.camera.target = vec3(0, 0.7f, 0);
     p.camera.vfov_deg = 40;
@@ -154,19 +152,11 @@ TEST(MeshUnits, AMeshTooLargeOrSmallForItsPlaceInTheViewIsSaid) {
 
 TEST(MeshUnits, AFilesDeclaredUpAxisTurnsItWhereTheProjectSaysNoneAndTheProjectsWordWins) {
     const fs::path dir = fs::temp_directory_path() / ("dp_mesh_up_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
+    Project p = project_in(dir);
     // A 2 x 1 quad in the file's xy plane, the file saying Z is up: a rug lying on the floor.
     const std::string fbx = test::fbx_quad(dir, "100", "2");
     if (fbx.empty()) GTEST_SKIP() << "this Assimp has no FBX exporter";
     std::ofstream(dir / "rug.fbx") << fbx;
-    const Image photo(16, 12, vec3(0.5f)), probe(32, 16, vec3(1.0f));
-    save_exr((dir / "photo.exr").string(), {{"", &photo}});
-    save_exr((dir / "probe.exr").string(), {{"", &probe}});
-    Project p;
-    p.base_dir = dir;
-    p.photo.path = "photo.exr";
-    p.probe.path = "probe.exr";
     p.camera.eye = vec3(0, 1.5f, 4);
     p.camera.target = vec3(0, 0, 0);
     VirtualObject o;
