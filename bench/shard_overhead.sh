@@ -37,7 +37,7 @@ for ((round = 1; round <= rounds; ++round)); do
       "$dp" render "$project" --pass-range "$b:$e" --photons "$photons" -o "$work/part-$b.dpp" >/dev/null 2>&1
     done
     t1=$(now)
-    "$dp" merge "$work"/*.dpp -o "$work/merged.exr" >/dev/null
+    "$dp" merge "$work"/*.dpp -o "$work/merged.exr" >/dev/null 2>"$work/merge.err" || { cat "$work/merge.err"; exit 1; }
     t2=$(now)
     cmp -s "$work/single.exr" "$work/merged.exr" || { echo "shards of $size: merge differs from the single render"; exit 1; }
     shards=$(( (passes + size - 1) / size ))
