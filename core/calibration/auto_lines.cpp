@@ -118,6 +118,27 @@ bool consistent(Reading& r, const std::vector<VanishingCluster>& cl, glm::dvec2 
     return true;
 }
 
+/// The segments of each direction `r` reads, the rest as `other`, with notes after `first`.
+LineProposal proposal_of(const Reading& r, const std::vector<LineSegment>& segments,
+                         const std::vector<VanishingCluster>& clusters, const std::string& first) {
+    static const char* const kNames[3] = {"X (ground)", "Y (vertical)", "Z (ground)"};
+    LineProposal p;
+    p.notes.push_back(first);
+    std::vector<bool> used(segments.size());
+    for (int a = 0; a < 3; ++a) {
+        if (r.axis[a] < 0) continue;
+        const VanishingCluster& cl = clusters[size_t(r.axis[a])];
+        p.axis[a] = members_of(segments, cl);
+        for (int i : cl.members) used[size_t(i)] = true;
+        char line[120];
+        std::snprintf(line, sizeof line, "%s: %zu segments", kNames[a], cl.members.size());
+        p.notes.push_back(line);
+    }
+    for (size_t i = 0; i < segments.size(); ++i)
+        if (!used[i]) p.other.push_back(segments[i]);
+    return p;
+}
+
 }  // namespace
 
 std::vector<LineSegment> detect_line_segments(const Image& photo, double min_length_px) {
@@ -280,24 +301,7 @@ std::vector<LineProposal> propose_axes_ranked(const std::vector<LineSegment>& se
     char line[200];
     std::snprintf(line, sizeof line, "%zu line segments, %zu vanishing points", segments.size(), clusters.size());
     std::vector<LineProposal> out;
-    for (const Reading& best : readings) {
-        LineProposal p;
-        p.notes.push_back(line);
-        std::vector<bool> used(segments.size());
-        static const char* const kNames[3] = {"X (ground)", "Y (vertical)", "Z (ground)"};
-        for (int a = 0; a < 3; ++a) {
-            if (best.axis[a] < 0) continue;
-            const VanishingCluster& cl = clusters[size_t(best.axis[a])];
-            p.axis[a] = members_of(segments, cl);
-            for (int i : cl.members) used[size_t(i)] = true;
-            char l[120];
-            std::snprintf(l, sizeof l, "%s: %zu segments", kNames[a], cl.members.size());
-            p.notes.push_back(l);
-        }
-        for (size_t i = 0; i < segments.size(); ++i)
-            if (!used[i]) p.other.push_back(segments[i]);
-        out.push_back(std::move(p));
-    }
+    for (const Reading& r : readings) out.push_back(proposal_of(r, segments, clusters, line));
     if (out.empty()) {
         LineProposal p;
         p.notes = {line, "no two vanishing points fit orthogonal directions of one camera"};
