@@ -13,6 +13,7 @@ packages=(
   blender-data  # the CC0 light probes the sample project and benchmarks use
   qt6-base-dev  # the studio (Widgets, Test; pulls libqt6gui6 with the offscreen and xcb platforms)
   xvfb xauth    # xvfb-run for the studio's screenshot test and documentation screenshots
+  iproute2      # ip: the farm's test across network namespaces (farm/tests/test_namespaces.py)
   clang libclang-rt-14-dev  # the sanitizer build and the libFuzzer targets (tests/fuzz)
 )
 # `--bench`: also what the benchmark plots need, Blender 3.4 for the cycles method and the venv
