@@ -111,8 +111,8 @@ class NamespacesTest(unittest.TestCase):
         logs.mkdir()
 
         def start(key, argv):
-            log = open(logs / f"{key}.txt", "w")
-            cls.procs.append((key, subprocess.Popen(cls.in_ns(key, argv), stdout=log, stderr=log)))
+            with open(logs / f"{key}.txt", "w") as log:  # the child keeps its own descriptor
+                cls.procs.append((key, subprocess.Popen(cls.in_ns(key, argv), stdout=log, stderr=log)))
 
         start("sched", [sys.executable, "-m", "distributed.cli.dask_scheduler", "--host", "10.77.0.1",
                         "--port", "8786", "--no-dashboard"])
