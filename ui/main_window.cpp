@@ -1,4 +1,5 @@
 #include "main_window.h"
+#include "farm_dialog.h"
 
 #include <QAction>
 #include <QActionGroup>
@@ -161,6 +162,11 @@ MainWindow::~MainWindow() {
     renderer_->stop();
 }
 
+FarmDialog* MainWindow::farmDialog() {
+    if (!farmDialog_) farmDialog_ = new FarmDialog(doc_, [this] { return saveProject(); }, this);
+    return farmDialog_;
+}
+
 QAction* MainWindow::action(const QString& name) const {
     return findChild<QAction*>(name);
 }
@@ -191,6 +197,12 @@ void MainWindow::createActions() {
          [this] { relinkFiles(); });
     make("export", tr("&Export Image..."), QKeySequence(tr("Ctrl+E")),
          tr("Write the render as PNG, or EXR with layers"), [this] { exportDialog(); });
+    make("renderOnFarm", tr("Render on &Farm..."), {},
+         tr("Render the saved project's final image across machines with diffphoton-farm (Dask)"), [this] {
+             FarmDialog* d = farmDialog();
+             d->show();
+             d->raise();
+         });
     make("importFspy", tr("Import &fSpy..."), {},
          tr("Take the camera from an fSpy project (.fspy) or fSpy's exported camera parameters"),
          [this] { importFspyDialog(); });
@@ -302,6 +314,7 @@ void MainWindow::createMenus() {
     file->addAction(action("importFspy"));
     file->addSeparator();
     file->addActions({action("export"), action("exportExposure"), action("exportUndistorted")});
+    file->addAction(action("renderOnFarm"));
     file->addSeparator();
     file->addAction(action("quit"));
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));

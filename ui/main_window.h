@@ -29,6 +29,7 @@ namespace dp::ui {
 
 class Autosave;
 class CalibrationPanel;
+class FarmDialog;
 class CameraPanel;
 class Document;
 class ErrorReporter;
@@ -66,6 +67,9 @@ public:
     QMenu* lightMenu() const { return lightMenu_; }
     CameraPanel* cameraPanel() const { return cameraPanel_; }
     CalibrationPanel* calibrationPanel() const { return calibrationPanel_; }
+    /// File > Render on Farm...: the dialog, made on first use and kept (a render goes on
+    /// while it is closed).
+    FarmDialog* farmDialog();
     ProxyPanel* proxyPanel() const { return proxyPanel_; }
     ScenePanel* scenePanel() const { return scenePanel_; }
     SettingsPanel* settingsPanel() const { return settingsPanel_; }
@@ -245,6 +249,7 @@ private:
     ProbePanel* probePanel_ = nullptr;
     CameraPanel* cameraPanel_ = nullptr;
     CalibrationPanel* calibrationPanel_ = nullptr;
+    FarmDialog* farmDialog_ = nullptr;
     ProxyPanel* proxyPanel_ = nullptr;
     ProbeAlignPanel* probeAlignPanel_ = nullptr;
     Autosave* autosave_ = nullptr;

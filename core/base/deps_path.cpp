@@ -6,6 +6,10 @@
 namespace dp {
 
 std::vector<std::filesystem::path> deps_candidates(const std::filesystem::path& relative) {
+    return tree_candidates(std::filesystem::path(".deps") / relative);
+}
+
+std::vector<std::filesystem::path> tree_candidates(const std::filesystem::path& relative) {
     namespace fs = std::filesystem;
     std::vector<fs::path> out;
     auto add = [&](const fs::path& p) {
@@ -15,11 +19,11 @@ std::vector<std::filesystem::path> deps_candidates(const std::filesystem::path& 
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec)
         for (fs::path d = exe.parent_path(); !d.empty(); d = d.parent_path()) {
-            add(d / ".deps" / relative);
+            add(d / relative);
             if (d == d.root_path()) break;
         }
 #ifdef DP_SOURCE_DIR
-    add(fs::path(DP_SOURCE_DIR) / ".deps" / relative);
+    add(fs::path(DP_SOURCE_DIR) / relative);
 #endif
     return out;
 }
