@@ -23,27 +23,11 @@ import unittest
 from pathlib import Path
 from unittest import mock
 
-from support import BINARY, FARM  # noqa: E402  (first: puts the package on the path)
+from support import BALL_ON_FLOOR, BINARY, FARM, dp  # noqa: E402  (first: puts the package on the path)
 from diffphoton_farm import cli  # noqa: E402
 TIMEOUT = 2  # --connect-timeout of the scheduler cases
 SLACK = 1.5  # seconds past it and past the interpreter's own start a refusal may take
-PROJECT = """{
-  "schema_version": 1,
-  "photo": {"path": "photo.exr"},
-  "probe": {"path": "probe.exr"},
-  "camera": {"model": "lookat", "eye": [0, 1.5, 4], "target": [0, 0.4, 0], "vfov_deg": 40},
-  "real": [{"name": "floor", "shape": {"type": "plane", "size": [10, 10]}, "albedo": [0.5, 0.5, 0.5]}],
-  "objects": [{"name": "ball", "shape": {"type": "sphere", "radius": 0.5},
-               "transform": {"translation": [0, 0.5, 0]}, "material": {"type": "diffuse", "albedo": [0.8, 0.3, 0.2]}}],
-  "render": {"photons_per_pass": 5000, "passes": 2}
-}
-"""
-
-
-def dp(*args, cwd):
-    done = subprocess.run([BINARY, *args], cwd=cwd, capture_output=True, text=True)
-    if done.returncode != 0:
-        raise AssertionError(f"diffphoton {' '.join(args)} failed: {done.stderr}")
+PROJECT = BALL_ON_FLOOR % 5000
 
 
 def free_port():

@@ -14,7 +14,7 @@ import time
 import unittest
 from pathlib import Path
 
-from support import BINARY  # noqa: E402  (first: puts the package on the path)
+from support import BINARY, dp  # noqa: E402  (first: puts the package on the path)
 from diffphoton_farm import FarmError, plan_shards, render  # noqa: E402
 from diffphoton_farm.cli import main as farm_main  # noqa: E402
 PASSES = 12
@@ -33,12 +33,6 @@ PROJECT = """{
   "render": {"photons_per_pass": 20000, "passes": 3}
 }
 """
-
-
-def dp(*args, cwd):
-    done = subprocess.run([BINARY, *args], cwd=cwd, capture_output=True, text=True)
-    if done.returncode != 0:
-        raise AssertionError(f"diffphoton {' '.join(args)} failed: {done.stderr}")
 
 
 class FarmTest(unittest.TestCase):

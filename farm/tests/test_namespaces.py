@@ -17,20 +17,10 @@ import time
 import unittest
 from pathlib import Path
 
-from support import BINARY  # noqa: E402  (first: puts the package on the path)
+from support import BALL_ON_FLOOR, BINARY, dp  # noqa: E402  (first: puts the package on the path)
 
 PASSES = 12
-PROJECT = """{
-  "schema_version": 1,
-  "photo": {"path": "photo.exr"},
-  "probe": {"path": "probe.exr"},
-  "camera": {"model": "lookat", "eye": [0, 1.5, 4], "target": [0, 0.4, 0], "vfov_deg": 40},
-  "real": [{"name": "floor", "shape": {"type": "plane", "size": [10, 10]}, "albedo": [0.5, 0.5, 0.5]}],
-  "objects": [{"name": "ball", "shape": {"type": "sphere", "radius": 0.5}, "transform": {"translation": [0, 0.5, 0]},
-               "material": {"type": "diffuse", "albedo": [0.8, 0.3, 0.2]}}],
-  "render": {"photons_per_pass": 200000, "passes": 3}
-}
-"""
+PROJECT = BALL_ON_FLOOR % 200000  # a shard of 4 passes takes about a second: long enough to kill mid-way
 SCHEDULER = "tcp://10.77.0.1:8786"
 
 
@@ -41,12 +31,6 @@ def privileged():
     if shutil.which("sudo") and subprocess.run(["sudo", "-n", "true"], capture_output=True).returncode == 0:
         return ["sudo", "-n"]
     return None
-
-
-def dp(*args, cwd):
-    done = subprocess.run([BINARY, *args], cwd=cwd, capture_output=True, text=True)
-    if done.returncode != 0:
-        raise AssertionError(f"diffphoton {' '.join(args)} failed: {done.stderr}")
 
 
 class NamespacesTest(unittest.TestCase):

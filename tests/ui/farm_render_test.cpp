@@ -31,6 +31,18 @@ private Q_SLOTS:
     void aCancelledRenderWritesNothing();
 
 private:
+    /// Opens the small sample in `w`, then File > Render on Farm... with `passes`, `shard` and
+    /// the merged image `out` typed in; the dialog in `d`.
+    static void openDialog(MainWindow& w, const QTemporaryDir& dir, const QString& passes, const QString& shard,
+                           const QString& out, FarmDialog*& d) {
+        QVERIFY(test::show_and_open(w, test::write_small_sample(dir.path(), 4000, 4)));
+        w.action("renderOnFarm")->trigger();
+        d = w.farmDialog();
+        QVERIFY(QTest::qWaitForWindowExposed(d));
+        type(d, "farmPasses", passes);
+        type(d, "farmShard", shard);
+        type(d, "farmOutput", out);
+    }
     /// Types `text` into the field named `name` of `d` as a person would.
     static void type(QWidget* d, const char* name, const QString& text) {
         QWidget* field = d->findChild<QWidget*>(name);
@@ -47,14 +59,10 @@ void FarmRenderTest::aRenderOnTheFarmIsShownAndEqualsOneProcesssRender() {
     QTemporaryDir dir;
     RecordingReporter reporter(false);
     MainWindow w(test::test_options(&reporter, dir.filePath("recovery")));
-    QVERIFY(test::show_and_open(w, test::write_small_sample(dir.path(), 4000, 4)));
-    w.action("renderOnFarm")->trigger();
-    FarmDialog* d = w.farmDialog();
-    QVERIFY(QTest::qWaitForWindowExposed(d));
-    type(d, "farmPasses", "6");
-    type(d, "farmShard", "2");
     const QString out = dir.filePath("farm.exr");
-    type(d, "farmOutput", out);
+    FarmDialog* d = nullptr;
+    openDialog(w, dir, "6", "2", out, d);
+    QVERIFY(d);
 
     // The studio answers while the farm works: a timer's ticks are never held up long.
     QElapsedTimer clock;
@@ -108,14 +116,10 @@ void FarmRenderTest::aCancelledRenderWritesNothing() {
     QTemporaryDir dir;
     RecordingReporter reporter(false);
     MainWindow w(test::test_options(&reporter, dir.filePath("recovery")));
-    QVERIFY(test::show_and_open(w, test::write_small_sample(dir.path(), 4000, 4)));
-    w.action("renderOnFarm")->trigger();
-    FarmDialog* d = w.farmDialog();
-    QVERIFY(QTest::qWaitForWindowExposed(d));
-    type(d, "farmPasses", "400");
-    type(d, "farmShard", "2");
     const QString out = dir.filePath("cancelled.exr");
-    type(d, "farmOutput", out);
+    FarmDialog* d = nullptr;
+    openDialog(w, dir, "400", "2", out, d);
+    QVERIFY(d);
     bool ended = false, written = true;
     QObject::connect(d, &FarmDialog::ended, [&](bool ok) { ended = true, written = ok; });
     QTest::mouseClick(d->findChild<QPushButton*>("farmStart"), Qt::LeftButton);
