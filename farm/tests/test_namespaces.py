@@ -2,8 +2,8 @@
 network namespace of its own, joined by a private bridge (10.77.0.0/24, no route out), the
 client beside the scheduler. The merged image equals the single-process render bit for bit in
 bundle mode and in shared-folder mode, and also when one worker's process is killed mid-shard
-(what it held is retried on the other). Needs root or passwordless sudo and iproute2's `ip`;
-skipped with one line otherwise. The namespaces and everything in them go on exit.
+(what it held is retried on the other). Needs root or passwordless sudo, iproute2's `ip` and
+util-linux's `nsenter`; skipped with one line otherwise. The namespaces and everything in them go on exit.
 
 Run by ctest (label farm) with DIFFPHOTON set to the binary under test."""
 
@@ -37,8 +37,8 @@ class NamespacesTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.root = privileged()
-        if cls.root is None or not shutil.which("ip"):
-            raise unittest.SkipTest("network namespaces need root or passwordless sudo, and iproute2's ip")
+        if cls.root is None or not shutil.which("ip") or not shutil.which("nsenter"):
+            raise unittest.SkipTest("network namespaces need root or passwordless sudo, iproute2's ip and nsenter")
         suffix = str(os.getpid())
         cls.ns = {"sched": "dpf-s" + suffix, "w1": "dpf-a" + suffix, "w2": "dpf-b" + suffix}
         cls.procs = []
@@ -61,33 +61,39 @@ class NamespacesTest(unittest.TestCase):
             raise
 
     @classmethod
-    def ip(cls, *args):
-        subprocess.run(cls.root + ["ip", *args], check=True, capture_output=True)
+    def net(cls, key):
+        """Into namespace `key`'s network only: `ip netns exec` and `ip -n` also make a mount
+        namespace, which a chroot (as CI's root) refuses."""
+        return ["nsenter", f"--net=/run/netns/{cls.ns[key]}"]
+
+    @classmethod
+    def ip(cls, key, *args):
+        """`ip ARGS` as root, in namespace `key` (None: where this runs)."""
+        where = cls.net(key) if key else []
+        subprocess.run(cls.root + where + ["ip", *args], check=True, capture_output=True)
 
     @classmethod
     def make_network(cls):
         """A bridge in the scheduler's namespace, a veth from it into each worker's."""
-        s = cls.ns["sched"]
-        for name in cls.ns.values():
-            cls.ip("netns", "add", name)
-            cls.ip("-n", name, "link", "set", "lo", "up")
-        cls.ip("-n", s, "link", "add", "br0", "type", "bridge")
-        cls.ip("-n", s, "addr", "add", "10.77.0.1/24", "dev", "br0")
-        cls.ip("-n", s, "link", "set", "br0", "up")
+        for key, name in cls.ns.items():
+            cls.ip(None, "netns", "add", name)
+            cls.ip(key, "link", "set", "lo", "up")
+        cls.ip("sched", "link", "add", "br0", "type", "bridge")
+        cls.ip("sched", "addr", "add", "10.77.0.1/24", "dev", "br0")
+        cls.ip("sched", "link", "set", "br0", "up")
         for i, key in enumerate(("w1", "w2")):
-            w = cls.ns[key]
-            cls.ip("-n", s, "link", "add", f"v{i}", "type", "veth", "peer", "name", "eth0", "netns", w)
-            cls.ip("-n", s, "link", "set", f"v{i}", "master", "br0", "up")
-            cls.ip("-n", w, "addr", "add", f"10.77.0.{i + 2}/24", "dev", "eth0")
-            cls.ip("-n", w, "link", "set", "eth0", "up")
+            cls.ip("sched", "link", "add", f"v{i}", "type", "veth", "peer", "name", "eth0", "netns", cls.ns[key])
+            cls.ip("sched", "link", "set", f"v{i}", "master", "br0", "up")
+            cls.ip(key, "addr", "add", f"10.77.0.{i + 2}/24", "dev", "eth0")
+            cls.ip(key, "link", "set", "eth0", "up")
 
     @classmethod
     def in_ns(cls, key, argv):
-        """`argv` in namespace `key`, as this user (setpriv drops the root that `ip netns exec` needs)."""
+        """`argv` in namespace `key`, as this user (setpriv drops the root that nsenter needs)."""
         env = ["env", f"HOME={Path.home()}", f"PATH={os.environ.get('PATH', '')}",
                f"PYTHONPATH={os.environ.get('PYTHONPATH', '')}", f"DIFFPHOTON={BINARY}"]
         drop = ["setpriv", f"--reuid={os.getuid()}", f"--regid={os.getgid()}", "--clear-groups"]
-        return cls.root + ["ip", "netns", "exec", cls.ns[key]] + drop + env + argv
+        return cls.root + cls.net(key) + drop + env + argv
 
     @classmethod
     def start_cluster(cls):
