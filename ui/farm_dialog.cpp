@@ -154,7 +154,6 @@ bool FarmDialog::start() {
             return false;
         }
     }
-    if (passes_->value() < 1 || shard_->value() < 1) return false;
     QStringList args{"-m", "diffphoton_farm", "render", doc_->path(), "--passes", QString::number(passes_->value()),
                      "--shard", QString::number(shard_->value()), "--binary", diffphoton_binary(),
                      "-o", output_->text()};

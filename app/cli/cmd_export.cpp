@@ -1,7 +1,5 @@
 // `diffphoton export blender`: a project as one self-contained Python script that builds the
 // Blender Cycles scene (shadow catchers, objects, probe, camera, compositor) for an artist.
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -48,17 +46,11 @@ Project hand_off_project(const std::string& file, const LoadedScene& loaded) {
         throw InputError(file, "camera.distortion",
                          "Cycles' perspective camera has no lens distortion; undistort the "
                          "photograph and set the distortion to zero");
-    // Every format the renderer reads has an importer in Blender 3.4 and 5 (dp_cycles.py); the
-    // up axis in effect is written out, so that Blender turns the file as the renderer did.
-    auto mesh_path = [&](Shape& s, const std::string& field, UpAxis file_up) {
+    // Every format the renderer reads (OBJ, PLY, STL, FBX, glTF) has an importer in Blender 3.4
+    // and 5 (dp_cycles.py); the up axis in effect is written out, so that Blender turns the
+    // file as the renderer did.
+    auto mesh_path = [&](Shape& s, UpAxis file_up) {
         if (s.kind != Shape::Kind::Mesh) return;
-        std::string ext = fs::path(s.mesh_path).extension().string();
-        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-        static const char* const kBlenderReads[] = {".obj", ".ply", ".stl", ".fbx", ".gltf", ".glb"};
-        if (std::find(std::begin(kBlenderReads), std::end(kBlenderReads), ext) == std::end(kBlenderReads))
-            throw InputError(file, field,
-                             "'" + s.mesh_path +
-                                 "': Blender's scene is built from OBJ, PLY, STL, FBX and glTF meshes only");
         s.mesh_path = absolute_path(p, s.mesh_path);
         s.up_axis = s.effective_up(file_up);
     };
@@ -69,7 +61,7 @@ Project hand_off_project(const std::string& file, const LoadedScene& loaded) {
     };
     for (size_t i = 0; i < p.real.size(); ++i) {
         RealProxy& r = p.real[i];
-        mesh_path(r.shape, "real[" + std::to_string(i) + "].shape.path", up_of(assets.real_mesh_up, i));
+        mesh_path(r.shape, up_of(assets.real_mesh_up, i));
         texture_path(r.albedo);
         if (r.albedo.kind == Albedo::Kind::Estimate) {
             r.albedo.kind = Albedo::Kind::Constant;
@@ -77,7 +69,7 @@ Project hand_off_project(const std::string& file, const LoadedScene& loaded) {
         }
     }
     for (size_t i = 0; i < p.objects.size(); ++i) {
-        mesh_path(p.objects[i].shape, "objects[" + std::to_string(i) + "].shape.path", up_of(assets.object_mesh_up, i));
+        mesh_path(p.objects[i].shape, up_of(assets.object_mesh_up, i));
         texture_path(p.objects[i].material.albedo);
         PrincipledMaterial& m = p.objects[i].material.principled;
         for (std::string* t : {&m.metallic_roughness_texture, &m.normal_texture})

@@ -311,11 +311,6 @@ std::vector<LineProposal> propose_axes_ranked(const std::vector<LineSegment>& se
     return out;
 }
 
-LineProposal propose_axes(const std::vector<LineSegment>& segments, const std::vector<VanishingCluster>& clusters,
-                          int width, int height, std::optional<double> focal_px) {
-    return propose_axes_ranked(segments, clusters, width, height, focal_px, 1)[0];
-}
-
 VanishingInput vanishing_input(const LineProposal& p, ImagePoint origin, double camera_height,
                                std::optional<double> focal_px) {
     VanishingInput in;

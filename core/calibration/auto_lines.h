@@ -46,11 +46,8 @@ struct LineProposal {
 /// segments are steep in the image and its vanishing point far (beyond twice the image's
 /// size, as for a camera within about 25 degrees of level); else the two strongest
 /// orthogonal horizontal directions are the ground's. `focal_px`, where known, replaces the
-/// focal length the pairs must agree on.
-LineProposal propose_axes(const std::vector<LineSegment>& segments, const std::vector<VanishingCluster>& clusters,
-                          int width, int height, std::optional<double> focal_px = std::nullopt);
-/// Every reading propose_axes weighs, best first, at most `max_proposals` (one, with no axes,
-/// where none fits).
+/// focal length the pairs must agree on. Every such reading, best first, at most
+/// `max_proposals` (one, with no axes, where none fits).
 std::vector<LineProposal> propose_axes_ranked(const std::vector<LineSegment>& segments,
                                              const std::vector<VanishingCluster>& clusters, int width, int height,
                                              std::optional<double> focal_px, size_t max_proposals);
